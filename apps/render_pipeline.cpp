@@ -1,0 +1,104 @@
+#include "apps/render_pipeline.h"
+
+#include "core/error.h"
+#include "core/gltf_loader.h"
+#include "walk/ray_scene.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fmt/format.h>
+
+namespace irad::apps {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+bool all_digits(const std::string& s) {
+  return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// Rewrites one stderr line at most ~10 times per second.
+class ProgressLine {
+public:
+  explicit ProgressLine(bool enabled) : enabled_(enabled) {}
+  ~ProgressLine() {
+    if (enabled_ && drawn_) std::fputs("\r\033[K", stderr);
+  }
+  void operator()(std::size_t done, std::size_t total) {
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    if (done != total && now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    drawn_ = true;
+    std::fprintf(stderr, "\rirad: rendering VPL %zu/%zu (%.0f%%)", done, total,
+                 total ? 100.0 * static_cast<double>(done) / static_cast<double>(total) : 100.0);
+    std::fflush(stderr);
+  }
+
+private:
+  bool enabled_;
+  bool drawn_ = false;
+  Clock::time_point last_{};
+};
+
+} // namespace
+
+const Camera& select_camera(const Scene& scene, const std::string& which) {
+  if (scene.cameras.empty()) throw Error(scene.source, "cameras", "no camera");
+  if (which.empty()) return scene.cameras.front();
+  if (all_digits(which)) {
+    const unsigned long index = std::stoul(which);
+    if (index < scene.cameras.size()) return scene.cameras[index];
+  }
+  std::string names;
+  for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
+    if (scene.cameras[i].name == which) return scene.cameras[i];
+    names += fmt::format("{}{} '{}'", i ? ", " : "", i, scene.cameras[i].name);
+  }
+  throw Error(scene.source, "--camera", fmt::format("no camera '{}' (have: {})", which, names));
+}
+
+std::pair<int, int> image_size(const Camera& camera, std::optional<std::pair<int, int>> size) {
+  if (size) return *size;
+  const float aspect = camera.aspect.value_or(1.0f);
+  const int width = static_cast<int>(std::lround(512.0f * aspect));
+  return {std::clamp(width, 1, 16384), 512};
+}
+
+RenderResult render_scene(const RenderRequest& request, Log& log) {
+  RenderResult r;
+  const auto t0 = Clock::now();
+  r.scene = load_gltf(request.scene_path, log);
+  r.camera = select_camera(r.scene, request.camera);
+  const auto [width, height] = image_size(r.camera, request.size);
+  r.view = make_view(r.camera, r.scene.bounds, width, height);
+  r.seconds.load = since(t0);
+
+  const auto t1 = Clock::now();
+  {
+    const RayScene rays(r.scene);
+    r.vpls = quasi_random_walk(r.scene, rays, request.walk, log);
+  }
+  r.seconds.walk = since(t1);
+
+  const auto t2 = Clock::now();
+  RasterRenderer raster(r.scene, request.raster);
+  r.gl = raster.description();
+  RasterTimings timings;
+  ProgressLine progress(request.progress);
+  r.image = raster.render(r.view, r.vpls, &timings, std::ref(progress));
+  r.seconds.raster = since(t2);
+  r.seconds.readback = timings.readback;
+  r.passes = timings.passes;
+  r.seconds.total = since(t0);
+
+  if (const std::size_t bad = r.image.non_finite_count(); bad > 0)
+    throw Error(request.scene_path, "image",
+                fmt::format("{} pixels are NaN or Inf; nothing written", bad));
+  return r;
+}
+
+} // namespace irad::apps

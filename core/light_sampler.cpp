@@ -1,0 +1,154 @@
+#include "core/light_sampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace irad {
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+float mean3(const glm::vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
+
+double triangle_power(const Scene& scene, std::size_t t) {
+  const Material& m = scene.material_of(t);
+  glm::vec3 le = m.emission;
+  if (m.emissive_texture >= 0) le *= glm::vec3(scene.textures[m.emissive_texture].mean());
+  const double sides = m.double_sided ? 2.0 : 1.0;
+  return sides * pi * triangle_area(scene, t) * mean3(le);
+}
+
+double light_power(const PunctualLight& light) {
+  const double solid_angle = light.kind == PunctualLight::Kind::Point
+                                 ? 4.0 * pi
+                                 : 2.0 * pi * (1.0 - std::cos(light.outer_cone));
+  return solid_angle * mean3(light.intensity);
+}
+
+// Uniform point on a triangle from the unit square: b1 = v sqrt(u), b2 = ... (area-preserving).
+glm::vec2 square_to_triangle(double u, double v) {
+  const double su = std::sqrt(u);
+  return {static_cast<float>(su * (1.0 - v)), static_cast<float>(su * v)};
+}
+
+glm::vec3 uniform_sphere(double u, double v) {
+  const double z = 1.0 - 2.0 * u;
+  const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+  const double phi = 2.0 * pi * v;
+  return {static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)),
+          static_cast<float>(z)};
+}
+
+glm::vec3 to_world(const glm::vec3& n, const glm::vec3& local) {
+  glm::vec3 t, b;
+  orthonormal_basis(n, t, b);
+  return glm::normalize(local.x * t + local.y * b + local.z * n);
+}
+
+} // namespace
+
+void orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float c = n.x * n.y * a;
+  t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+}
+
+glm::vec3 cosine_direction(const glm::vec3& n, double u, double v) {
+  // sin theta = sqrt(u), so cos theta = sqrt(1 - u); pdf = cos theta / pi.
+  const double sin_t = std::sqrt(u);
+  const double cos_t = std::sqrt(std::max(0.0, 1.0 - u));
+  const double phi = 2.0 * pi * v;
+  return to_world(n, glm::vec3(static_cast<float>(sin_t * std::cos(phi)),
+                               static_cast<float>(sin_t * std::sin(phi)),
+                               static_cast<float>(cos_t)));
+}
+
+LightSampler::LightSampler(const Scene& scene) {
+  for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
+    if (!scene.material_of(t).emissive()) continue;
+    const double p = triangle_power(scene, t);
+    if (p > 0.0) entries_.push_back({static_cast<std::int64_t>(t), p});
+  }
+  for (std::size_t l = 0; l < scene.lights.size(); ++l) {
+    const double p = light_power(scene.lights[l]);
+    if (p > 0.0) entries_.push_back({-static_cast<std::int64_t>(l) - 1, p});
+  }
+  double sum = 0.0;
+  for (const Entry& e : entries_) {
+    sum += e.power;
+    cdf_.push_back(sum);
+  }
+  total_power_ = sum;
+  for (double& c : cdf_) c /= sum;
+  if (!cdf_.empty()) cdf_.back() = 1.0;
+}
+
+LightStart LightSampler::sample(const Scene& scene, double u, double v) const {
+  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+  const std::size_t k = std::min<std::size_t>(it - cdf_.begin(), cdf_.size() - 1);
+  const double lo = k == 0 ? 0.0 : cdf_[k - 1];
+  const double prob = cdf_[k] - lo;
+  const double u_rest = std::clamp((u - lo) / prob, 0.0, std::nextafter(1.0, 0.0));
+
+  LightStart s;
+  const Entry& e = entries_[k];
+  if (e.triangle >= 0) {
+    const auto t = static_cast<std::size_t>(e.triangle);
+    const glm::uvec3 tri = scene.triangles[t];
+    const glm::vec2 bary = square_to_triangle(u_rest, v);
+    const glm::vec3 p0 = scene.positions[tri.x], p1 = scene.positions[tri.y],
+                    p2 = scene.positions[tri.z];
+    s.position = p0 + bary.x * (p1 - p0) + bary.y * (p2 - p0);
+    s.normal = geometric_normal(scene, t);
+    s.kind = scene.material_of(t).double_sided ? VplKind::TwoSided : VplKind::Surface;
+    s.beta = emission_at(scene, t, bary) * static_cast<float>(triangle_area(scene, t) / prob);
+    s.triangle = e.triangle;
+    return s;
+  }
+  const PunctualLight& light = scene.lights[static_cast<std::size_t>(-e.triangle - 1)];
+  s.position = light.position;
+  s.normal = light.direction;
+  s.beta = light.intensity / static_cast<float>(prob);
+  s.kind = light.kind == PunctualLight::Kind::Point ? VplKind::Point : VplKind::Spot;
+  if (s.kind == VplKind::Spot) {
+    s.cos_inner = std::cos(light.inner_cone);
+    s.cos_outer = std::cos(light.outer_cone);
+  }
+  return s;
+}
+
+LightDirection LightSampler::direction(const LightStart& start, double u, double v) {
+  switch (start.kind) {
+  case VplKind::Surface:
+    return {cosine_direction(start.normal, u, v), static_cast<float>(pi)};
+  case VplKind::TwoSided: {
+    // v < 1/2 picks the front, else the back; v is rescaled to [0,1) for the azimuth.
+    const bool front = v < 0.5;
+    const double v2 = front ? 2.0 * v : 2.0 * v - 1.0;
+    const glm::vec3 n = front ? start.normal : -start.normal;
+    return {cosine_direction(n, u, v2), static_cast<float>(2.0 * pi)};
+  }
+  case VplKind::Point:
+    return {uniform_sphere(u, v), static_cast<float>(4.0 * pi)};
+  case VplKind::Spot: {
+    // Uniform in the outer cone: cos theta uniform in [cos_outer, 1]; pdf = 1 / solid angle.
+    const double cos_t = 1.0 - u * (1.0 - start.cos_outer);
+    const double sin_t = std::sqrt(std::max(0.0, 1.0 - cos_t * cos_t));
+    const double phi = 2.0 * pi * v;
+    const glm::vec3 d = to_world(start.normal, glm::vec3(static_cast<float>(sin_t * std::cos(phi)),
+                                                         static_cast<float>(sin_t * std::sin(phi)),
+                                                         static_cast<float>(cos_t)));
+    const double solid_angle = 2.0 * pi * (1.0 - start.cos_outer);
+    const float falloff =
+        spot_falloff(static_cast<float>(cos_t), start.cos_inner, start.cos_outer);
+    return {d, static_cast<float>(solid_angle) * falloff};
+  }
+  }
+  return {};
+}
+
+} // namespace irad

@@ -1,0 +1,60 @@
+#pragma once
+// Chooses where light paths start: emissive triangles and punctual lights, each with probability
+// proportional to its power
+//   triangle k: Phi_k = pi * A_k * mean(L_e,k)  (x2 when double-sided),
+//   point:      Phi = 4 pi * mean(I),   spot: Phi = 2 pi (1 - cos outer) * mean(I).
+// A triangle point is uniform on the triangle, so p(y0) = P(k) / A_k and the path starts with
+// beta_0 = L_e(y0) / p(y0); a punctual light starts with beta_0 = I / P(k).
+#include "core/scene.h"
+#include "core/vpl.h"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace irad {
+
+struct LightStart {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f}; // emitter normal (front face), or spot axis
+  glm::vec3 beta{0.0f};               // beta_0 as above
+  VplKind kind = VplKind::Surface;
+  float cos_inner = 1.0f, cos_outer = 0.0f; // Spot only
+  std::int64_t triangle = -1;               // the emissive triangle, -1 for punctual lights
+};
+
+// An outgoing direction from a light start and the factor beta_1 / beta_0 = profile / pdf.
+struct LightDirection {
+  glm::vec3 direction{0.0f};
+  float factor = 0.0f; // 0: the sample carries no light
+};
+
+class LightSampler {
+public:
+  explicit LightSampler(const Scene& scene);
+
+  bool empty() const { return cdf_.empty(); }
+  double total_power() const { return total_power_; }
+  // (u, v) in [0,1)^2: u picks the light by the power CDF and is then reused (rescaled) with v for
+  // the point on the chosen triangle.
+  LightStart sample(const Scene& scene, double u, double v) const;
+  // Direction leaving a start: cosine-distributed around the front normal (factor pi), either
+  // side of a two-sided emitter (factor 2 pi), uniform on the sphere (4 pi) or in the spot cone.
+  static LightDirection direction(const LightStart& start, double u, double v);
+
+private:
+  struct Entry {
+    std::int64_t triangle; // >= 0: emissive triangle; else -(light index + 1)
+    double power;
+  };
+  std::vector<Entry> entries_;
+  std::vector<double> cdf_; // inclusive prefix sums / total
+  double total_power_ = 0.0;
+};
+
+// Cosine-distributed unit direction around n: theta = asin(sqrt(u)), phi = 2 pi v (pdf cos/pi).
+glm::vec3 cosine_direction(const glm::vec3& n, double u, double v);
+// An orthonormal basis (t, b, n) around a unit n (Duff et al. 2017).
+void orthonormal_basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b);
+
+} // namespace irad

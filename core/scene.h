@@ -1,0 +1,88 @@
+#pragma once
+// The scene model shared by the walk, the raster and the reference estimators: world-space
+// triangles with diffuse materials, emitters, punctual lights and cameras. glTF is one way in.
+#include "core/bounds.h"
+#include "core/texture.h"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace irad {
+
+// Diffuse material: albedo rho(x) = base_color * texture(uv) (linear), emitted radiance
+// L_e(x) = emission * emissive_texture(uv), Lambertian, from the front face only unless
+// double_sided. The front face is the one whose vertices run counter-clockwise (glTF).
+struct Material {
+  std::string name;
+  glm::vec3 base_color{1.0f};
+  int base_color_texture = -1; // index into Scene::textures, or -1
+  glm::vec3 emission{0.0f};    // emissiveFactor * KHR_materials_emissive_strength
+  int emissive_texture = -1;
+  bool double_sided = false;
+
+  bool emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
+};
+
+// Pinhole camera. camera_to_world maps the camera frame (looking down -z, y up) to the world.
+struct Camera {
+  std::string name;
+  glm::mat4 camera_to_world{1.0f};
+  float yfov = 0.6911f;         // radians
+  std::optional<float> aspect;  // width / height, if the file fixes it
+  float znear = 0.0f;           // 0: derived from the scene's scale
+  std::optional<float> zfar;
+
+  glm::vec3 position() const { return glm::vec3(camera_to_world[3]); }
+};
+
+// KHR_lights_punctual light, placed in the world. intensity = color * intensity of the file and is
+// a radiant intensity in the image's linear units per steradian (no photometric conversion).
+struct PunctualLight {
+  enum class Kind { Point, Spot };
+  std::string name;
+  Kind kind = Kind::Point;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f}; // spot axis (unit)
+  glm::vec3 intensity{0.0f};
+  float inner_cone = 0.0f; // radians, spot only
+  float outer_cone = 0.7853982f;
+};
+
+struct Scene {
+  std::string source; // path of the file it came from, for messages
+
+  // Triangle soup in world space. Vertex arrays run in parallel; normals are unit length.
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs; // empty when no primitive has TEXCOORD_0
+  std::vector<glm::uvec3> triangles;
+  std::vector<std::uint32_t> triangle_material; // one per triangle
+
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Camera> cameras;
+  std::vector<PunctualLight> lights;
+
+  Bounds bounds; // of all triangles
+
+  std::size_t triangle_count() const { return triangles.size(); }
+  const Material& material_of(std::size_t triangle) const {
+    return materials[triangle_material[triangle]];
+  }
+  bool has_emitters() const;
+  bool has_textures() const { return !textures.empty(); }
+};
+
+// Surface albedo and emission at a point of triangle t with barycentrics (b1, b2).
+glm::vec3 albedo_at(const Scene& scene, std::size_t t, glm::vec2 bary);
+glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary);
+// Area-weighted mean albedo: rho_bar = sum(mean(rho_k) A_k) / sum(A_k) over all triangles, with
+// textured albedos taken at their texel mean.
+double mean_albedo(const Scene& scene);
+float triangle_area(const Scene& scene, std::size_t t);
+glm::vec3 geometric_normal(const Scene& scene, std::size_t t); // unit, front-facing side
+
+} // namespace irad

@@ -1,0 +1,29 @@
+#include "core/view.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace irad {
+
+View make_view(const Camera& camera, const Bounds& bounds, int width, int height) {
+  View v;
+  v.width = width;
+  v.height = height;
+  v.eye = camera.position();
+  v.view = glm::inverse(camera.camera_to_world);
+  float far = 0.0f;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? bounds.hi.x : bounds.lo.x,
+                      (corner & 2) ? bounds.hi.y : bounds.lo.y,
+                      (corner & 4) ? bounds.hi.z : bounds.lo.z);
+    far = glm::max(far, glm::length(p - v.eye));
+  }
+  far = glm::max(far * 1.01f, 1e-30f);
+  float near = camera.znear > 0.0f && camera.znear < 0.5f * far ? camera.znear : far * 1e-4f;
+  v.znear = near;
+  v.zfar = far;
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  v.projection = glm::perspective(camera.yfov, aspect, near, far);
+  return v;
+}
+
+} // namespace irad

@@ -1,0 +1,86 @@
+#pragma once
+// RAII owners of GL object names. Each holds the function table it was created with and deletes
+// its name when it goes out of scope; they move but never copy.
+#include <glad/gl.h>
+#include <utility>
+
+namespace irad::gl {
+
+enum class Kind { Buffer, VertexArray, Texture, Framebuffer, Renderbuffer, Program, Shader };
+
+template <Kind K>
+class Object {
+public:
+  Object() = default;
+  Object(const GladGLContext& api, GLuint name) : api_(&api), name_(name) {}
+  ~Object() { reset(); }
+  Object(Object&& o) noexcept
+      : api_(std::exchange(o.api_, nullptr)), name_(std::exchange(o.name_, 0u)) {}
+  Object& operator=(Object&& o) noexcept {
+    if (this != &o) {
+      reset();
+      api_ = std::exchange(o.api_, nullptr);
+      name_ = std::exchange(o.name_, 0u);
+    }
+    return *this;
+  }
+  Object(const Object&) = delete;
+  Object& operator=(const Object&) = delete;
+
+  GLuint get() const { return name_; }
+  explicit operator bool() const { return name_ != 0; }
+
+private:
+  void reset() {
+    if (!api_ || name_ == 0) return;
+    if constexpr (K == Kind::Buffer) api_->DeleteBuffers(1, &name_);
+    if constexpr (K == Kind::VertexArray) api_->DeleteVertexArrays(1, &name_);
+    if constexpr (K == Kind::Texture) api_->DeleteTextures(1, &name_);
+    if constexpr (K == Kind::Framebuffer) api_->DeleteFramebuffers(1, &name_);
+    if constexpr (K == Kind::Renderbuffer) api_->DeleteRenderbuffers(1, &name_);
+    if constexpr (K == Kind::Program) api_->DeleteProgram(name_);
+    if constexpr (K == Kind::Shader) api_->DeleteShader(name_);
+    name_ = 0;
+  }
+  const GladGLContext* api_ = nullptr;
+  GLuint name_ = 0;
+};
+
+using Buffer = Object<Kind::Buffer>;
+using VertexArray = Object<Kind::VertexArray>;
+using Texture = Object<Kind::Texture>;
+using Framebuffer = Object<Kind::Framebuffer>;
+using Renderbuffer = Object<Kind::Renderbuffer>;
+using Program = Object<Kind::Program>;
+using Shader = Object<Kind::Shader>;
+
+inline Buffer make_buffer(const GladGLContext& api) {
+  GLuint n = 0;
+  api.GenBuffers(1, &n);
+  return {api, n};
+}
+inline VertexArray make_vertex_array(const GladGLContext& api) {
+  GLuint n = 0;
+  api.GenVertexArrays(1, &n);
+  return {api, n};
+}
+inline Texture make_texture(const GladGLContext& api) {
+  GLuint n = 0;
+  api.GenTextures(1, &n);
+  return {api, n};
+}
+inline Framebuffer make_framebuffer(const GladGLContext& api) {
+  GLuint n = 0;
+  api.GenFramebuffers(1, &n);
+  return {api, n};
+}
+inline Renderbuffer make_renderbuffer(const GladGLContext& api) {
+  GLuint n = 0;
+  api.GenRenderbuffers(1, &n);
+  return {api, n};
+}
+
+// Throws irad::Error naming `what` unless the bound draw framebuffer is complete.
+void check_framebuffer(const GladGLContext& api, const char* what);
+
+} // namespace irad::gl

@@ -1,0 +1,47 @@
+#pragma once
+// The scene's triangles and textures on the GPU: one interleaved vertex buffer (position, normal,
+// uv), one index buffer with the triangles grouped by material, and the textures as linear
+// RGBA32F with bilinear filtering (what the walk samples). Textures are uploaded only when the
+// scene has them.
+#include "core/scene.h"
+#include "raster/gl_objects.h"
+
+#include <functional>
+#include <vector>
+
+namespace irad::gl {
+
+class GpuScene {
+public:
+  GpuScene(const GladGLContext& api, const Scene& scene);
+
+  // Draws every triangle, calling `bind(material)` before each material's range.
+  void draw(const std::function<void(const Material&)>& bind) const;
+  // Draws every triangle with no per-material state (depth and shadow passes).
+  void draw_all() const;
+  // Draws only the ranges whose material satisfies `select`.
+  void draw_if(const std::function<bool(const Material&)>& select,
+               const std::function<void(const Material&)>& bind) const;
+
+  // GL name of scene texture `index` (as in Scene::textures).
+  GLuint texture(int index) const { return textures_[static_cast<std::size_t>(index)].get(); }
+
+private:
+  struct Range {
+    std::uint32_t material;
+    std::size_t first; // first index (not triangle)
+    GLsizei count;     // indices
+  };
+  void draw_range(const Range& r) const;
+
+  const GladGLContext* api_;
+  const Scene* scene_;
+  VertexArray vao_;
+  Buffer vertices_;
+  Buffer indices_;
+  std::vector<Range> ranges_;
+  std::vector<Texture> textures_;
+  GLsizei index_count_ = 0;
+};
+
+} // namespace irad::gl

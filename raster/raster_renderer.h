@@ -1,0 +1,47 @@
+#pragma once
+// The instant radiosity rasterizer (design.md section 1, "Rasterization"): for every VPL a cube
+// shadow map and a shading pass that adds w * C(x) into an RGBA32F framebuffer; the visible
+// emitters' L_e once; then readback. Public header: no GL types.
+#include "core/image.h"
+#include "core/scene.h"
+#include "core/view.h"
+#include "core/vpl.h"
+
+#include <functional>
+#include <memory>
+
+namespace irad {
+
+struct RasterOptions {
+  int shadow_resolution = 256; // texels per cube face edge
+  float clamp = 0.05f;         // d_min as a fraction of the scene's bounding diagonal
+};
+
+struct RasterTimings {
+  double shading = 0.0;  // seconds: shadow maps + shading passes + emitters (GL is asynchronous,
+  double readback = 0.0; // so the split between them is not measured), and the final readback
+  std::size_t passes = 0;
+};
+
+using Progress = std::function<void(std::size_t done, std::size_t total)>;
+
+class RasterRenderer {
+public:
+  // Creates an OSMesa context and uploads the scene. Throws irad::Error on any GL failure.
+  RasterRenderer(const Scene& scene, const RasterOptions& options);
+  ~RasterRenderer();
+  RasterRenderer(const RasterRenderer&) = delete;
+  RasterRenderer& operator=(const RasterRenderer&) = delete;
+
+  // pixel(x) = L_e(x) + sum_k C_k(x) over the VPLs, for the given view. Alpha is 1.
+  Image render(const View& view, const VplSet& vpls, RasterTimings* timings = nullptr,
+               const Progress& progress = {});
+
+  std::string description() const; // backend and GL renderer
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace irad

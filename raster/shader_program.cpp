@@ -1,0 +1,72 @@
+#include "raster/shader_program.h"
+
+#include "core/error.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace irad::gl {
+
+namespace {
+
+std::string one_line(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+Shader compile(const GladGLContext& api, GLenum stage, const std::string& source,
+               const std::string& name) {
+  Shader shader(api, api.CreateShader(stage));
+  const char* text = source.c_str();
+  api.ShaderSource(shader.get(), 1, &text, nullptr);
+  api.CompileShader(shader.get());
+  GLint ok = GL_FALSE;
+  api.GetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    api.GetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
+    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
+    api.GetShaderInfoLog(shader.get(), static_cast<GLsizei>(log.size()), nullptr, log.data());
+    const char* kind = stage == GL_VERTEX_SHADER ? "vertex" : "fragment";
+    throw Error("", "shader " + name, std::string(kind) + " stage: " + one_line(log.data()));
+  }
+  return shader;
+}
+
+} // namespace
+
+void check_framebuffer(const GladGLContext& api, const char* what) {
+  const GLenum status = api.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("", what, "framebuffer incomplete (status 0x" + std::to_string(status) + ")");
+}
+
+ShaderProgram::ShaderProgram(const GladGLContext& api, const std::string& name,
+                             const std::string& vertex, const std::string& fragment)
+    : api_(&api), name_(name), program_(api, api.CreateProgram()) {
+  const Shader vs = compile(api, GL_VERTEX_SHADER, vertex, name);
+  const Shader fs = compile(api, GL_FRAGMENT_SHADER, fragment, name);
+  api.AttachShader(program_.get(), vs.get());
+  api.AttachShader(program_.get(), fs.get());
+  api.LinkProgram(program_.get());
+  GLint ok = GL_FALSE;
+  api.GetProgramiv(program_.get(), GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    GLint length = 0;
+    api.GetProgramiv(program_.get(), GL_LINK_STATUS, &length);
+    std::vector<char> log(4096);
+    api.GetProgramInfoLog(program_.get(), static_cast<GLsizei>(log.size()), nullptr, log.data());
+    throw Error("", "shader " + name, "link: " + one_line(log.data()));
+  }
+  api.DetachShader(program_.get(), vs.get());
+  api.DetachShader(program_.get(), fs.get());
+}
+
+GLint ShaderProgram::uniform(const char* uniform_name) const {
+  const GLint location = api_->GetUniformLocation(program_.get(), uniform_name);
+  if (location < 0) throw Error("", "shader " + name_, std::string("no uniform ") + uniform_name);
+  return location;
+}
+
+} // namespace irad::gl

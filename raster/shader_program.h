@@ -1,0 +1,25 @@
+#pragma once
+// A linked GLSL program. Compilation and link failures throw irad::Error with the driver's log
+// (folded onto one line). Uniform locations are looked up once, at construction, by the caller.
+#include "raster/gl_objects.h"
+
+#include <string>
+
+namespace irad::gl {
+
+class ShaderProgram {
+public:
+  ShaderProgram(const GladGLContext& api, const std::string& name, const std::string& vertex,
+                const std::string& fragment);
+  GLuint get() const { return program_.get(); }
+  // Location of a uniform that must exist (throws otherwise: a typo is a bug, not a no-op).
+  GLint uniform(const char* uniform_name) const;
+  void use() const { api_->UseProgram(program_.get()); }
+
+private:
+  const GladGLContext* api_;
+  std::string name_;
+  Program program_;
+};
+
+} // namespace irad::gl

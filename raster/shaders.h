@@ -1,0 +1,115 @@
+#pragma once
+// GLSL 3.30 core sources of the raster's passes.
+namespace irad::gl::shaders {
+
+// Camera passes share one vertex shader; `invariant` makes the depth pre-pass and the shading
+// passes produce bit-identical depths, so GL_LEQUAL selects exactly the visible surface.
+inline constexpr const char* camera_vertex = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
+uniform mat4 u_view_projection;
+out vec3 v_position;
+out vec3 v_normal;
+out vec2 v_uv;
+invariant gl_Position;
+void main() {
+  v_position = a_position;
+  v_normal = a_normal;
+  v_uv = a_uv;
+  gl_Position = u_view_projection * vec4(a_position, 1.0);
+}
+)";
+
+inline constexpr const char* depth_fragment = R"(#version 330 core
+void main() {}
+)";
+
+// Visible emitters: L_e(x), front face only unless double-sided.
+inline constexpr const char* emission_fragment = R"(#version 330 core
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_uv;
+uniform vec3 u_emission;
+uniform bool u_has_emissive_texture;
+uniform sampler2D u_emissive_texture;
+uniform bool u_double_sided;
+out vec4 o_color;
+void main() {
+  if (!u_double_sided && !gl_FrontFacing) discard;
+  vec3 le = u_emission;
+  if (u_has_emissive_texture) le *= texture(u_emissive_texture, v_uv).rgb;
+  o_color = vec4(le, 0.0);
+}
+)";
+
+// One VPL's contribution w * C(x) (core/vpl.h), added by blending.
+inline constexpr const char* vpl_fragment = R"(#version 330 core
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_uv;
+uniform vec3 u_vpl_position;
+uniform vec3 u_vpl_normal;
+uniform vec3 u_vpl_intensity;
+uniform int u_vpl_kind;          // 0 surface, 1 two-sided, 2 point, 3 spot
+uniform vec2 u_spot_cos;         // cos inner, cos outer
+uniform float u_dmin2;           // squared clamp distance (0 for punctual lights)
+uniform float u_min_dist2;       // below this the receiver coincides with the VPL
+uniform samplerCube u_shadow;
+uniform mat3 u_shadow_frame;     // world -> the cube's frame
+uniform float u_bias_constant;   // scale-relative
+uniform float u_bias_texel;      // angular size of a shadow texel
+uniform vec3 u_base_color;
+uniform bool u_has_base_texture;
+uniform sampler2D u_base_texture;
+out vec4 o_color;
+const float INV_PI = 0.31830988618379067;
+void main() {
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 d = v_position - u_vpl_position;
+  float dist2 = dot(d, d);
+  if (!(dist2 > u_min_dist2)) discard;
+  float dist = sqrt(dist2);
+  vec3 w = d / dist;
+  float cos_x = dot(n, -w);
+  if (cos_x <= 0.0) discard;
+  float cos_y = dot(u_vpl_normal, w);
+  float e = 1.0;
+  if (u_vpl_kind == 0) e = max(cos_y, 0.0);
+  else if (u_vpl_kind == 1) e = abs(cos_y);
+  else if (u_vpl_kind == 3) {
+    float t = clamp((cos_y - u_spot_cos.y) / max(1e-3, u_spot_cos.x - u_spot_cos.y), 0.0, 1.0);
+    e = t * t;
+  }
+  if (e <= 0.0) discard;
+  float stored = texture(u_shadow, u_shadow_frame * d).r;
+  float tan_x = sqrt(max(1.0 - cos_x * cos_x, 0.0)) / cos_x;
+  float bias = u_bias_constant + dist * u_bias_texel * (1.0 + min(tan_x, 8.0));
+  if (dist > stored + bias) discard;
+  vec3 albedo = u_base_color;
+  if (u_has_base_texture) albedo *= texture(u_base_texture, v_uv).rgb;
+  float g = e * cos_x / max(dist2, u_dmin2);
+  o_color = vec4(u_vpl_intensity * (g * INV_PI) * albedo, 0.0);
+}
+)";
+
+// Shadow cube faces: distance from the VPL to the nearest surface.
+inline constexpr const char* shadow_vertex = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_face_view_projection;
+out vec3 v_position;
+void main() {
+  v_position = a_position;
+  gl_Position = u_face_view_projection * vec4(a_position, 1.0);
+}
+)";
+
+inline constexpr const char* shadow_fragment = R"(#version 330 core
+in vec3 v_position;
+uniform vec3 u_vpl_position;
+out float o_distance;
+void main() { o_distance = length(v_position - u_vpl_position); }
+)";
+
+} // namespace irad::gl::shaders

@@ -1,0 +1,100 @@
+#include "raster/shadow_cube.h"
+
+#include "core/error.h"
+#include "core/light_sampler.h"
+#include "raster/shaders.h"
+
+#include <array>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace irad::gl {
+
+namespace {
+
+// Cube face axes in GL's face order (+x, -x, +y, -y, +z, -z): the look direction and the up
+// vector that make a rendered face match GL's cube-map lookup convention.
+struct FaceAxes {
+  glm::vec3 forward;
+  glm::vec3 up;
+};
+constexpr std::array<FaceAxes, 6> faces = {{{{1, 0, 0}, {0, -1, 0}},
+                                             {{-1, 0, 0}, {0, -1, 0}},
+                                             {{0, 1, 0}, {0, 0, 1}},
+                                             {{0, -1, 0}, {0, 0, -1}},
+                                             {{0, 0, 1}, {0, -1, 0}},
+                                             {{0, 0, -1}, {0, -1, 0}}}};
+constexpr int negative_z_face = 5;
+
+// World -> cube frame. Surface VPLs: rows (t, b, n), so the normal maps to +z.
+glm::mat3 cube_frame(const Vpl& vpl) {
+  if (vpl.kind != VplKind::Surface) return glm::mat3(1.0f);
+  glm::vec3 t, b;
+  orthonormal_basis(vpl.normal, t, b);
+  return glm::transpose(glm::mat3(t, b, vpl.normal));
+}
+
+} // namespace
+
+ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds)
+    : api_(&api), resolution_(resolution), bounds_(bounds),
+      program_(api, "shadow", shaders::shadow_vertex, shaders::shadow_fragment),
+      u_face_view_projection_(program_.uniform("u_face_view_projection")),
+      u_vpl_position_(program_.uniform("u_vpl_position")), cube_(make_texture(api)),
+      depth_(make_renderbuffer(api)), fbo_(make_framebuffer(api)) {
+  api.BindTexture(GL_TEXTURE_CUBE_MAP, cube_.get());
+  for (int f = 0; f < 6; ++f)
+    api.TexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_R32F, resolution,
+                   resolution, 0, GL_RED, GL_FLOAT, nullptr);
+  api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  api.BindRenderbuffer(GL_RENDERBUFFER, depth_.get());
+  api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, resolution, resolution);
+  api.BindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+  api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.get());
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X,
+                           cube_.get(), 0);
+  check_framebuffer(api, "shadow cube framebuffer");
+}
+
+glm::mat3 ShadowCube::render(const Vpl& vpl, const GpuScene& scene) {
+  const glm::mat3 frame = cube_frame(vpl);
+  // Near and far fitted to this VPL: far reaches the farthest corner of the scene's bounds.
+  float far = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 p((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y,
+                      (c & 4) ? bounds_.hi.z : bounds_.lo.z);
+    far = glm::max(far, glm::length(p - vpl.position));
+  }
+  far = glm::max(1.01f * far, 1e-30f);
+  const float near = 1e-4f * glm::max(bounds_.diagonal(), far);
+  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, near, far);
+  const glm::mat4 to_frame = glm::mat4(frame) * glm::translate(glm::mat4(1.0f), -vpl.position);
+
+  api_->BindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+  api_->Viewport(0, 0, resolution_, resolution_);
+  api_->Enable(GL_DEPTH_TEST);
+  api_->DepthFunc(GL_LESS);
+  api_->DepthMask(GL_TRUE);
+  api_->Disable(GL_BLEND);
+  api_->ClearColor(3.0e38f, 0.0f, 0.0f, 0.0f); // nothing there: never shadowed
+  program_.use();
+  api_->Uniform3fv(u_vpl_position_, 1, glm::value_ptr(vpl.position));
+  for (int f = 0; f < 6; ++f) {
+    if (f == negative_z_face && vpl.kind == VplKind::Surface) continue;
+    api_->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                               static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f),
+                               cube_.get(), 0);
+    api_->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const glm::mat4 face_view = glm::lookAt(glm::vec3(0.0f), faces[f].forward, faces[f].up);
+    const glm::mat4 vp = projection * face_view * to_frame;
+    api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE, glm::value_ptr(vp));
+    scene.draw_all();
+  }
+  return frame;
+}
+
+} // namespace irad::gl

@@ -1,0 +1,39 @@
+#pragma once
+// Omnidirectional shadow map of one VPL: a cube of R32F distances |p - y| to the nearest surface,
+// rendered face by face into one framebuffer. A surface VPL lights only its hemisphere, so its
+// cube is turned to put the normal at the centre of the +z face and the -z face is skipped.
+#include "core/bounds.h"
+#include "core/vpl.h"
+#include "raster/gpu_scene.h"
+#include "raster/shader_program.h"
+
+#include <glm/glm.hpp>
+
+namespace irad::gl {
+
+class ShadowCube {
+public:
+  ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds);
+
+  // Renders the cube for `vpl` (changes the bound framebuffer, viewport and program) and returns
+  // the rotation world -> cube frame to use for lookups.
+  glm::mat3 render(const Vpl& vpl, const GpuScene& scene);
+
+  GLuint texture() const { return cube_.get(); }
+  int resolution() const { return resolution_; }
+  // Angular size of one texel at the centre of a face (radians, ~2 / resolution).
+  float texel_angle() const { return 2.0f / static_cast<float>(resolution_); }
+
+private:
+  const GladGLContext* api_;
+  int resolution_;
+  Bounds bounds_;
+  ShaderProgram program_;
+  GLint u_face_view_projection_;
+  GLint u_vpl_position_;
+  Texture cube_;
+  Renderbuffer depth_;
+  Framebuffer fbo_;
+};
+
+} // namespace irad::gl

@@ -1,0 +1,98 @@
+#include "tests/scene_builder.h"
+
+#include <cmath>
+
+namespace irad::test {
+
+void add_quad(Scene& scene, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
+              const glm::vec3& p3, std::uint32_t material) {
+  const auto base = static_cast<std::uint32_t>(scene.positions.size());
+  const glm::vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  for (const glm::vec3& p : {p0, p1, p2, p3}) {
+    scene.positions.push_back(p);
+    scene.normals.push_back(n);
+  }
+  scene.triangles.push_back({base, base + 1, base + 2});
+  scene.triangles.push_back({base, base + 2, base + 3});
+  scene.triangle_material.push_back(material);
+  scene.triangle_material.push_back(material);
+}
+
+std::uint32_t add_material(Scene& scene, const glm::vec3& albedo, const glm::vec3& emission,
+                           bool double_sided) {
+  Material m;
+  m.name = "material" + std::to_string(scene.materials.size());
+  m.base_color = albedo;
+  m.emission = emission;
+  m.double_sided = double_sided;
+  scene.materials.push_back(m);
+  return static_cast<std::uint32_t>(scene.materials.size() - 1);
+}
+
+Camera look_at(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float yfov) {
+  const glm::vec3 back = glm::normalize(eye - target);
+  const glm::vec3 right = glm::normalize(glm::cross(up, back));
+  const glm::vec3 true_up = glm::cross(back, right);
+  Camera c;
+  c.name = "test";
+  c.camera_to_world = glm::mat4(glm::vec4(right, 0), glm::vec4(true_up, 0), glm::vec4(back, 0),
+                                glm::vec4(eye, 1));
+  c.yfov = yfov;
+  return c;
+}
+
+void finish(Scene& scene) {
+  scene.bounds = Bounds{};
+  for (const glm::vec3& p : scene.positions) scene.bounds.extend(p);
+}
+
+Scene square_light_over_plane(float side, float height, float radiance, float plane_side,
+                              float albedo) {
+  Scene s;
+  s.source = "square_light_over_plane";
+  const std::uint32_t floor = add_material(s, glm::vec3(albedo));
+  const std::uint32_t light = add_material(s, glm::vec3(0.0f), glm::vec3(radiance));
+  const float p = 0.5f * plane_side, l = 0.5f * side;
+  add_quad(s, {-p, -p, 0}, {p, -p, 0}, {p, p, 0}, {-p, p, 0}, floor);
+  // Facing down (-z): counter-clockwise seen from below.
+  add_quad(s, {-l, -l, height}, {-l, l, height}, {l, l, height}, {l, -l, height}, light);
+  finish(s);
+  return s;
+}
+
+double polygon_irradiance(const std::vector<glm::dvec3>& polygon, const glm::dvec3& x,
+                          const glm::dvec3& n, double radiance) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const glm::dvec3 a = glm::normalize(polygon[i] - x);
+    const glm::dvec3 b = glm::normalize(polygon[(i + 1) % polygon.size()] - x);
+    const double angle = std::acos(glm::clamp(glm::dot(a, b), -1.0, 1.0));
+    sum += angle * glm::dot(n, glm::normalize(glm::cross(a, b)));
+  }
+  return 0.5 * radiance * std::abs(sum);
+}
+
+} // namespace irad::test
+
+namespace irad::test {
+
+Scene closed_box(float size, float albedo, float patch, float radiance) {
+  Scene s;
+  s.source = "closed_box";
+  const std::uint32_t wall = add_material(s, glm::vec3(albedo));
+  const std::uint32_t light = add_material(s, glm::vec3(albedo), glm::vec3(radiance));
+  const float a = size;
+  // Inward-facing walls (counter-clockwise seen from inside).
+  add_quad(s, {0, 0, 0}, {0, 0, a}, {a, 0, a}, {a, 0, 0}, wall); // floor y = 0, normal +y
+  add_quad(s, {0, a, 0}, {a, a, 0}, {a, a, a}, {0, a, a}, wall); // ceiling, normal -y
+  add_quad(s, {0, 0, 0}, {a, 0, 0}, {a, a, 0}, {0, a, 0}, wall); // z = 0, normal +z
+  add_quad(s, {0, 0, a}, {0, a, a}, {a, a, a}, {a, 0, a}, wall); // z = a, normal -z
+  add_quad(s, {0, 0, 0}, {0, a, 0}, {0, a, a}, {0, 0, a}, wall); // x = 0, normal +x
+  add_quad(s, {a, 0, 0}, {a, 0, a}, {a, a, a}, {a, a, 0}, wall); // x = a, normal -x
+  const float lo = 0.5f * (a - patch), hi = 0.5f * (a + patch), y = a * 0.999f;
+  add_quad(s, {lo, y, lo}, {hi, y, lo}, {hi, y, hi}, {lo, y, hi}, light); // facing -y
+  finish(s);
+  return s;
+}
+
+} // namespace irad::test

@@ -1,0 +1,121 @@
+// Radical inverses and the particle counts of the quasi-random walk (design.md section 1).
+#include "core/particle_counts.h"
+#include "core/radical_inverse.h"
+
+#include <cmath>
+#include <gtest/gtest.h>
+#include <limits>
+
+namespace irad {
+namespace {
+
+TEST(RadicalInverse, ExactValues) {
+  EXPECT_EQ(radical_inverse(2, 0), 0.0);
+  EXPECT_EQ(radical_inverse(2, 1), 0.5);
+  EXPECT_EQ(radical_inverse(2, 2), 0.25);
+  EXPECT_EQ(radical_inverse(2, 3), 0.75);
+  EXPECT_EQ(radical_inverse(2, 6), 0.375);
+  EXPECT_EQ(radical_inverse(3, 1), 1.0 / 3.0);
+  EXPECT_EQ(radical_inverse(3, 2), 2.0 / 3.0);
+  EXPECT_EQ(radical_inverse(3, 3), 1.0 / 9.0);
+  EXPECT_EQ(radical_inverse(3, 5), 7.0 / 9.0); // 5 = 12_3 -> 0.21_3 = 2/3 + 1/9
+  EXPECT_EQ(radical_inverse(5, 7), 11.0 / 25.0); // 7 = 12_5 -> 0.21_5 = 2/5 + 1/25
+  // 2^32 - 1 in base 2 has 32 one-digits: 1 - 2^-32, exactly.
+  EXPECT_EQ(radical_inverse(2, 0xffffffffu), 1.0 - std::ldexp(1.0, -32));
+}
+
+// Correctly rounded: compare with the digits accumulated in long double from the top.
+TEST(RadicalInverse, MatchesLongDoubleReference) {
+  for (std::uint32_t base : {2u, 3u, 5u, 7u, 11u, 13u, 97u, 7919u}) {
+    for (std::uint32_t i : {1u, 17u, 1000u, 123456789u, 0x80000000u, 0xfffffffeu, 0xffffffffu}) {
+      long double value = 0.0L, scale = 1.0L / base;
+      for (std::uint32_t n = i; n > 0; n /= base, scale /= base) value += (n % base) * scale;
+      EXPECT_NEAR(radical_inverse(base, i), static_cast<double>(value), 1e-16)
+          << "base " << base << " i " << i;
+    }
+  }
+}
+
+// The largest values for every digit count are i = b^m - 1 (all digits b - 1), and the largest
+// 32-bit index: all must stay below 1.
+TEST(RadicalInverse, AlwaysBelowOneForAll32BitIndices) {
+  for (std::uint32_t base : first_primes(200)) {
+    for (std::uint64_t p = base; p - 1 <= 0xffffffffu; p *= base)
+      EXPECT_LT(radical_inverse(base, static_cast<std::uint32_t>(p - 1)), 1.0) << base;
+    EXPECT_LT(radical_inverse(base, 0xffffffffu), 1.0);
+  }
+}
+
+TEST(RadicalInverse, Primes) {
+  const std::vector<std::uint32_t> p = first_primes(10);
+  EXPECT_EQ(p, (std::vector<std::uint32_t>{2, 3, 5, 7, 11, 13, 17, 19, 23, 29}));
+  EXPECT_EQ(first_primes(1000).back(), 7919u);
+}
+
+TEST(ParticleCounts, SeedExample) {
+  // The seed: rho_bar = 0.5774, N = 64 -> l_max = 7.
+  EXPECT_EQ(l_max_closed_form(64, 0.5774), 7);
+  EXPECT_EQ(ParticleCounts(64, 0.5774, 64).l_max(), 7);
+}
+
+TEST(ParticleCounts, ExactPowersFloorToThemselves) {
+  // 0.5^6 * 64 = 1 exactly: n_6 = 1 and l_max = 6.
+  const ParticleCounts c(64, 0.5, 64);
+  EXPECT_EQ(c.reaching(6), 1u);
+  EXPECT_EQ(c.reaching(7), 0u);
+  EXPECT_EQ(c.l_max(), 6);
+  EXPECT_EQ(l_max_closed_form(64, 0.5), 6);
+  // 0.1^3 * 1000 = 1 (0.1 is not exact in binary): still 1.
+  EXPECT_EQ(ParticleCounts(1000, 0.1, 64).reaching(3), 1u);
+  EXPECT_EQ(l_max_closed_form(1000, 0.1), 3);
+  EXPECT_EQ(ParticleCounts(1000, 0.1, 64).l_max(), 3);
+}
+
+TEST(ParticleCounts, LmaxEqualsDeepestReflectionOnAGrid) {
+  for (std::uint32_t n : {1u, 2u, 3u, 10u, 64u, 100u, 1000u, 1024u, 4096u, 100000u, 1u << 22}) {
+    for (double rho : {0.0, 0.01, 0.1, 0.25, 0.3, 0.5, 0.5774, 0.6, 0.75, 0.8, 0.9, 0.95}) {
+      const ParticleCounts c(n, rho, 1000);
+      int deepest = 0;
+      std::uint64_t m = 0;
+      for (std::uint32_t i = 0; i < n; i += (n > 5000 ? 97 : 1)) deepest = std::max(deepest, c.depth_of(i));
+      deepest = std::max(deepest, c.depth_of(0)); // particle 0 always goes deepest
+      for (int j = 0; j <= c.l_max() + 1; ++j) m += c.reaching(j);
+      EXPECT_EQ(c.l_max(), l_max_closed_form(n, rho)) << "N " << n << " rho " << rho;
+      EXPECT_EQ(deepest, c.l_max()) << "N " << n << " rho " << rho;
+      EXPECT_EQ(m, c.vpl_count());
+      EXPECT_LT(static_cast<double>(m), n / (1.0 - rho) + 1e-9);
+      EXPECT_FALSE(c.capped());
+    }
+  }
+}
+
+TEST(ParticleCounts, DepthOfMatchesDefinition) {
+  const ParticleCounts c(100, 0.6, 64);
+  for (std::uint32_t i = 0; i < 100; ++i) {
+    int expected = 0;
+    while (i < c.reaching(expected + 1)) ++expected;
+    EXPECT_EQ(c.depth_of(i), expected) << i;
+  }
+  // M = sum n_j = 100 + 60 + 36 + 21 + 12 + 7 + 4 + 2 + 1 + 1 (0.6^9 * 100 = 1.0078).
+  EXPECT_EQ(c.vpl_count(), 244u);
+  EXPECT_EQ(c.l_max(), 9);
+}
+
+TEST(ParticleCounts, AlbedoOneIsCapped) {
+  const ParticleCounts c(16, 1.0, 20);
+  EXPECT_TRUE(c.capped());
+  EXPECT_EQ(c.l_max(), 20);
+  EXPECT_EQ(c.reaching(20), 16u);
+  const ParticleCounts above(16, 1.7, 20);
+  EXPECT_TRUE(above.capped());
+  EXPECT_EQ(above.reaching(5), 16u); // never more than N particles
+}
+
+TEST(ParticleCounts, ZeroAlbedoIsDirectLightOnly) {
+  const ParticleCounts c(50, 0.0, 64);
+  EXPECT_EQ(c.l_max(), 0);
+  EXPECT_EQ(c.vpl_count(), 50u);
+}
+
+} // namespace
+} // namespace irad

@@ -1,0 +1,127 @@
+#include "walk/quasi_random_walk.h"
+
+#include "core/error.h"
+#include "core/light_sampler.h"
+#include "core/particle_counts.h"
+#include "core/radical_inverse.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+namespace irad {
+
+namespace {
+
+constexpr float inv_pi = std::numbers::inv_pi_v<float>;
+
+bool positive(const glm::vec3& v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
+
+// The surface seen by a path vertex: position, normal facing the side the particle came from.
+struct PathVertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec3 albedo;
+};
+
+PathVertex vertex_at(const Scene& scene, const RayHit& hit, const glm::vec3& incoming) {
+  const glm::uvec3 tri = scene.triangles[hit.triangle];
+  const float b0 = 1.0f - hit.bary.x - hit.bary.y;
+  const glm::vec3 p = b0 * scene.positions[tri.x] + hit.bary.x * scene.positions[tri.y] +
+                      hit.bary.y * scene.positions[tri.z];
+  glm::vec3 ng = geometric_normal(scene, hit.triangle);
+  if (glm::dot(ng, incoming) > 0.0f) ng = -ng; // face the arriving particle
+  glm::vec3 ns = b0 * scene.normals[tri.x] + hit.bary.x * scene.normals[tri.y] +
+                 hit.bary.y * scene.normals[tri.z];
+  const float len = glm::length(ns);
+  ns = len > 0.0f ? ns / len : ng;
+  if (glm::dot(ns, ng) < 0.0f) ns = -ns;        // same side as the geometric normal
+  if (glm::dot(ns, ng) <= 1e-3f) ns = ng;        // shading normal unusable near the tangent plane
+  return {p, ns, albedo_at(scene, hit.triangle, hit.bary)};
+}
+
+Vpl light_vpl(const LightStart& start, float weight, std::uint32_t path) {
+  Vpl v;
+  v.position = start.position;
+  v.normal = start.normal;
+  v.intensity = weight * start.beta;
+  v.kind = start.kind;
+  v.depth = 0;
+  v.path = path;
+  v.cos_inner = start.cos_inner;
+  v.cos_outer = start.cos_outer;
+  return v;
+}
+
+void warn_capped(const ParticleCounts& counts, Log& log, int cap) {
+  if (counts.capped())
+    log.warn(fmt::format("mean albedo rho_bar = {:.4f} is close to or above 1: the walk is capped "
+                         "at {} reflections (light beyond them is lost)",
+                         counts.rho_bar(), cap));
+}
+
+} // namespace
+
+VplSet quasi_random_walk(const Scene& scene, const RayScene& rays, const WalkOptions& options,
+                         Log& log) {
+  if (options.paths == 0) throw Error("", "--paths", "must be at least 1");
+  const LightSampler lights(scene);
+  if (lights.empty())
+    throw Error(scene.source, "", "no light: no emissive surface and no punctual light");
+
+  const ParticleCounts counts(options.paths, mean_albedo(scene), options.depth_cap);
+  warn_capped(counts, log, options.depth_cap);
+  const Halton halton(2 * static_cast<std::size_t>(counts.l_max()) + 2);
+  const float eps = rays.epsilon();
+  const float far = std::numeric_limits<float>::infinity();
+
+  VplSet set;
+  set.paths = counts.paths();
+  set.rho_bar = counts.rho_bar();
+  set.l_max = counts.l_max();
+  set.depth_capped = counts.capped();
+  set.planned = counts.vpl_count();
+  set.vpls.reserve(set.planned);
+
+  for (std::uint32_t i = 0; i < counts.paths(); ++i) {
+    const int depth = counts.depth_of(i);
+    const LightStart start = lights.sample(scene, halton.sample(0, i), halton.sample(1, i));
+    if (!positive(start.beta)) continue;
+    set.vpls.push_back(light_vpl(start, 1.0f / static_cast<float>(counts.reaching(0)), i));
+    if (depth == 0) continue;
+
+    // Leave the light: beta_1 = beta_0 * profile / pdf.
+    const LightDirection out =
+        LightSampler::direction(start, halton.sample(2, i), halton.sample(3, i));
+    glm::vec3 beta = start.beta * out.factor;
+    glm::vec3 origin = start.position;
+    glm::vec3 dir = out.direction;
+    glm::vec3 offset_normal = start.triangle >= 0 ? start.normal : glm::vec3(0.0f);
+    if (glm::dot(offset_normal, dir) < 0.0f) offset_normal = -offset_normal;
+    for (int j = 1; j <= depth && positive(beta); ++j) {
+      const auto hit = rays.intersect(origin + eps * offset_normal, dir, 0.0f, far);
+      if (!hit) break; // the particle leaves the scene
+      const PathVertex y = vertex_at(scene, *hit, dir);
+      const glm::vec3 radiant = beta * y.albedo * inv_pi; // beta_j rho(y_j) / pi
+      if (!positive(radiant)) break;                     // absorbed: nothing further
+      Vpl v;
+      v.position = y.position;
+      v.normal = y.normal;
+      v.intensity = radiant / static_cast<float>(counts.reaching(j));
+      v.kind = VplKind::Surface;
+      v.depth = static_cast<std::uint16_t>(j);
+      v.path = i;
+      set.vpls.push_back(v);
+      if (j == depth) break;
+      // Scatter: cosine-distributed from (Phi_{b_{2j+2}}(i), Phi_{b_{2j+3}}(i)); beta_{j+1} =
+      // rho(y_j) beta_j.
+      dir = cosine_direction(y.normal, halton.sample(2 * j + 2, i), halton.sample(2 * j + 3, i));
+      beta *= y.albedo;
+      origin = y.position;
+      offset_normal = y.normal;
+    }
+  }
+  return set;
+}
+
+} // namespace irad
