@@ -16,8 +16,15 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     return commands.run();
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;
+    std::fprintf(stderr, "irad: error: %s (see irad --help)\n", e.what());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "irad: error: %s\n", e.what());
     return 1;

@@ -108,9 +108,9 @@ int run_render(const RenderArgs& args) {
     std::fprintf(stderr,
                  "irad: %s: %dx%d, %u paths, %zu VPLs (l_max %d, rho_bar %.4f) in %.2f s "
                  "(load %.2f, walk %.2f, raster %.2f)\n",
-                 args.scene.c_str(), r.view.width, r.view.height, r.vpls.paths,
-                 r.vpls.vpls.size(), r.vpls.l_max, r.vpls.rho_bar, r.seconds.total,
-                 r.seconds.load, r.seconds.walk, r.seconds.raster);
+                 args.scene.c_str(), r.view.width, r.view.height, r.vpls.paths, r.vpls.vpls.size(),
+                 r.vpls.l_max, r.vpls.rho_bar, r.seconds.total, r.seconds.load, r.seconds.walk,
+                 r.seconds.raster);
   return 0;
 }
 
@@ -120,10 +120,12 @@ void add_render_command(CLI::App& app, Commands& commands) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render one image of a glTF scene");
   cmd->add_option("scene", args->scene, "glTF 2.0 scene (.gltf or .glb)")->required();
-  cmd->add_option("-o,--output", args->outputs, "Output image (.exr linear float, .png sRGB); "
-                                                "may be given several times")
+  cmd->add_option("-o,--output", args->outputs,
+                  "Output image (.exr linear float, .png sRGB); "
+                  "may be given several times")
       ->required();
-  cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT (default: 512 high, camera aspect)");
+  cmd->add_option("--size", args->size,
+                  "Image size WIDTHxHEIGHT (default: 512 high, camera aspect)");
   cmd->add_option("--paths", args->paths, "Number of light paths N")->capture_default_str();
   cmd->add_option("--shadow-res", args->shadow_res, "Shadow cube face resolution")
       ->capture_default_str();
@@ -131,7 +133,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Clamp distance d_min as a fraction of the scene's bounding diagonal")
       ->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index (default: the first)");
-  cmd->add_option("--exposure", args->exposure, "PNG exposure in stops (EV)")->capture_default_str();
+  cmd->add_option("--exposure", args->exposure, "PNG exposure in stops (EV)")
+      ->capture_default_str();
   cmd->add_option("--tonemap", args->tone_map, "PNG tone map")
       ->check(CLI::IsMember({"clamp", "reinhard"}))
       ->capture_default_str();

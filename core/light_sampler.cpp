@@ -10,7 +10,9 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-float mean3(const glm::vec3& v) { return (v.x + v.y + v.z) / 3.0f; }
+float mean3(const glm::vec3& v) {
+  return (v.x + v.y + v.z) / 3.0f;
+}
 
 double triangle_power(const Scene& scene, std::size_t t) {
   const Material& m = scene.material_of(t);
@@ -62,9 +64,9 @@ glm::vec3 cosine_direction(const glm::vec3& n, double u, double v) {
   const double sin_t = std::sqrt(u);
   const double cos_t = std::sqrt(std::max(0.0, 1.0 - u));
   const double phi = 2.0 * pi * v;
-  return to_world(n, glm::vec3(static_cast<float>(sin_t * std::cos(phi)),
-                               static_cast<float>(sin_t * std::sin(phi)),
-                               static_cast<float>(cos_t)));
+  return to_world(n,
+                  glm::vec3(static_cast<float>(sin_t * std::cos(phi)),
+                            static_cast<float>(sin_t * std::sin(phi)), static_cast<float>(cos_t)));
 }
 
 LightSampler::LightSampler(const Scene& scene) {
@@ -143,8 +145,7 @@ LightDirection LightSampler::direction(const LightStart& start, double u, double
                                                          static_cast<float>(sin_t * std::sin(phi)),
                                                          static_cast<float>(cos_t)));
     const double solid_angle = 2.0 * pi * (1.0 - start.cos_outer);
-    const float falloff =
-        spot_falloff(static_cast<float>(cos_t), start.cos_inner, start.cos_outer);
+    const float falloff = spot_falloff(static_cast<float>(cos_t), start.cos_inner, start.cos_outer);
     return {d, static_cast<float>(solid_angle) * falloff};
   }
   }

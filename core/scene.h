@@ -30,9 +30,9 @@ struct Material {
 struct Camera {
   std::string name;
   glm::mat4 camera_to_world{1.0f};
-  float yfov = 0.6911f;         // radians
-  std::optional<float> aspect;  // width / height, if the file fixes it
-  float znear = 0.0f;           // 0: derived from the scene's scale
+  float yfov = 0.6911f;        // radians
+  std::optional<float> aspect; // width / height, if the file fixes it
+  float znear = 0.0f;          // 0: derived from the scene's scale
   std::optional<float> zfar;
 
   glm::vec3 position() const { return glm::vec3(camera_to_world[3]); }

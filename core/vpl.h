@@ -1,14 +1,15 @@
 #pragma once
 // Virtual point lights: what the walk hands to the estimators (design.md section 1).
 // A VPL at y lights a receiver x (normal n_x, albedo rho(x)) with
-//   C(x) = intensity * E(y, x) * max(0, cos theta_x) / max(|x - y|^2, d_min^2) * V(y, x) * rho(x)/pi
+//   C(x) = intensity * E(y, x) * max(0, cos theta_x) / max(|x - y|^2, d_min^2) * V(y, x) *
+//   rho(x)/pi
 // where the emission profile E depends on the kind:
 //   Surface:   max(0, cos theta_y)  (theta_y between normal and x - y)
 //   TwoSided:  |cos theta_y|        (a point on a double-sided emitter)
 //   Point:     1                    (a punctual light; no clamp, it is exact and not a sample)
 //   Spot:      glTF smooth cone falloff around `normal` (the spot axis); no clamp either.
-// `intensity` already folds in the weight w = 1/n_j, the path throughput beta_j and, for depth >= 1,
-// rho(y_j)/pi, so an estimator adds C(x) of every VPL and nothing else.
+// `intensity` already folds in the weight w = 1/n_j, the path throughput beta_j and, for depth >=
+// 1, rho(y_j)/pi, so an estimator adds C(x) of every VPL and nothing else.
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
@@ -22,9 +23,9 @@ struct Vpl {
   glm::vec3 normal{0.0f, 0.0f, 1.0f}; // unit; the spot axis for Spot
   glm::vec3 intensity{0.0f};
   VplKind kind = VplKind::Surface;
-  std::uint16_t depth = 0;  // reflections before this VPL (0: on a light)
-  std::uint32_t path = 0;   // particle index i
-  float cos_inner = 1.0f;   // Spot only: cosines of the inner and outer cone angles
+  std::uint16_t depth = 0; // reflections before this VPL (0: on a light)
+  std::uint32_t path = 0;  // particle index i
+  float cos_inner = 1.0f;  // Spot only: cosines of the inner and outer cone angles
   float cos_outer = 0.0f;
 
   bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
@@ -39,7 +40,7 @@ inline float spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
 
 struct VplSet {
   std::vector<Vpl> vpls;
-  std::uint32_t paths = 0;  // N
+  std::uint32_t paths = 0; // N
   double rho_bar = 0.0;
   int l_max = 0;
   bool depth_capped = false; // rho_bar near or above 1 hit the depth cap

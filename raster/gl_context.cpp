@@ -19,10 +19,19 @@ GLADapiproc osmesa_proc(void* /*user*/, const char* name) {
 class OsMesaContext final : public Context {
 public:
   OsMesaContext() {
-    const std::array<int, 13> attribs = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0,
-                                         OSMESA_STENCIL_BITS, 0, OSMESA_PROFILE,
-                                         OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                                         OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+    const std::array<int, 13> attribs = {OSMESA_FORMAT,
+                                         OSMESA_RGBA,
+                                         OSMESA_DEPTH_BITS,
+                                         0,
+                                         OSMESA_STENCIL_BITS,
+                                         0,
+                                         OSMESA_PROFILE,
+                                         OSMESA_CORE_PROFILE,
+                                         OSMESA_CONTEXT_MAJOR_VERSION,
+                                         3,
+                                         OSMESA_CONTEXT_MINOR_VERSION,
+                                         3,
+                                         0};
     context_ = OSMesaCreateContextAttribs(attribs.data(), nullptr);
     if (!context_)
       throw Error("", "osmesa", "cannot create an OpenGL 3.3 core context with OSMesa");
@@ -56,6 +65,8 @@ void Context::check(const char* where) const {
   if (e != GL_NO_ERROR) throw Error("", where, fmt::format("OpenGL error 0x{:04x}", e));
 }
 
-std::unique_ptr<Context> create_osmesa_context() { return std::make_unique<OsMesaContext>(); }
+std::unique_ptr<Context> create_osmesa_context() {
+  return std::make_unique<OsMesaContext>();
+}
 
 } // namespace irad::gl

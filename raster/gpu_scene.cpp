@@ -15,9 +15,12 @@ struct Vertex {
 
 GLint gl_wrap(Wrap w) {
   switch (w) {
-  case Wrap::ClampToEdge: return GL_CLAMP_TO_EDGE;
-  case Wrap::MirroredRepeat: return GL_MIRRORED_REPEAT;
-  case Wrap::Repeat: break;
+  case Wrap::ClampToEdge:
+    return GL_CLAMP_TO_EDGE;
+  case Wrap::MirroredRepeat:
+    return GL_MIRRORED_REPEAT;
+  case Wrap::Repeat:
+    break;
   }
   return GL_REPEAT;
 }
@@ -57,8 +60,7 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   indices.reserve(3 * order.size());
   for (std::uint32_t t : order) {
     const std::uint32_t m = scene.triangle_material[t];
-    if (ranges_.empty() || ranges_.back().material != m)
-      ranges_.push_back({m, indices.size(), 0});
+    if (ranges_.empty() || ranges_.back().material != m) ranges_.push_back({m, indices.size(), 0});
     for (int c = 0; c < 3; ++c) indices.push_back(scene.triangles[t][c]);
     ranges_.back().count += 3;
   }

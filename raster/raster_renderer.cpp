@@ -41,8 +41,8 @@ struct EmissionUniforms {
   GLint view_projection, emission, has_texture, texture, double_sided;
   explicit EmissionUniforms(const gl::ShaderProgram& p)
       : view_projection(p.uniform("u_view_projection")), emission(p.uniform("u_emission")),
-        has_texture(p.uniform("u_has_emissive_texture")),
-        texture(p.uniform("u_emissive_texture")), double_sided(p.uniform("u_double_sided")) {}
+        has_texture(p.uniform("u_has_emissive_texture")), texture(p.uniform("u_emissive_texture")),
+        double_sided(p.uniform("u_double_sided")) {}
 };
 
 constexpr GLint shadow_unit = 0;

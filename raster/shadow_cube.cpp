@@ -19,11 +19,11 @@ struct FaceAxes {
   glm::vec3 up;
 };
 constexpr std::array<FaceAxes, 6> faces = {{{{1, 0, 0}, {0, -1, 0}},
-                                             {{-1, 0, 0}, {0, -1, 0}},
-                                             {{0, 1, 0}, {0, 0, 1}},
-                                             {{0, -1, 0}, {0, 0, -1}},
-                                             {{0, 0, 1}, {0, -1, 0}},
-                                             {{0, 0, -1}, {0, -1, 0}}}};
+                                            {{-1, 0, 0}, {0, -1, 0}},
+                                            {{0, 1, 0}, {0, 0, 1}},
+                                            {{0, -1, 0}, {0, 0, -1}},
+                                            {{0, 0, 1}, {0, -1, 0}},
+                                            {{0, 0, -1}, {0, -1, 0}}}};
 constexpr int negative_z_face = 5;
 
 // World -> cube frame. Surface VPLs: rows (t, b, n), so the normal maps to +z.
@@ -86,8 +86,8 @@ glm::mat3 ShadowCube::render(const Vpl& vpl, const GpuScene& scene) {
   for (int f = 0; f < 6; ++f) {
     if (f == negative_z_face && vpl.kind == VplKind::Surface) continue;
     api_->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
-                               static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f),
-                               cube_.get(), 0);
+                               static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), cube_.get(),
+                               0);
     api_->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::mat4 face_view = glm::lookAt(glm::vec3(0.0f), faces[f].forward, faces[f].up);
     const glm::mat4 vp = projection * face_view * to_frame;

@@ -19,6 +19,7 @@ Target::Target(const GladGLContext& api, int width, int height)
   api.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  api.BindTexture(GL_TEXTURE_2D, 0); // never bound for sampling while it is rendered into
   api.BindRenderbuffer(GL_RENDERBUFFER, depth_.get());
   api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
   api.BindFramebuffer(GL_FRAMEBUFFER, fbo_.get());

@@ -35,8 +35,8 @@ Camera look_at(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& u
   const glm::vec3 true_up = glm::cross(back, right);
   Camera c;
   c.name = "test";
-  c.camera_to_world = glm::mat4(glm::vec4(right, 0), glm::vec4(true_up, 0), glm::vec4(back, 0),
-                                glm::vec4(eye, 1));
+  c.camera_to_world =
+      glm::mat4(glm::vec4(right, 0), glm::vec4(true_up, 0), glm::vec4(back, 0), glm::vec4(eye, 1));
   c.yfov = yfov;
   return c;
 }

@@ -18,7 +18,7 @@ TEST(RadicalInverse, ExactValues) {
   EXPECT_EQ(radical_inverse(3, 1), 1.0 / 3.0);
   EXPECT_EQ(radical_inverse(3, 2), 2.0 / 3.0);
   EXPECT_EQ(radical_inverse(3, 3), 1.0 / 9.0);
-  EXPECT_EQ(radical_inverse(3, 5), 7.0 / 9.0); // 5 = 12_3 -> 0.21_3 = 2/3 + 1/9
+  EXPECT_EQ(radical_inverse(3, 5), 7.0 / 9.0);   // 5 = 12_3 -> 0.21_3 = 2/3 + 1/9
   EXPECT_EQ(radical_inverse(5, 7), 11.0 / 25.0); // 7 = 12_5 -> 0.21_5 = 2/5 + 1/25
   // 2^32 - 1 in base 2 has 32 one-digits: 1 - 2^-32, exactly.
   EXPECT_EQ(radical_inverse(2, 0xffffffffu), 1.0 - std::ldexp(1.0, -32));
@@ -77,7 +77,8 @@ TEST(ParticleCounts, LmaxEqualsDeepestReflectionOnAGrid) {
       const ParticleCounts c(n, rho, 1000);
       int deepest = 0;
       std::uint64_t m = 0;
-      for (std::uint32_t i = 0; i < n; i += (n > 5000 ? 97 : 1)) deepest = std::max(deepest, c.depth_of(i));
+      for (std::uint32_t i = 0; i < n; i += (n > 5000 ? 97 : 1))
+        deepest = std::max(deepest, c.depth_of(i));
       deepest = std::max(deepest, c.depth_of(0)); // particle 0 always goes deepest
       for (int j = 0; j <= c.l_max() + 1; ++j) m += c.reaching(j);
       EXPECT_EQ(c.l_max(), l_max_closed_form(n, rho)) << "N " << n << " rho " << rho;

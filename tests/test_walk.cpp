@@ -17,10 +17,14 @@ constexpr double pi = std::numbers::pi;
 double vpl_power(const Vpl& v) {
   const double mean = (v.intensity.x + v.intensity.y + v.intensity.z) / 3.0;
   switch (v.kind) {
-  case VplKind::Surface: return pi * mean;
-  case VplKind::TwoSided: return 2.0 * pi * mean;
-  case VplKind::Point: return 4.0 * pi * mean;
-  case VplKind::Spot: break;
+  case VplKind::Surface:
+    return pi * mean;
+  case VplKind::TwoSided:
+    return 2.0 * pi * mean;
+  case VplKind::Point:
+    return 4.0 * pi * mean;
+  case VplKind::Spot:
+    break;
   }
   return 0.0;
 }
@@ -37,8 +41,8 @@ TEST(QuasiRandomWalk, Depth0PowerEqualsEmitterPower) {
   // Two emitters of different radiance and size, one double-sided, and a point light.
   Scene s = test::closed_box(1.0f, 0.5f, 0.2f, 3.0f);
   const std::uint32_t bright = test::add_material(s, glm::vec3(0.5f), glm::vec3(10.0f), true);
-  test::add_quad(s, {0.1f, 0.1f, 0.5f}, {0.2f, 0.1f, 0.5f}, {0.2f, 0.3f, 0.5f},
-                 {0.1f, 0.3f, 0.5f}, bright);
+  test::add_quad(s, {0.1f, 0.1f, 0.5f}, {0.2f, 0.1f, 0.5f}, {0.2f, 0.3f, 0.5f}, {0.1f, 0.3f, 0.5f},
+                 bright);
   PunctualLight point;
   point.position = {0.5f, 0.5f, 0.5f};
   point.intensity = {1.0f, 2.0f, 3.0f};

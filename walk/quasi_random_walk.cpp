@@ -15,7 +15,9 @@ namespace {
 
 constexpr float inv_pi = std::numbers::inv_pi_v<float>;
 
-bool positive(const glm::vec3& v) { return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f; }
+bool positive(const glm::vec3& v) {
+  return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
+}
 
 // The surface seen by a path vertex: position, normal facing the side the particle came from.
 struct PathVertex {
@@ -35,8 +37,8 @@ PathVertex vertex_at(const Scene& scene, const RayHit& hit, const glm::vec3& inc
                  hit.bary.y * scene.normals[tri.z];
   const float len = glm::length(ns);
   ns = len > 0.0f ? ns / len : ng;
-  if (glm::dot(ns, ng) < 0.0f) ns = -ns;        // same side as the geometric normal
-  if (glm::dot(ns, ng) <= 1e-3f) ns = ng;        // shading normal unusable near the tangent plane
+  if (glm::dot(ns, ng) < 0.0f) ns = -ns;  // same side as the geometric normal
+  if (glm::dot(ns, ng) <= 1e-3f) ns = ng; // shading normal unusable near the tangent plane
   return {p, ns, albedo_at(scene, hit.triangle, hit.bary)};
 }
 
@@ -103,7 +105,7 @@ VplSet quasi_random_walk(const Scene& scene, const RayScene& rays, const WalkOpt
       if (!hit) break; // the particle leaves the scene
       const PathVertex y = vertex_at(scene, *hit, dir);
       const glm::vec3 radiant = beta * y.albedo * inv_pi; // beta_j rho(y_j) / pi
-      if (!positive(radiant)) break;                     // absorbed: nothing further
+      if (!positive(radiant)) break;                      // absorbed: nothing further
       Vpl v;
       v.position = y.position;
       v.normal = y.normal;

@@ -51,8 +51,7 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
                                                         RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                         scene.positions.size()));
   auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-                                                             RTC_FORMAT_UINT3,
-                                                             3 * sizeof(unsigned),
+                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
                                                              scene.triangles.size()));
   impl_->check("embree.buffers");
   for (std::size_t i = 0; i < scene.positions.size(); ++i)

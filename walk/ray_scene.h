@@ -25,11 +25,10 @@ public:
   RayScene& operator=(const RayScene&) = delete;
 
   // Closest hit of origin + t * direction for t in (tmin, tmax).
-  std::optional<RayHit> intersect(const glm::vec3& origin, const glm::vec3& direction,
-                                  float tmin, float tmax) const;
+  std::optional<RayHit> intersect(const glm::vec3& origin, const glm::vec3& direction, float tmin,
+                                  float tmax) const;
   // Whether anything blocks the open segment origin + t * direction, t in (tmin, tmax).
-  bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin,
-                float tmax) const;
+  bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax) const;
 
   // Ray offsets: a fixed fraction of the bounding diagonal (plus float spacing of the scene's
   // coordinates) so that the same scene at any scale behaves the same.

@@ -1,0 +1,41 @@
+#pragma once
+// Internal to the glTF loader: triangle primitives to world-space triangles.
+#include "core/gltf_context.h"
+#include "core/scene.h"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace irad::gltf {
+
+// World-space triangles gathered from primitives, before clean-up.
+struct Soup {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals; // unit, or 0 where unknown (filled by finish_geometry)
+  std::vector<glm::vec2> uvs;     // (0, 0) for primitives without TEXCOORD_0
+  bool has_uvs = false;           // some primitive had TEXCOORD_0
+  std::vector<glm::uvec3> triangles;
+  std::vector<std::uint32_t> triangle_material;
+};
+
+// Appends meshes[mesh].primitives[primitive] placed by `world`, all its triangles getting scene
+// material `material`. Modes TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are converted to
+// triangle lists; point and line primitives are skipped with one warning per file.
+// Positions are p' = world p; normals n' = normalize(N n) with N the inverse transpose of the
+// upper 3x3 block, taken as cofactor(A) sign(det A) = |det A| A^-T so that singular blocks need no
+// inverse. When det A < 0 the winding is reversed, so cross(p1 - p0, p2 - p0) keeps pointing to
+// the side N n points to (cross(Aa, Ab) = cofactor(A) cross(a, b)). Without NORMAL the primitive
+// is de-indexed (three vertices per triangle) and its normals are left for finish_geometry.
+// Fails on missing POSITION, non-finite positions, mismatched attribute counts and index values
+// >= the vertex count.
+void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
+                      const glm::dmat4& world, std::uint32_t material, Soup& soup);
+
+// Moves the soup into scene (positions, normals, uvs, triangles, triangle_material, bounds):
+// drops triangles with a repeated vertex or with area <= 1e-12 diagonal^2 (one warning with the
+// count), gives each vertex without a usable normal the geometric normal of the first triangle
+// that uses it, and drops vertices no triangle uses. uvs stay empty unless soup.has_uvs.
+void finish_geometry(const Context& ctx, Soup soup, Scene& scene);
+
+} // namespace irad::gltf

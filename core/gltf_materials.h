@@ -1,0 +1,15 @@
+#pragma once
+// Internal to the glTF loader: materials and their textures.
+#include "core/gltf_context.h"
+#include "core/scene.h"
+
+namespace irad::gltf {
+
+// Converts every material of the file, in file order, into scene.materials and the textures they
+// use into scene.textures (decoded to linear, deduplicated by image, sampler and transfer
+// function). Per material: base_color = baseColorFactor.rgb (each in [0, 1]; alpha ignored),
+// emission = emissiveFactor (>= 0) x KHR_materials_emissive_strength.emissiveStrength (>= 0,
+// default 1), doubleSided. Colour textures are sRGB-encoded in glTF and decoded here.
+void convert_materials(const Context& ctx, Scene& scene);
+
+} // namespace irad::gltf

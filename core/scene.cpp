@@ -1,0 +1,81 @@
+#include "core/scene.h"
+
+namespace irad {
+
+namespace {
+
+// Texture coordinates at barycentrics (b1, b2): (1 - b1 - b2) uv0 + b1 uv1 + b2 uv2.
+glm::vec2 uv_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
+  const glm::uvec3& tri = scene.triangles[t];
+  return (1.0f - bary.x - bary.y) * scene.uvs[tri.x] + bary.x * scene.uvs[tri.y] +
+         bary.y * scene.uvs[tri.z];
+}
+
+// factor * texture(uv) when the texture exists and the scene has texture coordinates, else factor.
+glm::vec3 textured(const Scene& scene, std::size_t t, glm::vec2 bary, glm::vec3 factor,
+                   int texture) {
+  if (texture < 0 || std::size_t(texture) >= scene.textures.size() || scene.uvs.empty()) {
+    return factor;
+  }
+  return factor * glm::vec3(scene.textures[std::size_t(texture)].sample(uv_at(scene, t, bary)));
+}
+
+// The same rule as textured(), with the texture replaced by its texel mean.
+glm::vec3 mean_textured(const Scene& scene, glm::vec3 factor, int texture) {
+  if (texture < 0 || std::size_t(texture) >= scene.textures.size() || scene.uvs.empty()) {
+    return factor;
+  }
+  return factor * glm::vec3(scene.textures[std::size_t(texture)].mean());
+}
+
+// Edge cross product (p1 - p0) x (p2 - p0): |c| = 2 A, direction = counter-clockwise normal.
+glm::dvec3 edge_cross(const Scene& scene, std::size_t t) {
+  const glm::uvec3& tri = scene.triangles[t];
+  const glm::dvec3 p0(scene.positions[tri.x]);
+  return glm::cross(glm::dvec3(scene.positions[tri.y]) - p0,
+                    glm::dvec3(scene.positions[tri.z]) - p0);
+}
+
+} // namespace
+
+bool Scene::has_emitters() const {
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (material_of(t).emissive() && triangle_area(*this, t) > 0.0f) return true;
+  }
+  return false;
+}
+
+glm::vec3 albedo_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
+  const Material& m = scene.material_of(t);
+  return textured(scene, t, bary, m.base_color, m.base_color_texture);
+}
+
+glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
+  const Material& m = scene.material_of(t);
+  return textured(scene, t, bary, m.emission, m.emissive_texture);
+}
+
+double mean_albedo(const Scene& scene) {
+  double weighted = 0.0;
+  double area = 0.0;
+  for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+    const Material& m = scene.material_of(t);
+    const glm::dvec3 rho(mean_textured(scene, m.base_color, m.base_color_texture));
+    const double a = 0.5 * glm::length(edge_cross(scene, t));
+    weighted += a * (rho.x + rho.y + rho.z) / 3.0;
+    area += a;
+  }
+  return area > 0.0 ? weighted / area : 0.0;
+}
+
+float triangle_area(const Scene& scene, std::size_t t) {
+  return float(0.5 * glm::length(edge_cross(scene, t)));
+}
+
+glm::vec3 geometric_normal(const Scene& scene, std::size_t t) {
+  const glm::dvec3 c = edge_cross(scene, t);
+  const double len = glm::length(c);
+  return len > 0.0 ? glm::vec3(c / len) : glm::vec3(0.0f);
+}
+
+} // namespace irad

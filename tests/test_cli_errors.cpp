@@ -1,0 +1,183 @@
+// Bad input through the real command line: one line on stderr naming the file and the element,
+// exit code 1, no output file written.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const fs::path& p, const std::string& text) {
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+// Minimal base64 for the test's own buffer edits.
+const std::string b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+std::string decode64(const std::string& in) {
+  std::string out;
+  int val = 0, bits = -8;
+  for (unsigned char c : in) {
+    const auto pos = b64.find(static_cast<char>(c));
+    if (pos == std::string::npos) break;
+    val = (val << 6) + static_cast<int>(pos);
+    bits += 6;
+    if (bits >= 0) {
+      out.push_back(static_cast<char>((val >> bits) & 0xff));
+      bits -= 8;
+    }
+  }
+  return out;
+}
+std::string encode64(const std::string& in) {
+  std::string out;
+  int val = 0, bits = -6;
+  for (unsigned char c : in) {
+    val = (val << 8) + c;
+    bits += 8;
+    while (bits >= 0) {
+      out.push_back(b64[(val >> bits) & 0x3f]);
+      bits -= 6;
+    }
+  }
+  if (bits > -6) out.push_back(b64[((val << 8) >> (bits + 8)) & 0x3f]);
+  while (out.size() % 4) out.push_back('=');
+  return out;
+}
+
+struct CliRun {
+  int code;
+  std::string err;
+};
+
+class CliErrors : public ::testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("irad_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    cornell_ = json::parse(read_text(fs::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf"));
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path scene(const std::string& name, const json& j) {
+    const fs::path p = dir_ / name;
+    write_text(p, j.dump());
+    return p;
+  }
+  CliRun irad(const std::string& args) {
+    const fs::path err = dir_ / "stderr.txt";
+    const std::string cmd =
+        std::string(IRAD_BINARY) + " " + args + " > /dev/null 2> '" + err.string() + "'";
+    const int status = std::system(cmd.c_str());
+    return {WEXITSTATUS(status), read_text(err)};
+  }
+  // Renders `scene_file` to out.png and expects the one-line error containing each of `needles`.
+  void expect_error(const std::string& args, std::initializer_list<std::string> needles) {
+    const fs::path out = dir_ / "out.png";
+    const CliRun r = irad("render " + args + " -o '" + out.string() + "' --paths 4 --size 16x16");
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("irad: error: ", 0), 0u) << r.err;
+    for (const std::string& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_FALSE(fs::exists(dir_ / "out.png.tmp"));
+  }
+
+  fs::path dir_;
+  json cornell_;
+};
+
+TEST_F(CliErrors, MissingFile) {
+  expect_error((dir_ / "nope.gltf").string(), {"nope.gltf"});
+}
+
+TEST_F(CliErrors, BrokenJson) {
+  const fs::path p = dir_ / "broken.gltf";
+  write_text(p, cornell_.dump().substr(0, 200));
+  expect_error(p.string(), {"broken.gltf"});
+}
+
+TEST_F(CliErrors, WrongVersion) {
+  cornell_["asset"]["version"] = "1.0";
+  expect_error(scene("v1.gltf", cornell_).string(), {"v1.gltf", "version"});
+}
+
+TEST_F(CliErrors, AccessorOutOfRange) {
+  cornell_["accessors"][0]["count"] = 100000;
+  expect_error(scene("acc.gltf", cornell_).string(), {"acc.gltf", "accessors"});
+}
+
+TEST_F(CliErrors, IndexOutOfRange) {
+  // Shrink a POSITION accessor below the indices that use it.
+  const int position = cornell_["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+  const int normal = cornell_["meshes"][0]["primitives"][0]["attributes"]["NORMAL"];
+  cornell_["accessors"][position]["count"] = 2;
+  cornell_["accessors"][normal]["count"] = 2;
+  expect_error(scene("index.gltf", cornell_).string(), {"index.gltf", "indices"});
+}
+
+TEST_F(CliErrors, NanPosition) {
+  const std::string prefix = "data:application/octet-stream;base64,";
+  std::string uri = cornell_["buffers"][0]["uri"];
+  ASSERT_EQ(uri.rfind(prefix, 0), 0u);
+  std::string bytes = decode64(uri.substr(prefix.size()));
+  const int position = cornell_["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+  const json& acc = cornell_["accessors"][position];
+  const json& view = cornell_["bufferViews"][acc["bufferView"].get<int>()];
+  const std::size_t offset = view.value("byteOffset", 0) + acc.value("byteOffset", 0);
+  const float nan = std::nanf("");
+  std::memcpy(bytes.data() + offset, &nan, sizeof nan);
+  cornell_["buffers"][0]["uri"] = prefix + encode64(bytes);
+  expect_error(scene("nan.gltf", cornell_).string(), {"nan.gltf", "accessors"});
+}
+
+TEST_F(CliErrors, NoLight) {
+  for (json& m : cornell_["materials"]) {
+    m.erase("emissiveFactor");
+    m.erase("extensions");
+  }
+  expect_error(scene("dark.gltf", cornell_).string(), {"dark.gltf", "no light"});
+}
+
+TEST_F(CliErrors, ImpossibleOptions) {
+  const std::string box = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf";
+  for (const char* opt :
+       {"--paths 0", "--size 0x0", "--size 12", "--clamp -1", "--shadow-res 0", "--camera 7"}) {
+    const fs::path out = dir_ / "o.exr";
+    const CliRun r = irad("render " + box + " -o '" + out.string() + "' " + std::string(opt));
+    EXPECT_EQ(r.code, 1) << opt << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << opt << ": " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << opt;
+  }
+}
+
+TEST_F(CliErrors, OutputFolderMissingOrBadType) {
+  const std::string box = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf";
+  CliRun r = irad("render " + box + " -o '" + (dir_ / "no/such/dir/x.png").string() + "'");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("no/such/dir"), std::string::npos) << r.err;
+  r = irad("render " + box + " -o '" + (dir_ / "x.jpg").string() + "'");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("x.jpg"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.jpg"));
+}
+
+} // namespace

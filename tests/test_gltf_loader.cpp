@@ -1,0 +1,949 @@
+// Tests of the glTF loader, textures and the scene model. glTF files are written from C++ into a
+// temporary directory: JSON through nlohmann::json, buffers as base64 data URIs, .bin files or GLB
+// chunks, images as hand-written (stored-deflate) PNGs.
+#include "core/error.h"
+#include "core/gltf_loader.h"
+#include "core/log.h"
+#include "core/scene.h"
+#include "core/texture.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <gtest/gtest.h>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+using irad::Scene;
+
+constexpr int kU8 = 5121;
+constexpr int kU16 = 5123;
+constexpr int kU32 = 5125;
+constexpr int kFloat = 5126;
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// ---------------------------------------------------------------------------------------------
+// Encoders
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 3; ++k) v = (v << 8) | (k < n ? bytes[i + k] : 0u);
+    for (std::size_t k = 0; k < 4; ++k) {
+      out += k <= n ? kAlphabet[(v >> (18 - 6 * k)) & 63u] : '=';
+    }
+  }
+  return out;
+}
+
+void put_be32(std::vector<unsigned char>& out, std::uint32_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8)
+    out.push_back(static_cast<unsigned char>(v >> shift));
+}
+
+void put_le32(std::vector<unsigned char>& out, std::uint32_t v) {
+  for (int shift = 0; shift < 32; shift += 8) out.push_back(static_cast<unsigned char>(v >> shift));
+}
+
+std::uint32_t crc32(const std::vector<unsigned char>& data) {
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (unsigned char byte : data) {
+    crc ^= byte;
+    for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+void put_chunk(std::vector<unsigned char>& png, const char* type,
+               const std::vector<unsigned char>& data) {
+  put_be32(png, static_cast<std::uint32_t>(data.size()));
+  std::vector<unsigned char> body(type, type + 4);
+  body.insert(body.end(), data.begin(), data.end());
+  png.insert(png.end(), body.begin(), body.end());
+  put_be32(png, crc32(body));
+}
+
+// zlib stream of stored (uncompressed) deflate blocks.
+std::vector<unsigned char> zlib_stored(const std::vector<unsigned char>& raw) {
+  std::vector<unsigned char> out{0x78, 0x01};
+  std::size_t pos = 0;
+  do {
+    const std::size_t n = std::min<std::size_t>(65535, raw.size() - pos);
+    out.push_back(pos + n == raw.size() ? 1 : 0);
+    const auto len = static_cast<std::uint16_t>(n);
+    const auto nlen = static_cast<std::uint16_t>(~len);
+    out.insert(out.end(),
+               {static_cast<unsigned char>(len & 0xFF), static_cast<unsigned char>(len >> 8),
+                static_cast<unsigned char>(nlen & 0xFF), static_cast<unsigned char>(nlen >> 8)});
+    out.insert(out.end(), raw.begin() + static_cast<long>(pos),
+               raw.begin() + static_cast<long>(pos + n));
+    pos += n;
+  } while (pos < raw.size());
+  std::uint32_t a = 1, b = 0;
+  for (unsigned char c : raw) {
+    a = (a + c) % 65521u;
+    b = (b + a) % 65521u;
+  }
+  put_be32(out, (b << 16) | a);
+  return out;
+}
+
+// PNG of w x h pixels with 1-4 channels (grey, grey+alpha, RGB, RGBA) of 8 or 16 bits; samples
+// row-major, top row first.
+std::vector<unsigned char> png(int w, int h, int channels, int bits,
+                               const std::vector<std::uint16_t>& samples) {
+  static constexpr unsigned char kColourType[] = {0, 0, 4, 2, 6};
+  std::vector<unsigned char> out{0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
+  std::vector<unsigned char> ihdr;
+  put_be32(ihdr, static_cast<std::uint32_t>(w));
+  put_be32(ihdr, static_cast<std::uint32_t>(h));
+  ihdr.insert(ihdr.end(), {static_cast<unsigned char>(bits), kColourType[channels], 0, 0, 0});
+  put_chunk(out, "IHDR", ihdr);
+  std::vector<unsigned char> raw;
+  const std::size_t row = static_cast<std::size_t>(w * channels);
+  for (std::size_t y = 0; y < static_cast<std::size_t>(h); ++y) {
+    raw.push_back(0); // filter: none
+    for (std::size_t k = 0; k < row; ++k) {
+      const std::uint16_t s = samples[y * row + k];
+      if (bits == 16) raw.push_back(static_cast<unsigned char>(s >> 8));
+      raw.push_back(static_cast<unsigned char>(s & 0xFF));
+    }
+  }
+  put_chunk(out, "IDAT", zlib_stored(raw));
+  put_chunk(out, "IEND", {});
+  return out;
+}
+
+void write_file(const fs::path& path, const void* data, std::size_t size) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  write_file(path, text.data(), text.size());
+}
+
+// ---------------------------------------------------------------------------------------------
+// A glTF document under construction with one binary buffer (buffers[0]).
+
+class Gltf {
+public:
+  json doc = {{"asset", {{"version", "2.0"}}}};
+  std::vector<unsigned char> bin;
+
+  int push(const char* array, json value) {
+    doc[array].push_back(std::move(value));
+    return static_cast<int>(doc[array].size()) - 1;
+  }
+
+  // Appends bytes (4-byte aligned) as a new bufferView.
+  int view(const void* data, std::size_t size, int stride = 0) {
+    while (bin.size() % 4 != 0) bin.push_back(0);
+    const std::size_t offset = bin.size();
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    bin.insert(bin.end(), bytes, bytes + size);
+    json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", size}};
+    if (stride != 0) v["byteStride"] = stride;
+    return push("bufferViews", v);
+  }
+
+  int accessor(int view_index, int component_type, std::size_t count, const std::string& type,
+               const json& extra = json::object()) {
+    json a = {{"bufferView", view_index},
+              {"componentType", component_type},
+              {"count", count},
+              {"type", type}};
+    a.update(extra);
+    return push("accessors", a);
+  }
+
+  int vec3s(const std::vector<glm::vec3>& v) {
+    return accessor(view(v.data(), v.size() * sizeof(glm::vec3)), kFloat, v.size(), "VEC3");
+  }
+
+  int vec2s(const std::vector<glm::vec2>& v) {
+    return accessor(view(v.data(), v.size() * sizeof(glm::vec2)), kFloat, v.size(), "VEC2");
+  }
+
+  template <class T>
+  int indices(const std::vector<T>& v) {
+    const int type = sizeof(T) == 1 ? kU8 : sizeof(T) == 2 ? kU16 : kU32;
+    return accessor(view(v.data(), v.size() * sizeof(T)), type, v.size(), "SCALAR");
+  }
+
+  int image_png(const std::vector<unsigned char>& bytes) {
+    return push("images",
+                {{"bufferView", view(bytes.data(), bytes.size())}, {"mimeType", "image/png"}});
+  }
+
+  // buffers[0] as a base64 data URI.
+  fs::path write_gltf(const fs::path& path) const {
+    json d = doc;
+    d["buffers"] = json::array({{{"byteLength", bin.size()},
+                                 {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
+    write_file(path, d.dump(1));
+    return path;
+  }
+
+  // buffers[0] as an external .bin file next to the .gltf.
+  fs::path write_gltf_bin(const fs::path& path) const {
+    const fs::path bin_path = fs::path(path).replace_extension(".bin");
+    write_file(bin_path, bin.data(), bin.size());
+    json d = doc;
+    d["buffers"] =
+        json::array({{{"byteLength", bin.size()}, {"uri", bin_path.filename().string()}}});
+    write_file(path, d.dump(1));
+    return path;
+  }
+
+  // GLB container: 12-byte header, JSON chunk (space-padded), BIN chunk (zero-padded).
+  fs::path write_glb(const fs::path& path, const char* magic = "glTF") const {
+    json d = doc;
+    d["buffers"] = json::array({{{"byteLength", bin.size()}}});
+    std::string text = d.dump();
+    while (text.size() % 4 != 0) text += ' ';
+    std::vector<unsigned char> body = bin;
+    while (body.size() % 4 != 0) body.push_back(0);
+    std::vector<unsigned char> out(magic, magic + 4);
+    put_le32(out, 2);
+    put_le32(out, static_cast<std::uint32_t>(12 + 8 + text.size() + 8 + body.size()));
+    put_le32(out, static_cast<std::uint32_t>(text.size()));
+    put_le32(out, 0x4E4F534Au); // "JSON"
+    out.insert(out.end(), text.begin(), text.end());
+    put_le32(out, static_cast<std::uint32_t>(body.size()));
+    put_le32(out, 0x004E4942u); // "BIN\0"
+    out.insert(out.end(), body.begin(), body.end());
+    write_file(path, out.data(), out.size());
+    return path;
+  }
+};
+
+// Unit quad in z = 0 facing +z: vertices (0,0,0) (1,0,0) (1,1,0) (0,1,0), triangles 012, 023.
+const std::vector<glm::vec3> kQuad{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+const std::vector<std::uint16_t> kQuadIndices{0, 1, 2, 0, 2, 3};
+
+json quad_primitive(Gltf& g, int material, const std::vector<glm::vec3>& normals) {
+  json p = {{"attributes", {{"POSITION", g.vec3s(kQuad)}}}, {"indices", g.indices(kQuadIndices)}};
+  if (!normals.empty()) p["attributes"]["NORMAL"] = g.vec3s(normals);
+  if (material >= 0) p["material"] = material;
+  return p;
+}
+
+const std::vector<glm::vec3> kUpNormals(4, glm::vec3(0, 0, 1));
+
+// One node with the quad, lit by an emissive material (materials[0]).
+Gltf emissive_quad(json node = json::object()) {
+  Gltf g;
+  g.push("materials", {{"emissiveFactor", {1.0, 1.0, 1.0}}});
+  g.push("meshes", {{"primitives", {quad_primitive(g, 0, kUpNormals)}}});
+  node["mesh"] = 0;
+  g.push("nodes", node);
+  g.doc["scenes"] = {{{"nodes", {0}}}};
+  g.doc["scene"] = 0;
+  return g;
+}
+
+void expect_near(const glm::vec3& a, const glm::vec3& b, float tol = 1e-5f) {
+  EXPECT_NEAR(a.x, b.x, tol);
+  EXPECT_NEAR(a.y, b.y, tol);
+  EXPECT_NEAR(a.z, b.z, tol);
+}
+
+void expect_near(const glm::vec4& a, const glm::vec4& b, float tol = 1e-5f) {
+  expect_near(glm::vec3(a), glm::vec3(b), tol);
+  EXPECT_NEAR(a.w, b.w, tol);
+}
+
+// Corner positions of every triangle, in order.
+std::vector<glm::vec3> corners(const Scene& s) {
+  std::vector<glm::vec3> out;
+  for (const glm::uvec3& t : s.triangles) {
+    out.insert(out.end(), {s.positions[t.x], s.positions[t.y], s.positions[t.z]});
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+class GltfLoader : public ::testing::Test {
+protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = fs::temp_directory_path() /
+          ("irad_gltf_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  Scene load(const fs::path& path) { return irad::load_gltf(path, log); }
+
+  // Loads `path` expecting irad::Error; its message must be one line naming the file and
+  // containing `element` and `message`.
+  void expect_error(const fs::path& path, const std::string& element, const std::string& message) {
+    try {
+      load(path);
+      ADD_FAILURE() << path << ": no error";
+    } catch (const irad::Error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+      EXPECT_NE(what.find(path.filename().string()), std::string::npos) << what;
+      EXPECT_NE(what.find(element), std::string::npos) << what;
+      EXPECT_NE(what.find(message), std::string::npos) << what;
+    }
+  }
+
+  int warnings_containing(const std::string& text) const {
+    int n = 0;
+    for (const std::string& w : warnings) n += w.find(text) != std::string::npos ? 1 : 0;
+    return n;
+  }
+
+  fs::path dir;
+  std::vector<std::string> warnings;
+  irad::Log log{[this](const std::string& line) { warnings.push_back(line); }};
+};
+
+TEST_F(GltfLoader, TrsQuadAndInverseTransposeNormals) {
+  const float h = std::sqrt(0.5f); // rotation by 90 degrees about z: (x, y) -> (-y, x)
+  Gltf g =
+      emissive_quad({{"translation", {1, 2, 3}}, {"rotation", {0, 0, h, h}}, {"scale", {2, 3, 1}}});
+  const glm::vec3 n = glm::normalize(glm::vec3(1, 1, 1));
+  g.doc["meshes"][0]["primitives"][0] = quad_primitive(g, 0, std::vector<glm::vec3>(4, n));
+  const Scene s = load(g.write_gltf(dir / "trs.gltf"));
+  ASSERT_EQ(s.positions.size(), 4u);
+  expect_near(s.positions[0], {1, 2, 3});
+  expect_near(s.positions[1], {1, 4, 3});  // (1,0,0) -> scale (2,0,0) -> rotate (0,2,0) + t
+  expect_near(s.positions[2], {-2, 4, 3}); // (1,1,0) -> (2,3,0) -> (-3,2,0) + t
+  // Normals: R S^-1 n, renormalised: S^-1 n ~ (1/2, 1/3, 1) -> R -> (-1/3, 1/2, 1).
+  const glm::vec3 expected = glm::normalize(glm::vec3(-1.0f / 3, 0.5f, 1));
+  for (const glm::vec3& normal : s.normals) expect_near(normal, expected);
+  expect_near(irad::geometric_normal(s, 0), {0, 0, 1});
+  EXPECT_NEAR(irad::triangle_area(s, 0) + irad::triangle_area(s, 1), 6.0f, 1e-5f);
+  expect_near(s.bounds.lo, {-2, 2, 3});
+  expect_near(s.bounds.hi, {1, 4, 3});
+}
+
+TEST_F(GltfLoader, MirroringFlipsWindingToKeepFrontFace) {
+  Gltf g = emissive_quad({{"scale", {-1, 1, 1}}});
+  const Scene s = load(g.write_gltf(dir / "mirror.gltf"));
+  for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+    expect_near(irad::geometric_normal(s, t), {0, 0, 1}); // mirrored in x: front stays +z
+  }
+  for (const glm::vec3& normal : s.normals) expect_near(normal, {0, 0, 1});
+  expect_near(s.bounds.lo, {-1, 0, 0});
+}
+
+TEST_F(GltfLoader, HierarchyComposesParentTimesChild) {
+  Gltf g = emissive_quad({{"translation", {1, 0, 0}}}); // nodes[0]: the quad
+  // nodes[1] scales its child by 2; nodes[2] (a column-major matrix) translates by (0, 0, 5).
+  g.push("nodes", {{"scale", {2, 2, 2}}, {"children", {0}}});
+  g.push("nodes",
+         {{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 5, 1}}, {"children", {1}}});
+  g.doc["scenes"] = {{{"nodes", {2}}}};
+  const Scene s = load(g.write_gltf(dir / "hierarchy.gltf"));
+  expect_near(s.positions[0], {2, 0, 5}); // 2 * ((0,0,0) + (1,0,0)) + (0,0,5)
+  expect_near(s.positions[2], {4, 2, 5}); // 2 * ((1,1,0) + (1,0,0)) + (0,0,5)
+}
+
+TEST_F(GltfLoader, NoScenesLoadsAllRootNodes) {
+  Gltf g = emissive_quad();
+  g.doc.erase("scenes");
+  g.doc.erase("scene");
+  g.push("nodes", {{"mesh", 0}, {"translation", {0, 0, 2}}});
+  const Scene s = load(g.write_gltf(dir / "roots.gltf"));
+  EXPECT_EQ(s.triangle_count(), 4u);
+}
+
+TEST_F(GltfLoader, IndexTypesAndNonIndexedGiveTheSameTriangles) {
+  auto build = [&](const std::string& name, auto make_indices) {
+    Gltf g = emissive_quad();
+    json p = quad_primitive(g, 0, kUpNormals);
+    make_indices(g, p);
+    g.doc["meshes"][0]["primitives"][0] = p;
+    return corners(load(g.write_gltf(dir / name)));
+  };
+  const auto u16 = build("u16.gltf", [](Gltf&, json&) {});
+  const auto u8 = build("u8.gltf", [](Gltf& g, json& p) {
+    p["indices"] = g.indices(std::vector<std::uint8_t>{0, 1, 2, 0, 2, 3});
+  });
+  const auto u32 = build("u32.gltf", [](Gltf& g, json& p) {
+    p["indices"] = g.indices(std::vector<std::uint32_t>{0, 1, 2, 0, 2, 3});
+  });
+  const auto plain = build("plain.gltf", [](Gltf& g, json& p) {
+    p.erase("indices");
+    std::vector<glm::vec3> soup;
+    for (std::uint16_t i : kQuadIndices) soup.push_back(kQuad[i]);
+    p["attributes"]["POSITION"] = g.vec3s(soup);
+    p["attributes"]["NORMAL"] = g.vec3s(std::vector<glm::vec3>(6, glm::vec3(0, 0, 1)));
+  });
+  ASSERT_EQ(u16.size(), 6u);
+  EXPECT_EQ(u8, u16);
+  EXPECT_EQ(u32, u16);
+  EXPECT_EQ(plain, u16);
+}
+
+TEST_F(GltfLoader, StripsAndFansBecomeFrontFacingTriangles) {
+  for (int mode : {5, 6}) {
+    Gltf g = emissive_quad();
+    json p = quad_primitive(g, 0, kUpNormals);
+    p["mode"] = mode; // strip 0 1 3 2, fan 0 1 2 3: both cover the quad counter-clockwise
+    p["indices"] = mode == 5 ? g.indices(std::vector<std::uint16_t>{0, 1, 3, 2})
+                             : g.indices(std::vector<std::uint16_t>{0, 1, 2, 3});
+    g.doc["meshes"][0]["primitives"][0] = p;
+    const Scene s = load(g.write_gltf(dir / ("mode" + std::to_string(mode) + ".gltf")));
+    ASSERT_EQ(s.triangle_count(), 2u) << mode;
+    for (std::size_t t = 0; t < 2; ++t) {
+      expect_near(irad::geometric_normal(s, t), {0, 0, 1});
+      EXPECT_NEAR(irad::triangle_area(s, t), 0.5f, 1e-6f);
+    }
+  }
+}
+
+TEST_F(GltfLoader, SparseAccessorOverridesElements) {
+  Gltf g = emissive_quad();
+  const std::vector<std::uint8_t> which{2};
+  const std::vector<glm::vec3> values{{3, 3, 0}};
+  const int base = g.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"];
+  g.doc["accessors"][static_cast<std::size_t>(base)]["sparse"] = {
+      {"count", 1},
+      {"indices", {{"bufferView", g.view(which.data(), 1)}, {"componentType", kU8}}},
+      {"values", {{"bufferView", g.view(values.data(), 12)}}}};
+  const Scene s = load(g.write_gltf(dir / "sparse.gltf"));
+  expect_near(s.positions[2], {3, 3, 0});
+  expect_near(s.positions[1], {1, 0, 0});
+}
+
+TEST_F(GltfLoader, MissingNormalGivesFlatNormalsAndDegenerateTrianglesAreDropped) {
+  Gltf g = emissive_quad();
+  // A roof: triangle 0 1 2 in z = 0 (normal +z), triangle 0 3 1 in y = 0 (normal +y); then a
+  // triangle with a repeated index and a collinear one.
+  const std::vector<glm::vec3> p{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 0}};
+  const json prim = {
+      {"attributes", {{"POSITION", g.vec3s(p)}}},
+      {"indices", g.indices(std::vector<std::uint8_t>{0, 1, 2, 0, 3, 1, 0, 0, 1, 0, 1, 4})},
+      {"material", 0}};
+  g.doc["meshes"][0]["primitives"][0] = prim;
+  const Scene s = load(g.write_gltf(dir / "flat.gltf"));
+  ASSERT_EQ(s.triangle_count(), 2u);
+  EXPECT_EQ(s.positions.size(), 6u); // de-indexed: three vertices per triangle
+  for (std::size_t t = 0; t < 2; ++t) {
+    const glm::vec3 gn = irad::geometric_normal(s, t);
+    for (unsigned v : {s.triangles[t].x, s.triangles[t].y, s.triangles[t].z}) {
+      expect_near(s.normals[v], gn);
+    }
+  }
+  expect_near(irad::geometric_normal(s, 0), {0, 0, 1});
+  expect_near(irad::geometric_normal(s, 1), {0, 1, 0});
+  EXPECT_EQ(warnings_containing("2 degenerate"), 1);
+}
+
+TEST_F(GltfLoader, ZeroNormalFallsBackToGeometricNormal) {
+  Gltf g = emissive_quad();
+  g.doc["meshes"][0]["primitives"][0] =
+      quad_primitive(g, 0, {{0, 0, 0}, {0, 0, 1}, {kNaN, 0, 0}, {0, 0, 1}});
+  const Scene s = load(g.write_gltf(dir / "zero_normal.gltf"));
+  for (const glm::vec3& n : s.normals) expect_near(n, {0, 0, 1});
+}
+
+TEST_F(GltfLoader, MaterialFactorsEmissiveStrengthAndDoubleSided) {
+  Gltf g = emissive_quad();
+  g.doc["materials"][0] = {
+      {"name", "lamp"},
+      {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 0.125, 0.3}}}},
+      {"emissiveFactor", {1.0, 0.5, 0.25}},
+      {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}},
+      {"doubleSided", true}};
+  g.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  g.push("materials", {{"name", "plain"}});
+  json& prims = g.doc["meshes"][0]["primitives"];
+  prims.push_back(quad_primitive(g, 1, kUpNormals));
+  prims.push_back(quad_primitive(g, -1, kUpNormals));
+  const Scene s = load(g.write_gltf(dir / "materials.gltf"));
+  ASSERT_EQ(s.materials.size(), 3u); // two from the file, then the default material
+  const irad::Material& lamp = s.materials[0];
+  EXPECT_EQ(lamp.name, "lamp");
+  expect_near(lamp.base_color, {0.5f, 0.25f, 0.125f});
+  expect_near(lamp.emission, {4, 2, 1});
+  EXPECT_TRUE(lamp.double_sided);
+  expect_near(s.materials[1].base_color, {1, 1, 1});
+  EXPECT_FALSE(s.materials[1].emissive());
+  EXPECT_FALSE(s.materials[1].double_sided);
+  expect_near(s.materials[2].base_color, {1, 1, 1});
+  EXPECT_FALSE(s.materials[2].emissive());
+  ASSERT_EQ(s.triangle_count(), 6u);
+  EXPECT_EQ(s.triangle_material, (std::vector<std::uint32_t>{0, 0, 1, 1, 2, 2}));
+  EXPECT_TRUE(s.has_emitters());
+  EXPECT_TRUE(s.uvs.empty());
+}
+
+// 2x2 RGB texture, top row (0, 64, 255) (128, 128, 128), bottom row (255, 0, 0) (32, 200, 16).
+const std::vector<std::uint16_t> kTexels{0, 64, 255, 128, 128, 128, 255, 0, 0, 32, 200, 16};
+
+glm::vec4 decoded(std::size_t texel) {
+  auto c = [&](std::size_t k) {
+    return irad::srgb_to_linear(float(kTexels[3 * texel + k]) / 255.0f);
+  };
+  return {c(0), c(1), c(2), 1.0f};
+}
+
+// The quad with TEXCOORD_0 (normalized u8) and a base-colour texture (sampler clamp/mirror);
+// the emissive texture is a 16-bit grey+alpha image.
+Gltf textured_quad() {
+  Gltf g = emissive_quad();
+  const std::vector<std::uint8_t> uv{0, 0, 255, 0, 255, 255, 0, 255};
+  json p = quad_primitive(g, 0, kUpNormals);
+  p["attributes"]["TEXCOORD_0"] =
+      g.accessor(g.view(uv.data(), uv.size()), kU8, 4, "VEC2", {{"normalized", true}});
+  g.doc["meshes"][0]["primitives"][0] = p;
+  g.image_png(png(2, 2, 3, 8, kTexels));
+  g.image_png(png(1, 1, 2, 16, {32768, 65535}));
+  g.push("samplers", {{"wrapS", 33071}, {"wrapT", 33648}});
+  g.push("textures", {{"source", 0}, {"sampler", 0}});
+  g.push("textures", {{"source", 1}});
+  g.doc["materials"][0] = {
+      {"pbrMetallicRoughness",
+       {{"baseColorFactor", {0.5, 1.0, 1.0, 1.0}}, {"baseColorTexture", {{"index", 0}}}}},
+      {"emissiveFactor", {2.0, 2.0, 2.0}},
+      {"emissiveTexture", {{"index", 1}}}};
+  // A second material sharing textures[0]: no second decoded copy.
+  g.push("materials", {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+  return g;
+}
+
+TEST_F(GltfLoader, SrgbTextureDecodesToLinearAndIsSampledBilinearly) {
+  const Scene s = load(textured_quad().write_gltf(dir / "texture.gltf"));
+  ASSERT_EQ(s.textures.size(), 2u);
+  const irad::Texture& t = s.textures[0];
+  ASSERT_EQ(t.width, 2);
+  ASSERT_EQ(t.height, 2);
+  for (std::size_t i = 0; i < 4; ++i) expect_near(t.texels[i], decoded(i));
+  EXPECT_EQ(t.wrap_s, irad::Wrap::ClampToEdge);
+  EXPECT_EQ(t.wrap_t, irad::Wrap::MirroredRepeat);
+  EXPECT_EQ(s.materials[1].base_color_texture, s.materials[0].base_color_texture);
+  // 16-bit grey + alpha: grey replicated to RGB and sRGB-decoded, alpha linear.
+  const float grey = irad::srgb_to_linear(32768.0f / 65535.0f);
+  expect_near(s.textures[1].texels[0], {grey, grey, grey, 1.0f});
+  ASSERT_EQ(s.uvs.size(), 4u);
+  // At vertex 0 (uv 0,0) clamp and mirror both give texel (0, 0) alone; factor (0.5, 1, 1).
+  expect_near(irad::albedo_at(s, 0, {0, 0}), glm::vec3(decoded(0)) * glm::vec3(0.5f, 1, 1));
+  // Centre of the quad (uv 0.5, 0.5): the mean of the four texels.
+  const glm::vec3 centre = irad::albedo_at(s, 0, {0.0f, 0.5f}); // midpoint of vertices 0 and 2
+  const glm::vec4 mean = (decoded(0) + decoded(1) + decoded(2) + decoded(3)) / 4.0f;
+  expect_near(centre, glm::vec3(mean) * glm::vec3(0.5f, 1, 1));
+  expect_near(irad::emission_at(s, 0, {0.3f, 0.3f}), glm::vec3(2 * grey));
+}
+
+TEST_F(GltfLoader, PointAndSpotLightsFromNodeExtensions) {
+  Gltf g = emissive_quad();
+  g.doc["materials"][0] = json::object(); // lit only by the punctual lights
+  g.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  g.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"},
+       {"name", "bulb"},
+       {"color", {1.0, 0.5, 0.25}},
+       {"intensity", 8.0},
+       {"range", 10.0}},
+      {{"type", "spot"},
+       {"intensity", 2.0},
+       {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+      {{"type", "directional"}}};
+  const float h = std::sqrt(0.5f); // 90 degrees about x: -z -> +y
+  auto light = [](int i) { return json{{"KHR_lights_punctual", {{"light", i}}}}; };
+  g.push("nodes", {{"translation", {1, 2, 3}}, {"extensions", light(0)}});
+  g.push("nodes",
+         {{"rotation", {h, 0, 0, h}}, {"translation", {0, 0, 4}}, {"extensions", light(1)}});
+  g.push("nodes", {{"extensions", light(2)}});
+  g.doc["scenes"][0]["nodes"] = {0, 1, 2, 3};
+  const Scene s = load(g.write_gltf(dir / "lights.gltf"));
+  ASSERT_EQ(s.lights.size(), 2u);
+  const irad::PunctualLight& point = s.lights[0];
+  EXPECT_EQ(point.name, "bulb");
+  EXPECT_EQ(point.kind, irad::PunctualLight::Kind::Point);
+  expect_near(point.position, {1, 2, 3});
+  expect_near(point.intensity, {8, 4, 2});
+  const irad::PunctualLight& spot = s.lights[1];
+  EXPECT_EQ(spot.kind, irad::PunctualLight::Kind::Spot);
+  EXPECT_EQ(spot.name, "light1");
+  expect_near(spot.position, {0, 0, 4});
+  expect_near(spot.direction, {0, 1, 0});
+  expect_near(spot.intensity, {2, 2, 2});
+  EXPECT_NEAR(spot.inner_cone, 0.2f, 1e-7f);
+  EXPECT_NEAR(spot.outer_cone, 0.5f, 1e-7f);
+  EXPECT_EQ(warnings_containing("directional lights are not supported yet; skipped"), 1);
+  EXPECT_EQ(warnings_containing("range"), 1);
+}
+
+TEST_F(GltfLoader, CameraIsReadAndScaleRemoved) {
+  Gltf g = emissive_quad();
+  g.push("cameras",
+         {{"type", "perspective"},
+          {"perspective", {{"yfov", 0.8}, {"aspectRatio", 1.5}, {"znear", 0.1}, {"zfar", 100.0}}}});
+  g.push("nodes", {{"camera", 0}, {"translation", {0, 0, 10}}, {"scale", {2, 3, 4}}});
+  g.push("cameras",
+         {{"type", "orthographic"},
+          {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 9.0}}}});
+  g.push("nodes", {{"camera", 1}});
+  g.doc["scenes"][0]["nodes"] = {0, 1, 2};
+  const Scene s = load(g.write_gltf(dir / "camera.gltf"));
+  ASSERT_EQ(s.cameras.size(), 1u);
+  const irad::Camera& c = s.cameras[0];
+  EXPECT_EQ(c.name, "camera0");
+  EXPECT_NEAR(c.yfov, 0.8f, 1e-7f);
+  ASSERT_TRUE(c.aspect.has_value());
+  EXPECT_NEAR(*c.aspect, 1.5f, 1e-7f);
+  EXPECT_NEAR(c.znear, 0.1f, 1e-7f);
+  ASSERT_TRUE(c.zfar.has_value());
+  EXPECT_NEAR(*c.zfar, 100.0f, 1e-5f);
+  expect_near(c.position(), {0, 0, 10});
+  for (int k = 0; k < 3; ++k) {
+    expect_near(glm::vec3(c.camera_to_world[k]), glm::vec3(glm::mat3(1.0f)[k]));
+  }
+  EXPECT_EQ(warnings_containing("orthographic cameras are not supported"), 1);
+}
+
+TEST_F(GltfLoader, PointsAndLinesAreSkippedWithOneWarning) {
+  Gltf g = emissive_quad();
+  for (int mode : {0, 1, 3}) {
+    json p = quad_primitive(g, 0, kUpNormals);
+    p["mode"] = mode;
+    g.doc["meshes"][0]["primitives"].push_back(p);
+  }
+  const Scene s = load(g.write_gltf(dir / "points.gltf"));
+  EXPECT_EQ(s.triangle_count(), 2u);
+  EXPECT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings_containing("point and line primitives are not supported"), 1);
+}
+
+TEST_F(GltfLoader, DefaultCameraFramesTheBoundsWhenAbsent) {
+  const Scene s = load(emissive_quad().write_gltf(dir / "nocamera.gltf"));
+  ASSERT_EQ(s.cameras.size(), 1u);
+  const irad::Camera& c = s.cameras[0];
+  EXPECT_EQ(c.name, "default");
+  EXPECT_FALSE(c.aspect.has_value());
+  EXPECT_NEAR(c.yfov, 0.6911f, 1e-6f);
+  const float distance = 0.5f * std::sqrt(2.0f) / std::sin(0.5f * 0.6911f);
+  expect_near(c.position(), {0.5f, 0.5f, distance});
+  expect_near(glm::vec3(c.camera_to_world[2]), {0, 0, 1}); // looks down -z
+}
+
+TEST_F(GltfLoader, GlbLoadsTheSameAsGltf) {
+  Gltf g = textured_quad();
+  g.doc["meshes"][0]["primitives"].push_back(quad_primitive(g, 1, {}));
+  const Scene a = load(g.write_gltf(dir / "scene.gltf"));
+  const Scene b = load(g.write_glb(dir / "scene.glb"));
+  const Scene c = load(g.write_gltf_bin(dir / "external.gltf"));
+  for (const Scene* other : {&b, &c}) {
+    EXPECT_EQ(corners(*other), corners(a));
+    EXPECT_EQ(other->normals, a.normals);
+    EXPECT_EQ(other->uvs, a.uvs);
+    EXPECT_EQ(other->triangle_material, a.triangle_material);
+    ASSERT_EQ(other->textures.size(), a.textures.size());
+    EXPECT_EQ(other->textures[0].texels, a.textures[0].texels);
+    ASSERT_EQ(other->materials.size(), a.materials.size());
+    EXPECT_EQ(other->materials[0].emission, a.materials[0].emission);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad inputs: each gives one irad::Error naming the file and the element.
+
+TEST_F(GltfLoader, MissingFile) {
+  expect_error(dir / "missing.gltf", "", "cannot open file");
+}
+
+TEST_F(GltfLoader, BrokenJson) {
+  write_file(dir / "broken.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \n \"nodes\": [ {,, ]");
+  expect_error(dir / "broken.gltf", "", "");
+}
+
+TEST_F(GltfLoader, Version1IsRejected) {
+  Gltf g = emissive_quad();
+  g.doc["asset"]["version"] = "1.0";
+  expect_error(g.write_gltf(dir / "v1.gltf"), "asset.version", "unsupported glTF version '1.0'");
+}
+
+// One malformed variant of the emissive quad scene.
+struct BadCase {
+  const char* name;
+  std::function<void(Gltf&)> spoil;
+  const char* element;
+  const char* message;
+};
+
+const BadCase kBadCases[] = {
+    {"accessor_beyond_view", [](Gltf& g) { g.doc["accessors"][0]["byteOffset"] = 8; },
+     "accessors[0]", "exceeds"},
+    {"view_beyond_buffer", [](Gltf& g) { g.doc["bufferViews"][0]["byteLength"] = 4096; },
+     "bufferViews[0]", "exceeds"},
+    {"index_out_of_range",
+     [](Gltf& g) {
+       g.doc["meshes"][0]["primitives"][0]["indices"] =
+           g.indices(std::vector<std::uint16_t>{0, 1, 7});
+     },
+     "meshes[0].primitives[0].indices", "index value 7 out of range"},
+    {"nan_position",
+     [](Gltf& g) {
+       g.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] =
+           g.vec3s({{0, 0, 0}, {1, kNaN, 0}, {1, 1, 0}, {0, 1, 0}});
+     },
+     "accessors[3]", "non-finite vertex position"},
+    {"position_not_vec3", [](Gltf& g) { g.doc["accessors"][0]["type"] = "VEC2"; }, "accessors[0]",
+     "float VEC3"},
+    {"no_light", [](Gltf& g) { g.doc["materials"][0] = json::object(); }, "", "no light"},
+    {"no_triangles", [](Gltf& g) { g.doc["meshes"][0]["primitives"][0]["mode"] = 0; }, "",
+     "no triangles"},
+    {"node_cycle",
+     [](Gltf& g) {
+       g.doc["nodes"][0]["children"] = {1};
+       g.push("nodes", {{"children", {0}}});
+     },
+     "nodes[0]", "cycle"},
+    {"mesh_out_of_range", [](Gltf& g) { g.doc["nodes"][0]["mesh"] = 5; }, "nodes[0]",
+     "mesh index 5 out of range"},
+    {"child_out_of_range", [](Gltf& g) { g.doc["nodes"][0]["children"] = {9}; }, "nodes[0]",
+     "out of range"},
+    {"yfov_zero",
+     [](Gltf& g) {
+       g.push("cameras",
+              {{"type", "perspective"}, {"perspective", {{"yfov", 0.0}, {"znear", 0.1}}}});
+       g.doc["nodes"][0]["camera"] = 0;
+     },
+     "cameras[0]", "yfov must be > 0"},
+    {"negative_emission",
+     [](Gltf& g) {
+       g.doc["materials"][0]["emissiveFactor"] = {-1.0, 0.0, 0.0};
+     },
+     "materials[0]", "emissiveFactor"},
+    {"negative_emissive_strength",
+     [](Gltf& g) {
+       g.doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] =
+           -2.0;
+     },
+     "materials[0]", "emissiveStrength"},
+    {"base_colour_above_one",
+     [](Gltf& g) {
+       g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {2.0, 0.0, 0.0, 1.0};
+     },
+     "materials[0]", "baseColorFactor"},
+    {"texture_out_of_range",
+     [](Gltf& g) {
+       g.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"] = 3;
+     },
+     "materials[0].pbrMetallicRoughness.baseColorTexture", "texture index 3 out of range"},
+    {"light_out_of_range",
+     [](Gltf& g) { g.doc["nodes"][0]["extensions"]["KHR_lights_punctual"]["light"] = 2; },
+     "nodes[0]", "light index 2 out of range"},
+    {"bad_spot_cone",
+     [](Gltf& g) {
+       g.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+           {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.6}, {"outerConeAngle", 0.5}}}}};
+       g.doc["nodes"][0]["extensions"]["KHR_lights_punctual"]["light"] = 0;
+     },
+     "KHR_lights_punctual.lights[0]", "cone"},
+    {"required_extension",
+     [](Gltf& g) { g.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"}; },
+     "extensionsRequired", "KHR_draco_mesh_compression"},
+    {"count_mismatch",
+     [](Gltf& g) {
+       g.doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
+           g.vec3s({{0, 0, 1}, {0, 0, 1}});
+     },
+     "meshes[0].primitives[0]", "NORMAL"},
+    {"scene_out_of_range", [](Gltf& g) { g.doc["scene"] = 3; }, "scene", "scene index 3"},
+};
+
+TEST_F(GltfLoader, EveryBadInputIsOneLineErrorNamingFileAndElement) {
+  for (const BadCase& c : kBadCases) {
+    SCOPED_TRACE(c.name);
+    Gltf g = emissive_quad();
+    c.spoil(g);
+    expect_error(g.write_gltf(dir / (std::string(c.name) + ".gltf")), c.element, c.message);
+  }
+}
+
+TEST_F(GltfLoader, GlbWithBadMagic) {
+  expect_error(emissive_quad().write_glb(dir / "magic.glb", "glTX"), "", "magic");
+}
+
+TEST_F(GltfLoader, BufferShorterThanByteLength) {
+  Gltf g = emissive_quad();
+  const fs::path path = g.write_gltf(dir / "short.gltf");
+  json doc = json::parse(std::ifstream(path));
+  doc["buffers"][0]["byteLength"] = g.bin.size() + 16;
+  write_file(path, doc.dump());
+  expect_error(path, "", "uffer");
+
+  const fs::path external = g.write_gltf_bin(dir / "short_bin.gltf");
+  fs::resize_file(fs::path(external).replace_extension(".bin"), g.bin.size() - 8);
+  expect_error(external, "", "short_bin.bin");
+}
+
+TEST_F(GltfLoader, CornellBox) {
+  const fs::path path = fs::path(IRAD_SOURCE_DIR) / "data" / "cornell_box.gltf";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " not generated yet";
+  const Scene s = load(path);
+  // data/make_cornell_box.py: five walls (10), two blocks without bottom faces (2 x 10), the
+  // light (2); no triangle may be dropped.
+  EXPECT_EQ(s.triangle_count(), 32u);
+  EXPECT_TRUE(warnings.empty());
+  int lights = 0;
+  for (const irad::Material& m : s.materials) {
+    if (!m.emissive()) continue;
+    ++lights;
+    expect_near(m.emission, {17, 12, 4});
+  }
+  EXPECT_EQ(lights, 1);
+  EXPECT_GT(irad::mean_albedo(s), 0.4);
+  EXPECT_LT(irad::mean_albedo(s), 0.8);
+  // The published camera looks down +z from z = -0.8 m: its local +z axis is world -z.
+  ASSERT_EQ(s.cameras.size(), 1u);
+  EXPECT_NEAR(s.cameras[0].yfov, 2.0f * std::atan(12.5f / 35.0f), 1e-5f);
+  expect_near(glm::vec3(s.cameras[0].camera_to_world[2]), {0, 0, -1});
+  expect_near(s.cameras[0].position(), {0.278f, 0.273f, -0.8f});
+}
+
+// ---------------------------------------------------------------------------------------------
+
+// 2x2 texture a b / c d.
+irad::Texture two_by_two(irad::Wrap s, irad::Wrap t) {
+  irad::Texture tex;
+  tex.width = 2;
+  tex.height = 2;
+  tex.texels = {glm::vec4(1, 0, 0, 1), glm::vec4(0, 1, 0, 1), glm::vec4(0, 0, 1, 1),
+                glm::vec4(1, 1, 1, 0)};
+  tex.wrap_s = s;
+  tex.wrap_t = t;
+  return tex;
+}
+
+TEST(Texture, SrgbToLinearIsThePiecewiseEotf) {
+  EXPECT_EQ(irad::srgb_to_linear(0.0f), 0.0f);
+  EXPECT_NEAR(irad::srgb_to_linear(1.0f), 1.0f, 1e-7f);
+  EXPECT_NEAR(irad::srgb_to_linear(0.04045f), 0.04045f / 12.92f, 1e-9f);
+  EXPECT_NEAR(irad::srgb_to_linear(0.5f), 0.2140411f, 1e-6f);
+  EXPECT_NEAR(irad::srgb_to_linear(0.0404f), irad::srgb_to_linear(0.0405f), 1e-5f); // continuous
+}
+
+TEST(Texture, BilinearWithTexelCentres) {
+  const irad::Texture t = two_by_two(irad::Wrap::Repeat, irad::Wrap::Repeat);
+  expect_near(t.sample({0.25f, 0.25f}), t.texels[0]);
+  expect_near(t.sample({0.75f, 0.25f}), t.texels[1]);
+  expect_near(t.sample({0.25f, 0.75f}), t.texels[2]);
+  expect_near(t.sample({0.5f, 0.25f}), 0.5f * (t.texels[0] + t.texels[1]));
+  expect_near(t.sample({0.5f, 0.5f}), t.mean());
+  expect_near(t.mean(), glm::vec4(0.5f, 0.5f, 0.5f, 0.75f));
+}
+
+TEST(Texture, WrapModes) {
+  using irad::Wrap;
+  const irad::Texture repeat = two_by_two(Wrap::Repeat, Wrap::Repeat);
+  const irad::Texture clamp = two_by_two(Wrap::ClampToEdge, Wrap::ClampToEdge);
+  const irad::Texture mirror = two_by_two(Wrap::MirroredRepeat, Wrap::MirroredRepeat);
+  const glm::vec4 a = repeat.texels[0], b = repeat.texels[1];
+  // u = 0: between texel -1 and 0.
+  expect_near(repeat.sample({0.0f, 0.25f}), 0.5f * (a + b));
+  expect_near(clamp.sample({0.0f, 0.25f}), a);
+  expect_near(mirror.sample({0.0f, 0.25f}), a);
+  // u = 1.25 and u = -0.25.
+  expect_near(repeat.sample({1.25f, 0.25f}), a);
+  expect_near(clamp.sample({1.25f, 0.25f}), b);
+  expect_near(mirror.sample({1.25f, 0.25f}), b);
+  expect_near(repeat.sample({-0.25f, 0.25f}), b);
+  expect_near(clamp.sample({-0.25f, 0.25f}), a);
+  expect_near(mirror.sample({-0.25f, 0.25f}), a);
+  expect_near(mirror.sample({2.25f, 0.25f}), a); // period 2
+  expect_near(mirror.sample({-1.25f, 0.25f}), b);
+  // v wraps the same way: v = 1.25 is row 0 under repeat, row 1 under clamp and mirror.
+  expect_near(repeat.sample({0.25f, 1.25f}), a);
+  expect_near(clamp.sample({0.25f, 1.25f}), repeat.texels[2]);
+  expect_near(mirror.sample({0.25f, 1.25f}), repeat.texels[2]);
+}
+
+TEST(Texture, NonFiniteAndHugeCoordinates) {
+  for (irad::Wrap w : {irad::Wrap::Repeat, irad::Wrap::ClampToEdge, irad::Wrap::MirroredRepeat}) {
+    const irad::Texture t = two_by_two(w, w);
+    const float inf = std::numeric_limits<float>::infinity();
+    expect_near(t.sample({kNaN, kNaN}), t.sample({0, 0}));
+    expect_near(t.sample({inf, -inf}), t.sample({0, 0}));
+    for (float huge : {1e30f, -1e30f, 3e38f}) {
+      const glm::vec4 v = t.sample({huge, huge});
+      EXPECT_TRUE(std::isfinite(v.x + v.y + v.z + v.w));
+    }
+  }
+  EXPECT_EQ(irad::Texture{}.sample({0.5f, 0.5f}), glm::vec4(0.0f));
+}
+
+// ---------------------------------------------------------------------------------------------
+
+// Two triangles: a right triangle of area 2 (albedo 0.5) and one of area 1 (albedo 0.8, emissive).
+Scene two_triangles() {
+  Scene s;
+  s.positions = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 1}, {1, 0, 1}, {0, 2, 1}};
+  s.normals.assign(6, glm::vec3(0, 0, 1));
+  s.triangles = {{0, 1, 2}, {3, 4, 5}};
+  s.triangle_material = {0, 1};
+  irad::Material grey;
+  grey.base_color = glm::vec3(0.5f);
+  irad::Material lamp;
+  lamp.base_color = glm::vec3(0.8f);
+  lamp.emission = glm::vec3(3.0f);
+  s.materials = {grey, lamp};
+  return s;
+}
+
+TEST(SceneModel, AreaNormalAndEmitters) {
+  const Scene s = two_triangles();
+  EXPECT_FLOAT_EQ(irad::triangle_area(s, 0), 2.0f);
+  EXPECT_FLOAT_EQ(irad::triangle_area(s, 1), 1.0f);
+  expect_near(irad::geometric_normal(s, 0), {0, 0, 1});
+  EXPECT_TRUE(s.has_emitters());
+  Scene flat = s;
+  flat.positions[5] = {2, 0, 1}; // the emitter collapses to a segment
+  EXPECT_FALSE(flat.has_emitters());
+  Scene clockwise = s;
+  clockwise.triangles[0] = {0, 2, 1};
+  expect_near(irad::geometric_normal(clockwise, 0), {0, 0, -1});
+}
+
+TEST(SceneModel, MeanAlbedoIsAreaWeighted) {
+  const Scene s = two_triangles();
+  EXPECT_NEAR(irad::mean_albedo(s), (2 * 0.5 + 1 * 0.8) / 3.0, 1e-6);
+  EXPECT_EQ(irad::mean_albedo(Scene{}), 0.0);
+  Scene coloured = s;
+  coloured.materials[0].base_color = {0.9f, 0.3f, 0.0f}; // mean 0.4
+  EXPECT_NEAR(irad::mean_albedo(coloured), (2 * 0.4 + 1 * 0.8) / 3.0, 1e-6);
+}
+
+TEST(SceneModel, TexturedAlbedoAndEmissionInterpolateUvs) {
+  Scene s = two_triangles();
+  s.textures = {two_by_two(irad::Wrap::Repeat, irad::Wrap::Repeat)};
+  s.materials[0].base_color_texture = 0;
+  s.materials[1].emissive_texture = 0;
+  // Without uvs the texture is not used.
+  expect_near(irad::albedo_at(s, 0, {0.2f, 0.3f}), glm::vec3(0.5f));
+  s.uvs = {{0.25f, 0.25f}, {0.75f, 0.25f}, {0.25f, 0.75f}, {0, 0}, {0, 0}, {0, 0}};
+  const irad::Texture& t = s.textures[0];
+  expect_near(irad::albedo_at(s, 0, {0, 0}), 0.5f * glm::vec3(t.texels[0]));
+  expect_near(irad::albedo_at(s, 0, {1, 0}), 0.5f * glm::vec3(t.texels[1]));
+  expect_near(irad::albedo_at(s, 0, {0, 1}), 0.5f * glm::vec3(t.texels[2]));
+  expect_near(irad::albedo_at(s, 0, {0.5f, 0}), 0.25f * glm::vec3(t.texels[0] + t.texels[1]));
+  expect_near(irad::emission_at(s, 1, {0.3f, 0.3f}), 3.0f * glm::vec3(t.sample({0, 0})));
+  // Mean albedo takes the texture at its texel mean (0.5, 0.5, 0.5).
+  EXPECT_NEAR(irad::mean_albedo(s), (2 * 0.25 + 1 * 0.8) / 3.0, 1e-6);
+}
+
+} // namespace

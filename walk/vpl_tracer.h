@@ -1,0 +1,22 @@
+#pragma once
+// The exact-visibility VPL estimator ("rt-vpl"): the very same VPL list and clamp as the raster,
+// but visibility V(y, x) from Embree shadow rays instead of a shadow map, and the visible point
+// from a primary ray through the pixel centre. Raster and rt-vpl may differ only by shadow-map
+// error (and the raster's interpolation of positions).
+#include "core/image.h"
+#include "core/scene.h"
+#include "core/view.h"
+#include "core/vpl.h"
+#include "walk/ray_scene.h"
+
+namespace irad {
+
+struct VplTracerOptions {
+  float clamp = 0.05f;  // d_min as a fraction of the bounding diagonal (as RasterOptions::clamp)
+  unsigned threads = 0; // 0: hardware concurrency
+};
+
+Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, const VplSet& vpls,
+                 const VplTracerOptions& options);
+
+} // namespace irad
