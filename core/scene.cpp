@@ -78,4 +78,18 @@ glm::vec3 geometric_normal(const Scene& scene, std::size_t t) {
   return len > 0.0 ? glm::vec3(c / len) : glm::vec3(0.0f);
 }
 
+SurfacePoint surface_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
+  const glm::uvec3& tri = scene.triangles[t];
+  const float b0 = 1.0f - bary.x - bary.y;
+  SurfacePoint p;
+  p.position = b0 * scene.positions[tri.x] + bary.x * scene.positions[tri.y] +
+               bary.y * scene.positions[tri.z];
+  p.geometric_normal = geometric_normal(scene, t);
+  const glm::vec3 n =
+      b0 * scene.normals[tri.x] + bary.x * scene.normals[tri.y] + bary.y * scene.normals[tri.z];
+  const float length = glm::length(n);
+  p.shading_normal = length > 0.0f ? n / length : p.geometric_normal;
+  return p;
+}
+
 } // namespace irad

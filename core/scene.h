@@ -76,6 +76,14 @@ struct Scene {
   bool has_textures() const { return !textures.empty(); }
 };
 
+// A point of triangle t at barycentrics (b1, b2) (the weights of vertices 1 and 2).
+struct SurfacePoint {
+  glm::vec3 position;
+  glm::vec3 geometric_normal; // unit, the front (counter-clockwise) side
+  glm::vec3 shading_normal;   // interpolated NORMAL, unit (the geometric one where it vanishes)
+};
+SurfacePoint surface_at(const Scene& scene, std::size_t t, glm::vec2 bary);
+
 // Surface albedo and emission at a point of triangle t with barycentrics (b1, b2).
 glm::vec3 albedo_at(const Scene& scene, std::size_t t, glm::vec2 bary);
 glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary);

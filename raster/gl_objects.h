@@ -54,30 +54,32 @@ using Renderbuffer = Object<Kind::Renderbuffer>;
 using Program = Object<Kind::Program>;
 using Shader = Object<Kind::Shader>;
 
-inline Buffer make_buffer(const GladGLContext& api) {
+// A new name of kind K (not for programs and shaders, which have their own constructors).
+template <Kind K>
+Object<K> make(const GladGLContext& api) {
   GLuint n = 0;
-  api.GenBuffers(1, &n);
+  if constexpr (K == Kind::Buffer) api.GenBuffers(1, &n);
+  if constexpr (K == Kind::VertexArray) api.GenVertexArrays(1, &n);
+  if constexpr (K == Kind::Texture) api.GenTextures(1, &n);
+  if constexpr (K == Kind::Framebuffer) api.GenFramebuffers(1, &n);
+  if constexpr (K == Kind::Renderbuffer) api.GenRenderbuffers(1, &n);
+  static_assert(K != Kind::Program && K != Kind::Shader);
   return {api, n};
+}
+inline Buffer make_buffer(const GladGLContext& api) {
+  return make<Kind::Buffer>(api);
 }
 inline VertexArray make_vertex_array(const GladGLContext& api) {
-  GLuint n = 0;
-  api.GenVertexArrays(1, &n);
-  return {api, n};
+  return make<Kind::VertexArray>(api);
 }
 inline Texture make_texture(const GladGLContext& api) {
-  GLuint n = 0;
-  api.GenTextures(1, &n);
-  return {api, n};
+  return make<Kind::Texture>(api);
 }
 inline Framebuffer make_framebuffer(const GladGLContext& api) {
-  GLuint n = 0;
-  api.GenFramebuffers(1, &n);
-  return {api, n};
+  return make<Kind::Framebuffer>(api);
 }
 inline Renderbuffer make_renderbuffer(const GladGLContext& api) {
-  GLuint n = 0;
-  api.GenRenderbuffers(1, &n);
-  return {api, n};
+  return make<Kind::Renderbuffer>(api);
 }
 
 // Throws irad::Error naming `what` unless the bound draw framebuffer is complete.

@@ -15,6 +15,16 @@ std::string one_line(std::string s) {
   return s;
 }
 
+// The info log of a shader or program (GetShaderiv/GetShaderInfoLog or the program pair).
+template <typename GetIv, typename GetLog>
+std::string info_log(GLuint name, GetIv get_iv, GetLog get_log) {
+  GLint length = 0;
+  get_iv(name, GL_INFO_LOG_LENGTH, &length);
+  std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+  get_log(name, static_cast<GLsizei>(log.size()), nullptr, log.data());
+  return one_line(log.data());
+}
+
 Shader compile(const GladGLContext& api, GLenum stage, const std::string& source,
                const std::string& name) {
   Shader shader(api, api.CreateShader(stage));
@@ -24,12 +34,10 @@ Shader compile(const GladGLContext& api, GLenum stage, const std::string& source
   GLint ok = GL_FALSE;
   api.GetShaderiv(shader.get(), GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
-    GLint length = 0;
-    api.GetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
-    api.GetShaderInfoLog(shader.get(), static_cast<GLsizei>(log.size()), nullptr, log.data());
     const char* kind = stage == GL_VERTEX_SHADER ? "vertex" : "fragment";
-    throw Error("", "shader " + name, std::string(kind) + " stage: " + one_line(log.data()));
+    throw Error("", "shader " + name,
+                std::string(kind) +
+                    " stage: " + info_log(shader.get(), api.GetShaderiv, api.GetShaderInfoLog));
   }
   return shader;
 }
@@ -52,13 +60,9 @@ ShaderProgram::ShaderProgram(const GladGLContext& api, const std::string& name,
   api.LinkProgram(program_.get());
   GLint ok = GL_FALSE;
   api.GetProgramiv(program_.get(), GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    GLint length = 0;
-    api.GetProgramiv(program_.get(), GL_LINK_STATUS, &length);
-    std::vector<char> log(4096);
-    api.GetProgramInfoLog(program_.get(), static_cast<GLsizei>(log.size()), nullptr, log.data());
-    throw Error("", "shader " + name, "link: " + one_line(log.data()));
-  }
+  if (ok != GL_TRUE)
+    throw Error("", "shader " + name,
+                "link: " + info_log(program_.get(), api.GetProgramiv, api.GetProgramInfoLog));
   api.DetachShader(program_.get(), vs.get());
   api.DetachShader(program_.get(), fs.get());
 }

@@ -27,19 +27,13 @@ struct PathVertex {
 };
 
 PathVertex vertex_at(const Scene& scene, const RayHit& hit, const glm::vec3& incoming) {
-  const glm::uvec3 tri = scene.triangles[hit.triangle];
-  const float b0 = 1.0f - hit.bary.x - hit.bary.y;
-  const glm::vec3 p = b0 * scene.positions[tri.x] + hit.bary.x * scene.positions[tri.y] +
-                      hit.bary.y * scene.positions[tri.z];
-  glm::vec3 ng = geometric_normal(scene, hit.triangle);
+  const SurfacePoint sp = surface_at(scene, hit.triangle, hit.bary);
+  glm::vec3 ng = sp.geometric_normal;
   if (glm::dot(ng, incoming) > 0.0f) ng = -ng; // face the arriving particle
-  glm::vec3 ns = b0 * scene.normals[tri.x] + hit.bary.x * scene.normals[tri.y] +
-                 hit.bary.y * scene.normals[tri.z];
-  const float len = glm::length(ns);
-  ns = len > 0.0f ? ns / len : ng;
+  glm::vec3 ns = sp.shading_normal;
   if (glm::dot(ns, ng) < 0.0f) ns = -ns;  // same side as the geometric normal
   if (glm::dot(ns, ng) <= 1e-3f) ns = ng; // shading normal unusable near the tangent plane
-  return {p, ns, albedo_at(scene, hit.triangle, hit.bary)};
+  return {sp.position, ns, albedo_at(scene, hit.triangle, hit.bary)};
 }
 
 Vpl light_vpl(const LightStart& start, float weight, std::uint32_t path) {

@@ -26,15 +26,10 @@ bool primary_hit(const Scene& scene, const RayScene& rays, const View& view, int
   const glm::vec3 dir = glm::normalize(glm::vec3(far) / far.w - view.eye);
   const auto hit = rays.intersect(view.eye, dir, view.znear, view.zfar * 2.0f);
   if (!hit) return false;
-  const glm::uvec3 tri = scene.triangles[hit->triangle];
-  const float b0 = 1.0f - hit->bary.x - hit->bary.y;
+  const SurfacePoint sp = surface_at(scene, hit->triangle, hit->bary);
   out.position = view.eye + hit->t * dir;
-  const glm::vec3 ng = geometric_normal(scene, hit->triangle);
-  const bool front = glm::dot(ng, dir) < 0.0f;
-  glm::vec3 ns = b0 * scene.normals[tri.x] + hit->bary.x * scene.normals[tri.y] +
-                 hit->bary.y * scene.normals[tri.z];
-  ns = glm::length(ns) > 0.0f ? glm::normalize(ns) : ng;
-  out.normal = front ? ns : -ns; // as the raster: the shading normal, flipped on back faces
+  const bool front = glm::dot(sp.geometric_normal, dir) < 0.0f;
+  out.normal = front ? sp.shading_normal : -sp.shading_normal; // as the raster's gl_FrontFacing
   out.albedo = albedo_at(scene, hit->triangle, hit->bary);
   const Material& m = scene.material_of(hit->triangle);
   out.emission =
