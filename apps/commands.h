@@ -12,5 +12,6 @@ struct Commands {
 };
 
 void add_render_command(CLI::App& app, Commands& commands);
+void add_compare_command(CLI::App& app, Commands& commands);
 
 } // namespace irad::apps

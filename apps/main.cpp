@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "irad 0.1");
   irad::apps::Commands commands;
   irad::apps::add_render_command(app, commands);
+  irad::apps::add_compare_command(app, commands);
   try {
     app.parse(argc, argv);
     return commands.run();

@@ -27,7 +27,17 @@ struct RenderArgs {
   std::string tone_map = "clamp";
   std::string stats;
   bool quiet = false;
+  std::string estimator = "raster";
+  std::uint32_t spp = 64;
+  std::uint64_t seed = 0;
+  unsigned threads = 0;
 };
+
+Estimator parse_estimator(const std::string& name) {
+  if (name == "rt-vpl") return Estimator::RtVpl;
+  if (name == "pt") return Estimator::Pt;
+  return Estimator::Raster;
+}
 
 std::pair<int, int> parse_size(const std::string& text) {
   int w = 0, h = 0;
@@ -47,7 +57,27 @@ void check_folder(const std::string& path, const char* option) {
 }
 
 nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
+  nlohmann::json seconds = {{"load", r.seconds.load}, {"total", r.seconds.total}};
+  if (args.estimator == "pt") {
+    seconds["trace"] = r.seconds.trace;
+    return {{"scene", args.scene},
+            {"estimator", args.estimator},
+            {"spp", args.spp},
+            {"seed", args.seed},
+            {"size", {r.view.width, r.view.height}},
+            {"triangles", r.scene.triangle_count()},
+            {"camera", r.camera.name},
+            {"seconds", seconds}};
+  }
+  seconds["walk"] = r.seconds.walk;
+  if (args.estimator == "raster") {
+    seconds["raster"] = r.seconds.raster;
+    seconds["readback"] = r.seconds.readback;
+  } else {
+    seconds["trace"] = r.seconds.trace;
+  }
   return {{"scene", args.scene},
+          {"estimator", args.estimator},
           {"vpls", r.vpls.vpls.size()},
           {"vpls_planned", r.vpls.planned},
           {"passes", r.passes},
@@ -62,12 +92,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},
           {"camera", r.camera.name},
           {"gl", r.gl},
-          {"seconds",
-           {{"load", r.seconds.load},
-            {"walk", r.seconds.walk},
-            {"raster", r.seconds.raster},
-            {"readback", r.seconds.readback},
-            {"total", r.seconds.total}}}};
+          {"seconds", seconds}};
 }
 
 void write_stats(const std::string& path, const nlohmann::json& stats) {
@@ -78,6 +103,23 @@ void write_stats(const std::string& path, const nlohmann::json& stats) {
     if (!out) throw Error(path, "--stats", "cannot write");
   }
   std::filesystem::rename(tmp, path);
+}
+
+void print_summary(const RenderArgs& args, const RenderResult& r) {
+  if (args.estimator == "pt") {
+    std::fprintf(stderr, "irad: %s: %dx%d, pt %u spp in %.2f s (load %.2f, trace %.2f)\n",
+                 args.scene.c_str(), r.view.width, r.view.height, args.spp, r.seconds.total,
+                 r.seconds.load, r.seconds.trace);
+    return;
+  }
+  const double stage = args.estimator == "raster" ? r.seconds.raster : r.seconds.trace;
+  std::fprintf(stderr,
+               "irad: %s: %dx%d, %s, %u paths, %zu VPLs (l_max %d, rho_bar %.4f) in %.2f s "
+               "(load %.2f, walk %.2f, %s %.2f)\n",
+               args.scene.c_str(), r.view.width, r.view.height, args.estimator.c_str(),
+               r.vpls.paths, r.vpls.vpls.size(), r.vpls.l_max, r.vpls.rho_bar, r.seconds.total,
+               r.seconds.load, r.seconds.walk, args.estimator == "raster" ? "raster" : "trace",
+               stage);
 }
 
 int run_render(const RenderArgs& args) {
@@ -91,7 +133,12 @@ int run_render(const RenderArgs& args) {
   request.raster.shadow_resolution = args.shadow_res;
   request.raster.clamp = args.clamp;
   request.progress = !args.quiet && isatty(STDERR_FILENO);
+  request.estimator = parse_estimator(args.estimator);
+  request.pt.spp = args.spp;
+  request.pt.seed = args.seed;
+  request.pt.threads = args.threads;
   if (args.paths == 0) throw Error("", "--paths", "must be at least 1");
+  if (args.spp == 0) throw Error("", "--spp", "must be at least 1");
   for (const std::string& o : args.outputs) {
     image_format_of(o);
     check_folder(o, "-o");
@@ -104,13 +151,7 @@ int run_render(const RenderArgs& args) {
   png.tone_map = args.tone_map == "reinhard" ? ToneMap::Reinhard : ToneMap::Clamp;
   for (const std::string& o : args.outputs) write_image(o, r.image, png);
   if (!args.stats.empty()) write_stats(args.stats, stats_json(args, r));
-  if (!args.quiet)
-    std::fprintf(stderr,
-                 "irad: %s: %dx%d, %u paths, %zu VPLs (l_max %d, rho_bar %.4f) in %.2f s "
-                 "(load %.2f, walk %.2f, raster %.2f)\n",
-                 args.scene.c_str(), r.view.width, r.view.height, r.vpls.paths, r.vpls.vpls.size(),
-                 r.vpls.l_max, r.vpls.rho_bar, r.seconds.total, r.seconds.load, r.seconds.walk,
-                 r.seconds.raster);
+  if (!args.quiet) print_summary(args, r);
   return 0;
 }
 
@@ -139,6 +180,15 @@ void add_render_command(CLI::App& app, Commands& commands) {
       ->check(CLI::IsMember({"clamp", "reinhard"}))
       ->capture_default_str();
   cmd->add_option("--stats", args->stats, "Write statistics as JSON to this file");
+  cmd->add_option("--estimator", args->estimator,
+                  "raster: instant radiosity on the GPU (OpenGL); rt-vpl: the same VPLs with "
+                  "ray-traced visibility; pt: path-traced reference")
+      ->check(CLI::IsMember({"raster", "rt-vpl", "pt"}))
+      ->capture_default_str();
+  cmd->add_option("--spp", args->spp, "pt: samples per pixel")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "pt: random seed")->capture_default_str();
+  cmd->add_option("--threads", args->threads, "pt, rt-vpl: CPU threads (0: all cores)")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "No progress, warnings or summary on stderr");
   cmd->callback([args, &commands] { commands.selected = [args] { return run_render(*args); }; });
 }

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "core/gltf_loader.h"
 #include "walk/ray_scene.h"
+#include "walk/vpl_tracer.h"
 
 #include <chrono>
 #include <cmath>
@@ -35,7 +36,7 @@ public:
     if (done != total && now - last_ < std::chrono::milliseconds(100)) return;
     last_ = now;
     drawn_ = true;
-    std::fprintf(stderr, "\rirad: rendering VPL %zu/%zu (%.0f%%)", done, total,
+    std::fprintf(stderr, "\rirad: rendering %zu/%zu (%.0f%%)", done, total,
                  total ? 100.0 * static_cast<double>(done) / static_cast<double>(total) : 100.0);
     std::fflush(stderr);
   }
@@ -70,6 +71,22 @@ std::pair<int, int> image_size(const Camera& camera, std::optional<std::pair<int
   return {std::clamp(width, 1, 16384), 512};
 }
 
+namespace {
+
+void run_raster(const RenderRequest& request, RenderResult& r) {
+  const auto t0 = Clock::now();
+  RasterRenderer raster(r.scene, request.raster);
+  r.gl = raster.description();
+  RasterTimings timings;
+  ProgressLine progress(request.progress);
+  r.image = raster.render(r.view, r.vpls, &timings, std::ref(progress));
+  r.seconds.raster = since(t0);
+  r.seconds.readback = timings.readback;
+  r.passes = timings.passes;
+}
+
+} // namespace
+
 RenderResult render_scene(const RenderRequest& request, Log& log) {
   RenderResult r;
   const auto t0 = Clock::now();
@@ -77,24 +94,28 @@ RenderResult render_scene(const RenderRequest& request, Log& log) {
   r.camera = select_camera(r.scene, request.camera);
   const auto [width, height] = image_size(r.camera, request.size);
   r.view = make_view(r.camera, r.scene.bounds, width, height);
+  const RayScene rays(r.scene);
   r.seconds.load = since(t0);
 
-  const auto t1 = Clock::now();
-  {
-    const RayScene rays(r.scene);
+  if (request.estimator == Estimator::Pt) {
+    const auto t1 = Clock::now();
+    ProgressLine progress(request.progress);
+    r.image = path_trace(r.scene, rays, r.view, request.pt,
+                         [&](int done, int rows) { progress(done, rows); });
+    r.seconds.trace = since(t1);
+  } else {
+    const auto t1 = Clock::now();
     r.vpls = quasi_random_walk(r.scene, rays, request.walk, log);
+    r.seconds.walk = since(t1);
+    if (request.estimator == Estimator::Raster) {
+      run_raster(request, r);
+    } else {
+      const auto t2 = Clock::now();
+      r.image =
+          trace_vpls(r.scene, rays, r.view, r.vpls, {request.raster.clamp, request.pt.threads});
+      r.seconds.trace = since(t2);
+    }
   }
-  r.seconds.walk = since(t1);
-
-  const auto t2 = Clock::now();
-  RasterRenderer raster(r.scene, request.raster);
-  r.gl = raster.description();
-  RasterTimings timings;
-  ProgressLine progress(request.progress);
-  r.image = raster.render(r.view, r.vpls, &timings, std::ref(progress));
-  r.seconds.raster = since(t2);
-  r.seconds.readback = timings.readback;
-  r.passes = timings.passes;
   r.seconds.total = since(t0);
 
   if (const std::size_t bad = r.image.non_finite_count(); bad > 0)

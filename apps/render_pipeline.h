@@ -6,6 +6,7 @@
 #include "core/view.h"
 #include "core/vpl.h"
 #include "raster/raster_renderer.h"
+#include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 
 #include <optional>
@@ -13,17 +14,23 @@
 
 namespace irad::apps {
 
+// raster: the instant radiosity rasterizer; rt-vpl: the same VPLs with exact (ray-traced)
+// visibility; pt: the path-traced reference.
+enum class Estimator { Raster, RtVpl, Pt };
+
 struct RenderRequest {
+  Estimator estimator = Estimator::Raster;
   std::string scene_path;
   std::optional<std::pair<int, int>> size; // WxH; default from the camera's aspect, 512 high
   std::string camera;                      // name or index; empty: the first camera
   WalkOptions walk;
-  RasterOptions raster;
+  RasterOptions raster;  // clamp and shadow resolution (clamp also for rt-vpl)
+  PathTracerOptions pt;  // spp, seed, threads
   bool progress = false; // a progress line on stderr
 };
 
 struct StageSeconds {
-  double load = 0, walk = 0, raster = 0, readback = 0, total = 0;
+  double load = 0, walk = 0, raster = 0, readback = 0, trace = 0, total = 0;
 };
 
 struct RenderResult {
@@ -33,8 +40,8 @@ struct RenderResult {
   VplSet vpls;
   Image image;
   StageSeconds seconds;
-  std::size_t passes = 0;
-  std::string gl;
+  std::size_t passes = 0; // VPL passes drawn (raster)
+  std::string gl;         // GL renderer (raster)
 };
 
 RenderResult render_scene(const RenderRequest& request, Log& log);

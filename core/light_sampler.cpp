@@ -75,6 +75,7 @@ LightSampler::LightSampler(const Scene& scene) {
     const double p = triangle_power(scene, t);
     if (p > 0.0) entries_.push_back({static_cast<std::int64_t>(t), p});
   }
+  triangle_entries_ = entries_.size();
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     const double p = light_power(scene.lights[l]);
     if (p > 0.0) entries_.push_back({-static_cast<std::int64_t>(l) - 1, p});
@@ -109,18 +110,32 @@ LightStart LightSampler::sample(const Scene& scene, double u, double v) const {
     s.kind = scene.material_of(t).double_sided ? VplKind::TwoSided : VplKind::Surface;
     s.beta = emission_at(scene, t, bary) * static_cast<float>(triangle_area(scene, t) / prob);
     s.triangle = e.triangle;
+    s.pdf = prob / triangle_area(scene, t);
     return s;
   }
   const PunctualLight& light = scene.lights[static_cast<std::size_t>(-e.triangle - 1)];
   s.position = light.position;
   s.normal = light.direction;
   s.beta = light.intensity / static_cast<float>(prob);
+  s.pdf = prob;
   s.kind = light.kind == PunctualLight::Kind::Point ? VplKind::Point : VplKind::Spot;
   if (s.kind == VplKind::Spot) {
     s.cos_inner = std::cos(light.inner_cone);
     s.cos_outer = std::cos(light.outer_cone);
   }
   return s;
+}
+
+double LightSampler::area_pdf(const Scene& scene, std::size_t t) const {
+  // Triangle entries come first, in increasing triangle order.
+  const auto end = entries_.begin() + static_cast<std::ptrdiff_t>(triangle_entries_);
+  const auto it =
+      std::lower_bound(entries_.begin(), end, static_cast<std::int64_t>(t),
+                       [](const Entry& e, std::int64_t key) { return e.triangle < key; });
+  if (it == end || it->triangle != static_cast<std::int64_t>(t)) return 0.0;
+  const std::size_t k = static_cast<std::size_t>(it - entries_.begin());
+  const double prob = cdf_[k] - (k == 0 ? 0.0 : cdf_[k - 1]);
+  return prob / triangle_area(scene, t);
 }
 
 LightDirection LightSampler::direction(const LightStart& start, double u, double v) {

@@ -21,6 +21,7 @@ struct LightStart {
   VplKind kind = VplKind::Surface;
   float cos_inner = 1.0f, cos_outer = 0.0f; // Spot only
   std::int64_t triangle = -1;               // the emissive triangle, -1 for punctual lights
+  double pdf = 0.0; // area density p(y0) = P(k) / A_k on a triangle; P(k) for a punctual light
 };
 
 // An outgoing direction from a light start and the factor beta_1 / beta_0 = profile / pdf.
@@ -41,13 +42,17 @@ public:
   // Direction leaving a start: cosine-distributed around the front normal (factor pi), either
   // side of a two-sided emitter (factor 2 pi), uniform on the sphere (4 pi) or in the spot cone.
   static LightDirection direction(const LightStart& start, double u, double v);
+  // p(y) = P(k) / A_k for a point on emissive triangle t (0 when t is not sampled): what sample()
+  // gives that point, for multiple importance sampling.
+  double area_pdf(const Scene& scene, std::size_t t) const;
 
 private:
   struct Entry {
     std::int64_t triangle; // >= 0: emissive triangle; else -(light index + 1)
     double power;
   };
-  std::vector<Entry> entries_;
+  std::vector<Entry> entries_; // emissive triangles (increasing index), then punctual lights
+  std::size_t triangle_entries_ = 0;
   std::vector<double> cdf_; // inclusive prefix sums / total
   double total_power_ = 0.0;
 };

@@ -81,14 +81,15 @@ VplSet quasi_random_walk(const Scene& scene, const RayScene& rays, const WalkOpt
 
   for (std::uint32_t i = 0; i < counts.paths(); ++i) {
     const int depth = counts.depth_of(i);
-    const LightStart start = lights.sample(scene, halton.sample(0, i), halton.sample(1, i));
+    const std::uint32_t h = halton_index(i);
+    const LightStart start = lights.sample(scene, halton.sample(0, h), halton.sample(1, h));
     if (!positive(start.beta)) continue;
     set.vpls.push_back(light_vpl(start, 1.0f / static_cast<float>(counts.reaching(0)), i));
     if (depth == 0) continue;
 
     // Leave the light: beta_1 = beta_0 * profile / pdf.
     const LightDirection out =
-        LightSampler::direction(start, halton.sample(2, i), halton.sample(3, i));
+        LightSampler::direction(start, halton.sample(2, h), halton.sample(3, h));
     glm::vec3 beta = start.beta * out.factor;
     glm::vec3 origin = start.position;
     glm::vec3 dir = out.direction;
@@ -111,7 +112,7 @@ VplSet quasi_random_walk(const Scene& scene, const RayScene& rays, const WalkOpt
       if (j == depth) break;
       // Scatter: cosine-distributed from (Phi_{b_{2j+2}}(i), Phi_{b_{2j+3}}(i)); beta_{j+1} =
       // rho(y_j) beta_j.
-      dir = cosine_direction(y.normal, halton.sample(2 * j + 2, i), halton.sample(2 * j + 3, i));
+      dir = cosine_direction(y.normal, halton.sample(2 * j + 2, h), halton.sample(2 * j + 3, h));
       beta *= y.albedo;
       origin = y.position;
       offset_normal = y.normal;

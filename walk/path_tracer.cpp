@@ -1,0 +1,195 @@
+#include "walk/path_tracer.h"
+
+#include "core/light_sampler.h"
+#include "core/rng.h"
+#include "core/vpl.h"
+
+#include <atomic>
+#include <cmath>
+#include <numbers>
+#include <thread>
+#include <vector>
+
+namespace irad {
+
+namespace {
+
+constexpr float inv_pi = std::numbers::inv_pi_v<float>;
+
+float power_heuristic(double a, double b) {
+  const double a2 = a * a, b2 = b * b;
+  return a2 + b2 > 0.0 ? static_cast<float>(a2 / (a2 + b2)) : 0.0f;
+}
+
+float max3(const glm::vec3& v) {
+  return glm::max(v.x, glm::max(v.y, v.z));
+}
+
+// A surface hit, with normals turned toward the side the ray arrived from.
+struct Hit {
+  glm::vec3 position, ng, ns, albedo;
+  std::uint32_t triangle;
+  glm::vec2 bary;
+  bool front; // the ray hit the front (counter-clockwise) face
+};
+
+Hit make_hit(const Scene& scene, const RayHit& h, const glm::vec3& origin, const glm::vec3& dir) {
+  const SurfacePoint sp = surface_at(scene, h.triangle, h.bary);
+  Hit hit;
+  hit.position = origin + h.t * dir;
+  hit.front = glm::dot(sp.geometric_normal, dir) < 0.0f;
+  hit.ng = hit.front ? sp.geometric_normal : -sp.geometric_normal;
+  hit.ns = hit.front ? sp.shading_normal : -sp.shading_normal;
+  hit.albedo = albedo_at(scene, h.triangle, h.bary);
+  hit.triangle = h.triangle;
+  hit.bary = h.bary;
+  return hit;
+}
+
+// Radiance the hit surface emits back along the ray (front face only unless double-sided).
+glm::vec3 emitted(const Scene& scene, const Hit& hit) {
+  const Material& m = scene.material_of(hit.triangle);
+  if (!m.emissive() || (!hit.front && !m.double_sided)) return glm::vec3(0.0f);
+  return emission_at(scene, hit.triangle, hit.bary);
+}
+
+class Tracer {
+public:
+  Tracer(const Scene& scene, const RayScene& rays, const PathTracerOptions& options)
+      : scene_(scene), rays_(rays), options_(options), lights_(scene), eps_(rays.epsilon()) {}
+
+  glm::vec3 radiance(const glm::vec3& eye, const glm::vec3& dir, float tmin, Pcg32& rng) const;
+
+private:
+  glm::vec3 next_event(const Hit& x, Pcg32& rng) const;
+  float emitter_weight(const Hit& y, const glm::vec3& from, double bsdf_pdf) const;
+
+  const Scene& scene_;
+  const RayScene& rays_;
+  const PathTracerOptions& options_;
+  LightSampler lights_;
+  float eps_;
+};
+
+// Light from one sampled light to x: f * L * G / p, weighted against cosine sampling (MIS).
+glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng) const {
+  const LightStart s = lights_.sample(scene_, rng.next_double(), rng.next_double());
+  const glm::vec3 d = s.position - x.position;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > eps_ * eps_)) return glm::vec3(0.0f);
+  const float dist = std::sqrt(dist2);
+  const glm::vec3 w = d / dist; // toward the light
+  const float cos_x = glm::dot(x.ns, w);
+  if (cos_x <= 0.0f || glm::dot(x.ng, w) <= 0.0f) return glm::vec3(0.0f);
+  const float cos_y = -glm::dot(s.normal, w);
+  float profile = 1.0f; // what the light sends toward x per unit of beta
+  switch (s.kind) {
+  case VplKind::Surface:
+    profile = glm::max(cos_y, 0.0f);
+    break;
+  case VplKind::TwoSided:
+    profile = std::abs(cos_y);
+    break;
+  case VplKind::Point:
+    break;
+  case VplKind::Spot:
+    profile = spot_falloff(cos_y, s.cos_inner, s.cos_outer);
+    break;
+  }
+  if (profile <= 0.0f) return glm::vec3(0.0f);
+  if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, dist - 2.0f * eps_)) return glm::vec3(0.0f);
+  float weight = 1.0f; // punctual lights cannot be hit by scattering
+  if (s.triangle >= 0) {
+    const double light_pdf = s.pdf * dist2 / profile; // solid angle at x
+    weight = power_heuristic(light_pdf, cos_x * inv_pi);
+  }
+  return s.beta * (profile * cos_x / dist2 * weight) * x.albedo * inv_pi;
+}
+
+// MIS weight of emission found by cosine sampling (solid-angle pdf bsdf_pdf at `from`).
+float Tracer::emitter_weight(const Hit& y, const glm::vec3& from, double bsdf_pdf) const {
+  const double area_pdf = lights_.area_pdf(scene_, y.triangle);
+  if (area_pdf <= 0.0) return 1.0f;
+  const glm::vec3 d = y.position - from;
+  const float dist2 = glm::dot(d, d);
+  const float cos_y = std::abs(glm::dot(y.ng, d)) / std::sqrt(dist2);
+  if (cos_y <= 0.0f) return 0.0f;
+  return power_heuristic(bsdf_pdf, area_pdf * dist2 / cos_y);
+}
+
+glm::vec3 Tracer::radiance(const glm::vec3& eye, const glm::vec3& dir0, float tmin,
+                           Pcg32& rng) const {
+  glm::vec3 sum(0.0f), throughput(1.0f), origin = eye, dir = dir0;
+  double bsdf_pdf = 0.0; // solid-angle pdf of the direction that led here (0: camera ray)
+  for (int depth = 0; depth <= options_.max_depth; ++depth) {
+    const auto h = rays_.intersect(origin, dir, depth == 0 ? tmin : 0.0f,
+                                   std::numeric_limits<float>::infinity());
+    if (!h) break;
+    const Hit x = make_hit(scene_, *h, origin, dir);
+    const glm::vec3 le = emitted(scene_, x);
+    if (le != glm::vec3(0.0f))
+      sum += throughput * le * (depth == 0 ? 1.0f : emitter_weight(x, origin, bsdf_pdf));
+    if (max3(x.albedo) <= 0.0f) break;
+    sum += throughput * next_event(x, rng);
+    // Cosine-weighted scattering: f cos / pdf = rho.
+    const glm::vec3 next = [&] {
+      const double u = rng.next_double(), v = rng.next_double();
+      return cosine_direction(x.ns, u, v);
+    }();
+    const float cos_n = glm::dot(next, x.ns);
+    if (glm::dot(next, x.ng) <= 0.0f || cos_n <= 0.0f) break; // below the surface
+    throughput *= x.albedo;
+    bsdf_pdf = cos_n * inv_pi;
+    if (depth >= 3) { // Russian roulette
+      const float q = glm::min(max3(throughput), 0.95f);
+      if (rng.next_double() >= q) break;
+      throughput /= q;
+    }
+    origin = x.position + eps_ * x.ng;
+    dir = next;
+  }
+  return sum;
+}
+
+} // namespace
+
+Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
+                 const PathTracerOptions& options,
+                 const std::function<void(int rows_done, int rows)>& progress) {
+  const Tracer tracer(scene, rays, options);
+  Image image(view.width, view.height);
+  const glm::mat4 inv = glm::inverse(view.projection * view.view);
+  const std::uint64_t seed = mix64(options.seed);
+  std::atomic<int> next_row{0}, rows_done{0};
+  auto work = [&](bool report) {
+    for (int y = next_row++; y < view.height; y = next_row++) {
+      for (int x = 0; x < view.width; ++x) {
+        const float nx =
+            (static_cast<float>(x) + 0.5f) / static_cast<float>(view.width) * 2.0f - 1.0f;
+        const float ny =
+            1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(view.height) * 2.0f;
+        const glm::vec4 far = inv * glm::vec4(nx, ny, 1.0f, 1.0f);
+        const glm::vec3 dir = glm::normalize(glm::vec3(far) / far.w - view.eye);
+        const std::uint64_t pixel = static_cast<std::uint64_t>(y) * view.width + x;
+        glm::dvec3 sum(0.0);
+        for (std::uint32_t s = 0; s < options.spp; ++s) {
+          Pcg32 rng(mix64(seed ^ pixel), s);
+          const glm::vec3 l = tracer.radiance(view.eye, dir, view.znear, rng);
+          if (std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z)) sum += glm::dvec3(l);
+        }
+        image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), 1.0f);
+      }
+      const int done = ++rows_done;
+      if (report && progress) progress(done, view.height);
+    }
+  };
+  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
+  threads = std::max(1u, threads);
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, false);
+  work(true);
+  for (std::thread& t : pool) t.join();
+  return image;
+}
+
+} // namespace irad

@@ -1,0 +1,30 @@
+#pragma once
+// The converged reference ("pt"): a unidirectional path tracer for the same scene model (diffuse
+// surfaces, Lambertian emitters, punctual lights), independent of the walk's estimator. Camera
+// rays go through pixel centres (the raster's sampling), so the two integrate the same function.
+// Next-event estimation toward emitters (chosen by power) and cosine-weighted scattering are
+// combined with multiple importance sampling (power heuristic); punctual lights are reached by
+// next-event estimation only. Russian roulette after three bounces. No clamp: unbiased.
+// Deterministic for a given seed whatever the thread count (one RNG stream per pixel and sample).
+#include "core/image.h"
+#include "core/scene.h"
+#include "core/view.h"
+#include "walk/ray_scene.h"
+
+#include <cstdint>
+#include <functional>
+
+namespace irad {
+
+struct PathTracerOptions {
+  std::uint32_t spp = 64; // samples per pixel
+  std::uint64_t seed = 0;
+  unsigned threads = 0; // 0: hardware concurrency
+  int max_depth = 1000; // bounces (Russian roulette ends paths long before)
+};
+
+Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
+                 const PathTracerOptions& options,
+                 const std::function<void(int rows_done, int rows)>& progress = {});
+
+} // namespace irad
