@@ -79,8 +79,10 @@ TEST(PathTracer, SquareLightOverPlaneMatchesLambert) {
       const double rel = (image.at(x, y).r - expected) / expected;
       sum_sq += rel * rel;
     }
-  // Measured: relative RMS 0.0078 at 512 spp (light sampling and MIS noise only).
-  EXPECT_LT(std::sqrt(sum_sq / (view.width * view.height)), 0.02);
+  const double rel_rms = std::sqrt(sum_sq / (view.width * view.height));
+  std::printf("pt square light over plane: relative RMS %.5f\n", rel_rms);
+  // Measured: 0.0147 at 512 spp and 0.0045 at 4096 spp: noise, falling as 1/sqrt(spp).
+  EXPECT_LT(rel_rms, 0.025);
 }
 
 // Raster and rt-vpl evaluate the same VPLs; they differ by shadow-map error (and by edge pixels,
@@ -97,7 +99,7 @@ TEST(RasterVsRtVpl, CornellBoxSameVpls) {
   const ImageMetrics c = compare_images(a, b);
   std::printf("raster vs rt-vpl: relMSE %.3g, RMSE %.3g, mean ratio %.5f\n", c.relmse, c.rmse,
               c.mean_ratio[0]);
-  // Measured (llvmpipe, 256^2 shadow faces): relMSE 1.6e-4, mean ratio 0.99985.
+  // Measured (llvmpipe, 256^2 shadow faces): relMSE 7.5e-6, mean ratio 0.99977.
   EXPECT_LT(c.relmse, 1e-3);
   EXPECT_NEAR(c.mean_ratio[0], 1.0, 2e-3);
 }
