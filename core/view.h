@@ -23,4 +23,8 @@ struct View {
 // below far, else far * 1e-4.
 View make_view(const Camera& camera, const Bounds& bounds, int width, int height);
 
+// Unit direction of the ray from the eye through the centre of pixel (px, py), row 0 at the top:
+// the points the raster shades, so ray-traced estimators integrate the same function.
+glm::vec3 pixel_direction(const View& view, int px, int py);
+
 } // namespace irad

@@ -3,12 +3,10 @@
 #include "core/light_sampler.h"
 #include "core/rng.h"
 #include "core/vpl.h"
+#include "walk/parallel_rows.h"
 
-#include <atomic>
 #include <cmath>
 #include <numbers>
-#include <thread>
-#include <vector>
 
 namespace irad {
 
@@ -158,37 +156,23 @@ Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
                  const std::function<void(int rows_done, int rows)>& progress) {
   const Tracer tracer(scene, rays, options);
   Image image(view.width, view.height);
-  const glm::mat4 inv = glm::inverse(view.projection * view.view);
   const std::uint64_t seed = mix64(options.seed);
-  std::atomic<int> next_row{0}, rows_done{0};
-  auto work = [&](bool report) {
-    for (int y = next_row++; y < view.height; y = next_row++) {
-      for (int x = 0; x < view.width; ++x) {
-        const float nx =
-            (static_cast<float>(x) + 0.5f) / static_cast<float>(view.width) * 2.0f - 1.0f;
-        const float ny =
-            1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(view.height) * 2.0f;
-        const glm::vec4 far = inv * glm::vec4(nx, ny, 1.0f, 1.0f);
-        const glm::vec3 dir = glm::normalize(glm::vec3(far) / far.w - view.eye);
-        const std::uint64_t pixel = static_cast<std::uint64_t>(y) * view.width + x;
-        glm::dvec3 sum(0.0);
-        for (std::uint32_t s = 0; s < options.spp; ++s) {
-          Pcg32 rng(mix64(seed ^ pixel), s);
-          const glm::vec3 l = tracer.radiance(view.eye, dir, view.znear, rng);
-          if (std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z)) sum += glm::dvec3(l);
-        }
-        image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), 1.0f);
+  auto row = [&](int y) {
+    for (int x = 0; x < view.width; ++x) {
+      const glm::vec3 dir = pixel_direction(view, x, y);
+      const std::uint64_t pixel = static_cast<std::uint64_t>(y) * view.width + x;
+      glm::dvec3 sum(0.0);
+      for (std::uint32_t s = 0; s < options.spp; ++s) {
+        Pcg32 rng(mix64(seed ^ pixel), s); // one stream per pixel and sample
+        const glm::vec3 l = tracer.radiance(view.eye, dir, view.znear, rng);
+        if (std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z)) sum += glm::dvec3(l);
       }
-      const int done = ++rows_done;
-      if (report && progress) progress(done, view.height);
+      image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), 1.0f);
     }
   };
-  unsigned threads = options.threads ? options.threads : std::thread::hardware_concurrency();
-  threads = std::max(1u, threads);
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, false);
-  work(true);
-  for (std::thread& t : pool) t.join();
+  parallel_rows(view.height, options.threads, row, [&](int done) {
+    if (progress) progress(done, view.height);
+  });
   return image;
 }
 

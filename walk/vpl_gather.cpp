@@ -1,0 +1,58 @@
+#include "walk/vpl_gather.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace irad {
+
+ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec3& origin,
+                           const glm::vec3& dir) {
+  const SurfacePoint sp = surface_at(scene, hit.triangle, hit.bary);
+  const bool front = glm::dot(sp.geometric_normal, dir) < 0.0f;
+  const Material& m = scene.material_of(hit.triangle);
+  ShadingPoint x;
+  x.position = origin + hit.t * dir;
+  x.normal = front ? sp.shading_normal : -sp.shading_normal;
+  x.geometric = front ? sp.geometric_normal : -sp.geometric_normal;
+  x.albedo = albedo_at(scene, hit.triangle, hit.bary);
+  x.emission =
+      (front || m.double_sided) ? emission_at(scene, hit.triangle, hit.bary) : glm::vec3(0.0f);
+  return x;
+}
+
+float emission_profile(const Vpl& v, float cos_y) {
+  switch (v.kind) {
+  case VplKind::Surface:
+    return glm::max(cos_y, 0.0f);
+  case VplKind::TwoSided:
+    return std::abs(cos_y);
+  case VplKind::Point:
+    return 1.0f;
+  case VplKind::Spot:
+    return spot_falloff(cos_y, v.cos_inner, v.cos_outer);
+  }
+  return 0.0f;
+}
+
+glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin2,
+                      float eps) {
+  glm::vec3 sum(0.0f);
+  for (const Vpl& v : vpls.vpls) {
+    const glm::vec3 d = x.position - v.position;
+    const float dist2 = glm::dot(d, d);
+    if (!(dist2 > eps * eps)) continue;
+    const float dist = std::sqrt(dist2);
+    const glm::vec3 w = d / dist;
+    const float cos_x = -glm::dot(x.normal, w);
+    if (cos_x <= 0.0f) continue;
+    const float e = emission_profile(v, glm::dot(v.normal, w));
+    if (e <= 0.0f) continue;
+    // Shadow ray from the receiver toward the VPL, stopping short of both ends.
+    if (rays.occluded(x.position, -w, eps, dist - eps)) continue;
+    const float g = e * cos_x / glm::max(dist2, v.clamped() ? dmin2 : 0.0f);
+    sum += v.intensity * g;
+  }
+  return sum * x.albedo * std::numbers::inv_pi_v<float>;
+}
+
+} // namespace irad

@@ -1,0 +1,33 @@
+#pragma once
+// Exact-visibility evaluation of a VPL list at one surface point: the rt-vpl estimator's core,
+// also used by the clamp's bias compensation.
+#include "core/scene.h"
+#include "core/vpl.h"
+#include "walk/ray_scene.h"
+
+#include <glm/glm.hpp>
+
+namespace irad {
+
+// A surface point seen along a ray, with its normals turned toward the ray's origin.
+struct ShadingPoint {
+  glm::vec3 position;
+  glm::vec3 normal;    // shading normal on the side the ray came from (as gl_FrontFacing)
+  glm::vec3 geometric; // geometric normal on that side
+  glm::vec3 albedo;
+  glm::vec3 emission; // L_e toward the ray's origin (front face only unless double-sided)
+};
+
+ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec3& origin,
+                           const glm::vec3& dir);
+
+// The VPLs' reflected radiance at x toward the viewer:
+//   rho(x)/pi * sum_k I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)   (core/vpl.h),
+// with V from shadow rays. dmin2: squared clamp distance; eps: the scene's ray offset.
+glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin2,
+                      float eps);
+
+// E_k of core/vpl.h: the VPL's emission profile toward a direction with cosine cos_y.
+float emission_profile(const Vpl& v, float cos_y);
+
+} // namespace irad
