@@ -31,6 +31,8 @@ struct RenderArgs {
   std::uint32_t spp = 64;
   std::uint64_t seed = 0;
   unsigned threads = 0;
+  bool bias_compensation = false;
+  std::uint32_t bias_samples = 16;
 };
 
 Estimator parse_estimator(const std::string& name) {
@@ -70,6 +72,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
             {"seconds", seconds}};
   }
   seconds["walk"] = r.seconds.walk;
+  if (args.bias_compensation) seconds["compensation"] = r.seconds.compensation;
   if (args.estimator == "raster") {
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
@@ -92,6 +95,8 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},
           {"camera", r.camera.name},
           {"gl", r.gl},
+          {"clamped_fraction", r.clamped_fraction},
+          {"bias_compensation", args.bias_compensation},
           {"seconds", seconds}};
 }
 
@@ -137,6 +142,9 @@ int run_render(const RenderArgs& args) {
   request.pt.spp = args.spp;
   request.pt.seed = args.seed;
   request.pt.threads = args.threads;
+  request.bias_compensation = args.bias_compensation;
+  request.bias_samples = args.bias_samples;
+  request.clamped_fraction = !args.stats.empty();
   if (args.paths == 0) throw Error("", "--paths", "must be at least 1");
   if (args.spp == 0) throw Error("", "--spp", "must be at least 1");
   for (const std::string& o : args.outputs) {
@@ -188,6 +196,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--spp", args->spp, "pt: samples per pixel")->capture_default_str();
   cmd->add_option("--seed", args->seed, "pt: random seed")->capture_default_str();
   cmd->add_option("--threads", args->threads, "pt, rt-vpl: CPU threads (0: all cores)")
+      ->capture_default_str();
+  cmd->add_flag("--bias-compensation", args->bias_compensation,
+                "raster, rt-vpl: add back what the clamp removes (short ray-traced gather paths)");
+  cmd->add_option("--bias-samples", args->bias_samples,
+                  "gather directions per pixel for --bias-compensation")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "No progress, warnings or summary on stderr");
   cmd->callback([args, &commands] { commands.selected = [args] { return run_render(*args); }; });

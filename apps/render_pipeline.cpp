@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/gltf_loader.h"
+#include "walk/bias_compensation.h"
 #include "walk/ray_scene.h"
 #include "walk/vpl_tracer.h"
 
@@ -85,6 +86,20 @@ void run_raster(const RenderRequest& request, RenderResult& r) {
   r.passes = timings.passes;
 }
 
+// Adds the clamp's residual R(x) to the clamped image.
+void compensate(const RenderRequest& request, const RayScene& rays, RenderResult& r) {
+  const auto t0 = Clock::now();
+  BiasCompensationOptions options;
+  options.clamp = request.raster.clamp;
+  options.samples = request.bias_samples;
+  options.seed = request.pt.seed;
+  options.threads = request.pt.threads;
+  const Image residual = clamp_residual(r.scene, rays, r.view, r.vpls, options);
+  for (std::size_t i = 0; i < residual.pixels().size(); ++i)
+    r.image.pixels()[i] += glm::vec4(glm::vec3(residual.pixels()[i]), 0.0f);
+  r.seconds.compensation = since(t0);
+}
+
 } // namespace
 
 RenderResult render_scene(const RenderRequest& request, Log& log) {
@@ -115,6 +130,9 @@ RenderResult render_scene(const RenderRequest& request, Log& log) {
           trace_vpls(r.scene, rays, r.view, r.vpls, {request.raster.clamp, request.pt.threads});
       r.seconds.trace = since(t2);
     }
+    if (request.bias_compensation) compensate(request, rays, r);
+    if (request.clamped_fraction)
+      r.clamped_fraction = clamped_fraction(r.scene, rays, r.view, r.vpls, request.raster.clamp);
   }
   r.seconds.total = since(t0);
 

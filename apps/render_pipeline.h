@@ -24,13 +24,16 @@ struct RenderRequest {
   std::optional<std::pair<int, int>> size; // WxH; default from the camera's aspect, 512 high
   std::string camera;                      // name or index; empty: the first camera
   WalkOptions walk;
-  RasterOptions raster;  // clamp and shadow resolution (clamp also for rt-vpl)
-  PathTracerOptions pt;  // spp, seed, threads
-  bool progress = false; // a progress line on stderr
+  RasterOptions raster;           // clamp and shadow resolution (clamp also for rt-vpl)
+  PathTracerOptions pt;           // spp, seed, threads
+  bool bias_compensation = false; // add the clamp's residual (walk/bias_compensation.h)
+  std::uint32_t bias_samples = 16;
+  bool clamped_fraction = false; // estimate the share of light the clamp removes
+  bool progress = false;         // a progress line on stderr
 };
 
 struct StageSeconds {
-  double load = 0, walk = 0, raster = 0, readback = 0, trace = 0, total = 0;
+  double load = 0, walk = 0, raster = 0, readback = 0, trace = 0, compensation = 0, total = 0;
 };
 
 struct RenderResult {
@@ -40,8 +43,9 @@ struct RenderResult {
   VplSet vpls;
   Image image;
   StageSeconds seconds;
-  std::size_t passes = 0; // VPL passes drawn (raster)
-  std::string gl;         // GL renderer (raster)
+  std::size_t passes = 0;         // VPL passes drawn (raster)
+  double clamped_fraction = -1.0; // when requested
+  std::string gl;                 // GL renderer (raster)
 };
 
 RenderResult render_scene(const RenderRequest& request, Log& log);
