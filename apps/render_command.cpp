@@ -33,6 +33,8 @@ struct RenderArgs {
   unsigned threads = 0;
   bool bias_compensation = false;
   std::uint32_t bias_samples = 16;
+  std::string gl = "auto";
+  int gl_device = -1;
 };
 
 Estimator parse_estimator(const std::string& name) {
@@ -137,6 +139,10 @@ int run_render(const RenderArgs& args) {
   request.walk.paths = args.paths;
   request.raster.shadow_resolution = args.shadow_res;
   request.raster.clamp = args.clamp;
+  request.raster.backend = args.gl == "egl"      ? GlBackend::Egl
+                           : args.gl == "osmesa" ? GlBackend::OsMesa
+                                                 : GlBackend::Auto;
+  request.raster.gl_device = args.gl_device;
   request.progress = !args.quiet && isatty(STDERR_FILENO);
   request.estimator = parse_estimator(args.estimator);
   request.pt.spp = args.spp;
@@ -202,6 +208,12 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--bias-samples", args->bias_samples,
                   "gather directions per pixel for --bias-compensation")
       ->capture_default_str();
+  cmd->add_option("--gl", args->gl,
+                  "OpenGL for the raster: auto (a GPU through EGL if there is one, else OSMesa), "
+                  "egl (a device, or Mesa's surfaceless platform), osmesa")
+      ->check(CLI::IsMember({"auto", "egl", "osmesa"}))
+      ->capture_default_str();
+  cmd->add_option("--gl-device", args->gl_device, "EGL device index (implies EGL)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress, warnings or summary on stderr");
   cmd->callback([args, &commands] { commands.selected = [args] { return run_render(*args); }; });
 }

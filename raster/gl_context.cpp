@@ -2,57 +2,9 @@
 
 #include "core/error.h"
 
-#include <GL/osmesa.h>
-#include <array>
 #include <fmt/format.h>
 
 namespace irad::gl {
-
-namespace {
-
-GLADapiproc osmesa_proc(void* /*user*/, const char* name) {
-  return reinterpret_cast<GLADapiproc>(OSMesaGetProcAddress(name));
-}
-
-// An OSMesa core-profile context made current on a 1x1 dummy colour buffer (all rendering goes
-// to framebuffer objects). Owns the context (RAII).
-class OsMesaContext final : public Context {
-public:
-  OsMesaContext() {
-    const std::array<int, 13> attribs = {OSMESA_FORMAT,
-                                         OSMESA_RGBA,
-                                         OSMESA_DEPTH_BITS,
-                                         0,
-                                         OSMESA_STENCIL_BITS,
-                                         0,
-                                         OSMESA_PROFILE,
-                                         OSMESA_CORE_PROFILE,
-                                         OSMESA_CONTEXT_MAJOR_VERSION,
-                                         3,
-                                         OSMESA_CONTEXT_MINOR_VERSION,
-                                         3,
-                                         0};
-    context_ = OSMesaCreateContextAttribs(attribs.data(), nullptr);
-    if (!context_)
-      throw Error("", "osmesa", "cannot create an OpenGL 3.3 core context with OSMesa");
-    if (!OSMesaMakeCurrent(context_, dummy_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
-      OSMesaDestroyContext(context_);
-      throw Error("", "osmesa", "cannot make the OSMesa context current");
-    }
-    if (!gladLoadGLContextUserPtr(&api_, osmesa_proc, nullptr) || !api_.VERSION_3_3) {
-      OSMesaDestroyContext(context_);
-      throw Error("", "osmesa", "OpenGL 3.3 core functions are missing");
-    }
-  }
-  ~OsMesaContext() override { OSMesaDestroyContext(context_); }
-  std::string backend() const override { return "osmesa"; }
-
-private:
-  OSMesaContext context_ = nullptr;
-  std::array<unsigned char, 4> dummy_{};
-};
-
-} // namespace
 
 std::string Context::renderer() const {
   const auto* r = reinterpret_cast<const char*>(api_.GetString(GL_RENDERER));
@@ -65,8 +17,20 @@ void Context::check(const char* where) const {
   if (e != GL_NO_ERROR) throw Error("", where, fmt::format("OpenGL error 0x{:04x}", e));
 }
 
-std::unique_ptr<Context> create_osmesa_context() {
-  return std::make_unique<OsMesaContext>();
+std::unique_ptr<Context> create_context(Backend backend, int device) {
+  switch (backend) {
+  case Backend::Egl:
+    return create_egl_context(device);
+  case Backend::OsMesa:
+    if (!osmesa_available())
+      throw Error("", "--gl", "this build has no OSMesa (Mesa 25.1 removed it): use --gl egl");
+    return create_osmesa_context();
+  case Backend::Auto:
+    break;
+  }
+  // A GPU when EGL sees one, else the embedded default (OSMesa), else Mesa's surfaceless EGL.
+  if (device >= 0 || egl_has_hardware_device()) return create_egl_context(device);
+  return osmesa_available() ? create_osmesa_context() : create_egl_context(-1);
 }
 
 } // namespace irad::gl

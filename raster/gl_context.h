@@ -1,6 +1,8 @@
 #pragma once
 // A current OpenGL 3.3+ core context with its glad function table. The renderer draws only into
-// framebuffer objects, so no backend needs a window. Backends: OSMesa (llvmpipe on the CPU).
+// framebuffer objects, so no backend needs a window. Backends: OSMesa (llvmpipe on the CPU, the
+// embedded default) and EGL (a GPU through EGL_EXT_platform_device, or Mesa's surfaceless
+// platform).
 // Internal to raster/: the GL types stay out of the public headers.
 #include <glad/gl.h>
 #include <memory>
@@ -26,6 +28,16 @@ protected:
   GladGLContext api_{};
 };
 
+enum class Backend { Auto, Egl, OsMesa };
+
+// Auto: an EGL hardware device when there is one (or `device` >= 0 asks for one), else OSMesa,
+// else EGL surfaceless. Throws irad::Error naming the backend when it cannot be had.
+std::unique_ptr<Context> create_context(Backend backend, int device = -1);
+
 std::unique_ptr<Context> create_osmesa_context();
+bool osmesa_available();
+// device < 0: the first hardware device, else Mesa's surfaceless platform.
+std::unique_ptr<Context> create_egl_context(int device = -1);
+bool egl_has_hardware_device();
 
 } // namespace irad::gl

@@ -166,7 +166,10 @@ void RasterRenderer::Impl::shade(const Vpl& vpl, const glm::mat3& frame, const g
 RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options) {
   if (options.shadow_resolution < 1) throw Error("", "--shadow-res", "must be at least 1");
   if (!(options.clamp >= 0.0f)) throw Error("", "--clamp", "must be >= 0");
-  impl_ = std::make_unique<Impl>(scene, options, gl::create_osmesa_context());
+  const gl::Backend backend = options.backend == GlBackend::Egl      ? gl::Backend::Egl
+                              : options.backend == GlBackend::OsMesa ? gl::Backend::OsMesa
+                                                                     : gl::Backend::Auto;
+  impl_ = std::make_unique<Impl>(scene, options, gl::create_context(backend, options.gl_device));
 }
 
 RasterRenderer::~RasterRenderer() = default;

@@ -12,9 +12,15 @@
 
 namespace irad {
 
+// Which OpenGL: auto (a GPU through EGL when there is one, else OSMesa, else EGL surfaceless),
+// egl (a device, or Mesa's surfaceless platform) or osmesa.
+enum class GlBackend { Auto, Egl, OsMesa };
+
 struct RasterOptions {
   int shadow_resolution = 256; // texels per cube face edge
   float clamp = 0.05f;         // d_min as a fraction of the scene's bounding diagonal
+  GlBackend backend = GlBackend::Auto;
+  int gl_device = -1; // EGL device index; -1: the first hardware device
 };
 
 struct RasterTimings {
