@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   irad::apps::Commands commands;
   irad::apps::add_render_command(app, commands);
   irad::apps::add_compare_command(app, commands);
+  irad::apps::add_scene_command(app, commands);
   try {
     app.parse(argc, argv);
     return commands.run();

@@ -1,7 +1,7 @@
 // The raster against answers no estimator of ours defines (design.md section 3).
+#include "core/scene_builder.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"
-#include "tests/scene_builder.h"
 #include "walk/quasi_random_walk.h"
 
 #include <cmath>
@@ -30,8 +30,8 @@ void pixel_ray(const View& view, int px, int py, glm::dvec3& origin, glm::dvec3&
 TEST(RasterAnalytic, SquareLightOverPlaneMatchesLambert) {
   Log log([](const std::string&) {});
   const float albedo = 0.5f, height = 1.0f, side = 1.0f;
-  Scene scene = test::square_light_over_plane(side, height, 1.0f, 6.0f, albedo);
-  scene.cameras.push_back(test::look_at({0.0f, -3.2f, 2.6f}, {0.0f, 0.0f, 0.2f}, {0, 0, 1}, 0.9f));
+  Scene scene = square_light_over_plane(side, height, 1.0f, 6.0f, albedo);
+  scene.cameras.push_back(look_at({0.0f, -3.2f, 2.6f}, {0.0f, 0.0f, 0.2f}, {0, 0, 1}, 0.9f));
   const RayScene rays(scene);
   const VplSet vpls = quasi_random_walk(scene, rays, {1024, 64}, log);
   RasterRenderer raster(scene, RasterOptions{256, 0.05f});
@@ -56,7 +56,7 @@ TEST(RasterAnalytic, SquareLightOverPlaneMatchesLambert) {
       const glm::dvec3 p = o + (-o.z / d.z) * d;
       if (std::abs(p.x) > 2.9 || std::abs(p.y) > 2.9) continue; // plane edges
       const double expected =
-          albedo / std::numbers::pi * test::polygon_irradiance(light, p, {0, 0, 1}, 1.0);
+          albedo / std::numbers::pi * polygon_irradiance(light, p, {0, 0, 1}, 1.0);
       const double got = image.at(x, y).r;
       ASSERT_TRUE(std::isfinite(got));
       const double rel = (got - expected) / expected;

@@ -2,9 +2,9 @@
 // against the exact-visibility estimator on the same VPLs.
 #include "core/gltf_loader.h"
 #include "core/image_metrics.h"
+#include "core/scene_builder.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"
-#include "tests/scene_builder.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
@@ -24,13 +24,13 @@ double mean_red(const Image& image) {
 
 // Furnace: every surface of a closed box has albedo rho and emits L_e: L = L_e / (1 - rho).
 TEST(PathTracer, FurnaceBox) {
-  Scene s = test::closed_box(1.0f, 0.5f, 0.3f, 1.0f);
+  Scene s = closed_box(1.0f, 0.5f, 0.3f, 1.0f);
   s.materials[0].emission = glm::vec3(1.0f);
   const RayScene rays(s);
   // Off-centre, so that no pixel centre lands exactly on a seam of two walls: there the hit point
   // lies in both planes and half of its hemisphere passes through the other wall (measure zero,
   // but a symmetric camera samples exactly those points along the image diagonals).
-  const Camera camera = test::look_at({0.47f, 0.53f, 0.95f}, {0.5f, 0.5f, 0.0f}, {0, 1, 0}, 1.2f);
+  const Camera camera = look_at({0.47f, 0.53f, 0.95f}, {0.5f, 0.5f, 0.0f}, {0, 1, 0}, 1.2f);
   const View view = make_view(camera, s.bounds, 32, 32);
   const Image image = path_trace(s, rays, view, {256, 7, 0, 1000});
   double worst = 0.0;
@@ -43,9 +43,9 @@ TEST(PathTracer, FurnaceBox) {
 }
 
 TEST(PathTracer, DeterministicForASeedWhateverTheThreads) {
-  const Scene s = test::closed_box(1.0f, 0.6f, 0.3f, 1.0f);
+  const Scene s = closed_box(1.0f, 0.6f, 0.3f, 1.0f);
   const RayScene rays(s);
-  const Camera camera = test::look_at({0.5f, 0.5f, 0.95f}, {0.5f, 0.5f, 0.0f}, {0, 1, 0}, 1.2f);
+  const Camera camera = look_at({0.5f, 0.5f, 0.95f}, {0.5f, 0.5f, 0.0f}, {0, 1, 0}, 1.2f);
   const View view = make_view(camera, s.bounds, 16, 16);
   const Image a = path_trace(s, rays, view, {8, 3, 1, 1000});
   const Image b = path_trace(s, rays, view, {8, 3, 4, 1000});
@@ -57,9 +57,9 @@ TEST(PathTracer, DeterministicForASeedWhateverTheThreads) {
 // Direct light from a square light over a plane, against Lambert's formula.
 TEST(PathTracer, SquareLightOverPlaneMatchesLambert) {
   const float albedo = 0.5f;
-  Scene s = test::square_light_over_plane(1.0f, 1.0f, 1.0f, 6.0f, albedo);
+  Scene s = square_light_over_plane(1.0f, 1.0f, 1.0f, 6.0f, albedo);
   const RayScene rays(s);
-  const Camera camera = test::look_at({0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 1.6f);
+  const Camera camera = look_at({0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, 0.0f}, {0, 1, 0}, 1.6f);
   const View view = make_view(camera, s.bounds, 24, 24);
   const Image image = path_trace(s, rays, view, {512, 1, 0, 1000});
   const std::vector<glm::dvec3> light = {
@@ -75,7 +75,7 @@ TEST(PathTracer, SquareLightOverPlaneMatchesLambert) {
           glm::normalize(glm::dvec3(glm::vec3(far) / far.w) - glm::dvec3(view.eye));
       const glm::dvec3 p = glm::dvec3(view.eye) + (-view.eye.z / d.z) * d;
       const double expected =
-          albedo / std::numbers::pi * test::polygon_irradiance(light, p, {0, 0, 1}, 1.0);
+          albedo / std::numbers::pi * polygon_irradiance(light, p, {0, 0, 1}, 1.0);
       const double rel = (image.at(x, y).r - expected) / expected;
       sum_sq += rel * rel;
     }

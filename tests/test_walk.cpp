@@ -2,7 +2,7 @@
 #include "core/error.h"
 #include "core/light_sampler.h"
 #include "core/particle_counts.h"
-#include "tests/scene_builder.h"
+#include "core/scene_builder.h"
 #include "walk/quasi_random_walk.h"
 
 #include <gtest/gtest.h>
@@ -39,15 +39,15 @@ double depth0_power(const VplSet& set) {
 TEST(QuasiRandomWalk, Depth0PowerEqualsEmitterPower) {
   Log log([](const std::string&) {});
   // Two emitters of different radiance and size, one double-sided, and a point light.
-  Scene s = test::closed_box(1.0f, 0.5f, 0.2f, 3.0f);
-  const std::uint32_t bright = test::add_material(s, glm::vec3(0.5f), glm::vec3(10.0f), true);
-  test::add_quad(s, {0.1f, 0.1f, 0.5f}, {0.2f, 0.1f, 0.5f}, {0.2f, 0.3f, 0.5f}, {0.1f, 0.3f, 0.5f},
-                 bright);
+  Scene s = closed_box(1.0f, 0.5f, 0.2f, 3.0f);
+  const std::uint32_t bright = add_material(s, glm::vec3(0.5f), glm::vec3(10.0f), true);
+  add_quad(s, {0.1f, 0.1f, 0.5f}, {0.2f, 0.1f, 0.5f}, {0.2f, 0.3f, 0.5f}, {0.1f, 0.3f, 0.5f},
+           bright);
   PunctualLight point;
   point.position = {0.5f, 0.5f, 0.5f};
   point.intensity = {1.0f, 2.0f, 3.0f};
   s.lights.push_back(point);
-  test::finish(s);
+  finish(s);
   // Phi = pi A L (one side) for the ceiling patch, 2 pi A L for the double-sided one, 4 pi I.
   const double expected = pi * 0.04 * 3.0 + 2.0 * pi * 0.02 * 10.0 + 4.0 * pi * 2.0;
   EXPECT_NEAR(LightSampler(s).total_power(), expected, 1e-6 * expected); // float vertices
@@ -61,7 +61,7 @@ TEST(QuasiRandomWalk, Depth0PowerEqualsEmitterPower) {
 
 TEST(QuasiRandomWalk, ClosedBoxReachesLmaxAndCountsMatch) {
   Log log([](const std::string&) {});
-  const Scene s = test::closed_box(2.0f, 0.6f, 0.5f, 1.0f);
+  const Scene s = closed_box(2.0f, 0.6f, 0.5f, 1.0f);
   const RayScene rays(s);
   for (std::uint32_t n : {1u, 16u, 64u, 333u, 1024u}) {
     const VplSet set = quasi_random_walk(s, rays, {n, 64}, log);
@@ -88,7 +88,7 @@ TEST(QuasiRandomWalk, ClosedBoxReachesLmaxAndCountsMatch) {
 TEST(QuasiRandomWalk, PowerPerDepthFallsWithAlbedoInAClosedBox) {
   Log log([](const std::string&) {});
   const float rho = 0.5f;
-  const Scene s = test::closed_box(1.0f, rho, 0.3f, 2.0f);
+  const Scene s = closed_box(1.0f, rho, 0.3f, 2.0f);
   const RayScene rays(s);
   const VplSet set = quasi_random_walk(s, rays, {4096, 64}, log);
   const double phi = LightSampler(s).total_power();
@@ -100,7 +100,7 @@ TEST(QuasiRandomWalk, PowerPerDepthFallsWithAlbedoInAClosedBox) {
 
 TEST(QuasiRandomWalk, RefusesNoLightAndZeroPaths) {
   Log log([](const std::string&) {});
-  Scene s = test::closed_box(1.0f, 0.5f, 0.2f, 1.0f);
+  Scene s = closed_box(1.0f, 0.5f, 0.2f, 1.0f);
   const RayScene rays(s);
   EXPECT_THROW(quasi_random_walk(s, rays, {0, 64}, log), Error);
   s.materials[1].emission = glm::vec3(0.0f);
@@ -110,7 +110,7 @@ TEST(QuasiRandomWalk, RefusesNoLightAndZeroPaths) {
 TEST(QuasiRandomWalk, AlbedoOneIsCappedWithAWarningAndStaysFinite) {
   int warnings = 0;
   Log log([&](const std::string&) { ++warnings; });
-  const Scene s = test::closed_box(1.0f, 1.0f, 0.3f, 1.0f);
+  const Scene s = closed_box(1.0f, 1.0f, 0.3f, 1.0f);
   const RayScene rays(s);
   const VplSet set = quasi_random_walk(s, rays, {8, 12}, log);
   EXPECT_TRUE(set.depth_capped);

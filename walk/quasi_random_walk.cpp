@@ -58,66 +58,76 @@ void warn_capped(const ParticleCounts& counts, Log& log, int cap) {
 
 } // namespace
 
+QuasiRandomWalk::QuasiRandomWalk(const Scene& scene, const RayScene& rays,
+                                 const WalkOptions& options, Log& log)
+    : scene_(&scene), rays_(&rays), lights_(scene),
+      counts_(options.paths == 0 ? throw Error("", "--paths", "must be at least 1") : options.paths,
+              mean_albedo(scene), options.depth_cap),
+      halton_(2 * static_cast<std::size_t>(counts_.l_max()) + 2) {
+  if (lights_.empty())
+    throw Error(scene.source, "", "no light: no emissive surface and no punctual light");
+  warn_capped(counts_, log, options.depth_cap);
+}
+
+void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
+  const Scene& scene = *scene_;
+  const float eps = rays_->epsilon();
+  const float far = std::numeric_limits<float>::infinity();
+  const int depth = counts_.depth_of(i);
+  const std::uint32_t h = halton_index(i);
+  const LightStart start = lights_.sample(scene, halton_.sample(0, h), halton_.sample(1, h));
+  if (!positive(start.beta)) return;
+  out.push_back(light_vpl(start, 1.0f / static_cast<float>(counts_.reaching(0)), i));
+  if (depth == 0) return;
+
+  // Leave the light: beta_1 = beta_0 * profile / pdf.
+  const LightDirection leave =
+      LightSampler::direction(start, halton_.sample(2, h), halton_.sample(3, h));
+  glm::vec3 beta = start.beta * leave.factor;
+  glm::vec3 origin = start.position;
+  glm::vec3 dir = leave.direction;
+  glm::vec3 offset_normal = start.triangle >= 0 ? start.normal : glm::vec3(0.0f);
+  if (glm::dot(offset_normal, dir) < 0.0f) offset_normal = -offset_normal;
+  for (int j = 1; j <= depth && positive(beta); ++j) {
+    const auto hit = rays_->intersect(origin + eps * offset_normal, dir, 0.0f, far);
+    if (!hit) return; // the particle leaves the scene
+    const PathVertex y = vertex_at(scene, *hit, dir);
+    const glm::vec3 radiant = beta * y.albedo * inv_pi; // beta_j rho(y_j) / pi
+    if (!positive(radiant)) return;                     // absorbed: nothing further
+    Vpl v;
+    v.position = y.position;
+    v.normal = y.normal;
+    v.intensity = radiant / static_cast<float>(counts_.reaching(j));
+    v.kind = VplKind::Surface;
+    v.depth = static_cast<std::uint16_t>(j);
+    v.path = i;
+    out.push_back(v);
+    if (j == depth) return;
+    // Scatter: cosine-distributed from (Phi_{b_{2j+2}}(i), Phi_{b_{2j+3}}(i)); beta_{j+1} =
+    // rho(y_j) beta_j.
+    dir = cosine_direction(y.normal, halton_.sample(2 * j + 2, h), halton_.sample(2 * j + 3, h));
+    beta *= y.albedo;
+    origin = y.position;
+    offset_normal = y.normal;
+  }
+}
+
+VplSet QuasiRandomWalk::header() const {
+  VplSet set;
+  set.paths = counts_.paths();
+  set.rho_bar = counts_.rho_bar();
+  set.l_max = counts_.l_max();
+  set.depth_capped = counts_.capped();
+  set.planned = counts_.vpl_count();
+  return set;
+}
+
 VplSet quasi_random_walk(const Scene& scene, const RayScene& rays, const WalkOptions& options,
                          Log& log) {
-  if (options.paths == 0) throw Error("", "--paths", "must be at least 1");
-  const LightSampler lights(scene);
-  if (lights.empty())
-    throw Error(scene.source, "", "no light: no emissive surface and no punctual light");
-
-  const ParticleCounts counts(options.paths, mean_albedo(scene), options.depth_cap);
-  warn_capped(counts, log, options.depth_cap);
-  const Halton halton(2 * static_cast<std::size_t>(counts.l_max()) + 2);
-  const float eps = rays.epsilon();
-  const float far = std::numeric_limits<float>::infinity();
-
-  VplSet set;
-  set.paths = counts.paths();
-  set.rho_bar = counts.rho_bar();
-  set.l_max = counts.l_max();
-  set.depth_capped = counts.capped();
-  set.planned = counts.vpl_count();
+  const QuasiRandomWalk walk(scene, rays, options, log);
+  VplSet set = walk.header();
   set.vpls.reserve(set.planned);
-
-  for (std::uint32_t i = 0; i < counts.paths(); ++i) {
-    const int depth = counts.depth_of(i);
-    const std::uint32_t h = halton_index(i);
-    const LightStart start = lights.sample(scene, halton.sample(0, h), halton.sample(1, h));
-    if (!positive(start.beta)) continue;
-    set.vpls.push_back(light_vpl(start, 1.0f / static_cast<float>(counts.reaching(0)), i));
-    if (depth == 0) continue;
-
-    // Leave the light: beta_1 = beta_0 * profile / pdf.
-    const LightDirection out =
-        LightSampler::direction(start, halton.sample(2, h), halton.sample(3, h));
-    glm::vec3 beta = start.beta * out.factor;
-    glm::vec3 origin = start.position;
-    glm::vec3 dir = out.direction;
-    glm::vec3 offset_normal = start.triangle >= 0 ? start.normal : glm::vec3(0.0f);
-    if (glm::dot(offset_normal, dir) < 0.0f) offset_normal = -offset_normal;
-    for (int j = 1; j <= depth && positive(beta); ++j) {
-      const auto hit = rays.intersect(origin + eps * offset_normal, dir, 0.0f, far);
-      if (!hit) break; // the particle leaves the scene
-      const PathVertex y = vertex_at(scene, *hit, dir);
-      const glm::vec3 radiant = beta * y.albedo * inv_pi; // beta_j rho(y_j) / pi
-      if (!positive(radiant)) break;                      // absorbed: nothing further
-      Vpl v;
-      v.position = y.position;
-      v.normal = y.normal;
-      v.intensity = radiant / static_cast<float>(counts.reaching(j));
-      v.kind = VplKind::Surface;
-      v.depth = static_cast<std::uint16_t>(j);
-      v.path = i;
-      set.vpls.push_back(v);
-      if (j == depth) break;
-      // Scatter: cosine-distributed from (Phi_{b_{2j+2}}(i), Phi_{b_{2j+3}}(i)); beta_{j+1} =
-      // rho(y_j) beta_j.
-      dir = cosine_direction(y.normal, halton.sample(2 * j + 2, h), halton.sample(2 * j + 3, h));
-      beta *= y.albedo;
-      origin = y.position;
-      offset_normal = y.normal;
-    }
-  }
+  for (std::uint32_t i = 0; i < set.paths; ++i) walk.trace(i, set.vpls);
   return set;
 }
 

@@ -1,13 +1,37 @@
-#include "tests/scene_builder.h"
+#include "core/scene_builder.h"
+
+#include "core/error.h"
 
 #include <cmath>
+#include <fmt/format.h>
+#include <string>
 
-namespace irad::test {
+namespace irad {
+
+namespace {
+
+// Throws unless value > 0 and finite.
+void require_positive(const char* builder, const char* name, double value) {
+  if (!(value > 0.0 && std::isfinite(value)))
+    throw Error(builder, name, fmt::format("must be a finite number > 0, got {}", value));
+}
+
+// Throws unless lo <= value <= hi.
+void require_in(const char* builder, const char* name, double value, double lo, double hi) {
+  if (!(value >= lo && value <= hi))
+    throw Error(builder, name, fmt::format("must be in [{}, {}], got {}", lo, hi, value));
+}
+
+} // namespace
 
 void add_quad(Scene& scene, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
               const glm::vec3& p3, std::uint32_t material) {
+  const glm::vec3 c012 = glm::cross(p1 - p0, p2 - p0);
+  const glm::vec3 c023 = glm::cross(p2 - p0, p3 - p0);
+  if (!(glm::length(c012) > 0.0f && glm::length(c023) > 0.0f))
+    throw Error("add_quad", "", "degenerate quad (a triangle of zero area)");
   const auto base = static_cast<std::uint32_t>(scene.positions.size());
-  const glm::vec3 n = glm::normalize(glm::cross(p1 - p0, p2 - p0));
+  const glm::vec3 n = glm::normalize(c012);
   for (const glm::vec3& p : {p0, p1, p2, p3}) {
     scene.positions.push_back(p);
     scene.normals.push_back(n);
@@ -30,8 +54,13 @@ std::uint32_t add_material(Scene& scene, const glm::vec3& albedo, const glm::vec
 }
 
 Camera look_at(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float yfov) {
-  const glm::vec3 back = glm::normalize(eye - target);
-  const glm::vec3 right = glm::normalize(glm::cross(up, back));
+  const glm::vec3 to_eye = eye - target;
+  if (!(glm::length(to_eye) > 0.0f)) throw Error("look_at", "", "eye and target coincide");
+  const glm::vec3 back = glm::normalize(to_eye);
+  const glm::vec3 side = glm::cross(up, back);
+  if (!(glm::length(side) > 0.0f))
+    throw Error("look_at", "up", "parallel to the view direction (or zero)");
+  const glm::vec3 right = glm::normalize(side);
   const glm::vec3 true_up = glm::cross(back, right);
   Camera c;
   c.name = "test";
@@ -48,6 +77,12 @@ void finish(Scene& scene) {
 
 Scene square_light_over_plane(float side, float height, float radiance, float plane_side,
                               float albedo) {
+  const char* const who = "square_light_over_plane";
+  require_positive(who, "side", side);
+  require_positive(who, "height", height);
+  require_positive(who, "plane_side", plane_side);
+  require_in(who, "radiance", radiance, 0.0, HUGE_VAL);
+  require_in(who, "albedo", albedo, 0.0, 1.0);
   Scene s;
   s.source = "square_light_over_plane";
   const std::uint32_t floor = add_material(s, glm::vec3(albedo));
@@ -72,11 +107,13 @@ double polygon_irradiance(const std::vector<glm::dvec3>& polygon, const glm::dve
   return 0.5 * radiance * std::abs(sum);
 }
 
-} // namespace irad::test
-
-namespace irad::test {
-
 Scene closed_box(float size, float albedo, float patch, float radiance) {
+  const char* const who = "closed_box";
+  require_positive(who, "size", size);
+  require_in(who, "albedo", albedo, 0.0, 1.0);
+  require_positive(who, "patch", patch);
+  require_in(who, "patch", patch, 0.0, size);
+  require_in(who, "radiance", radiance, 0.0, HUGE_VAL);
   Scene s;
   s.source = "closed_box";
   const std::uint32_t wall = add_material(s, glm::vec3(albedo));
@@ -95,4 +132,4 @@ Scene closed_box(float size, float albedo, float patch, float radiance) {
   return s;
 }
 
-} // namespace irad::test
+} // namespace irad
