@@ -34,6 +34,7 @@ struct RenderArgs {
   bool bias_compensation = false;
   std::uint32_t bias_samples = 16;
   std::string gl = "auto";
+  std::string sequence = "halton";
   int gl_device = -1;
 };
 
@@ -87,6 +88,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"vpls_planned", r.vpls.planned},
           {"passes", r.passes},
           {"paths", r.vpls.paths},
+          {"sequence", args.sequence},
           {"rho_bar", r.vpls.rho_bar},
           {"l_max", r.vpls.l_max},
           {"depth_capped", r.vpls.depth_capped},
@@ -137,6 +139,8 @@ int run_render(const RenderArgs& args) {
   if (!args.size.empty()) request.size = parse_size(args.size);
   request.camera = args.camera;
   request.walk.paths = args.paths;
+  request.walk.sequence = parse_sequence(args.sequence);
+  request.walk.seed = args.seed;
   request.raster.shadow_resolution = args.shadow_res;
   request.raster.clamp = args.clamp;
   request.raster.backend = args.gl == "egl"      ? GlBackend::Egl
@@ -199,8 +203,13 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "ray-traced visibility; pt: path-traced reference")
       ->check(CLI::IsMember({"raster", "rt-vpl", "pt"}))
       ->capture_default_str();
+  cmd->add_option("--sequence", args->sequence,
+                  "Points of the walk: halton (the seed's), scrambled-halton or random (seeded)")
+      ->check(CLI::IsMember({"halton", "scrambled-halton", "random"}))
+      ->capture_default_str();
   cmd->add_option("--spp", args->spp, "pt: samples per pixel")->capture_default_str();
-  cmd->add_option("--seed", args->seed, "pt: random seed")->capture_default_str();
+  cmd->add_option("--seed", args->seed, "Random seed (pt, scrambled-halton, random)")
+      ->capture_default_str();
   cmd->add_option("--threads", args->threads, "pt, rt-vpl: CPU threads (0: all cores)")
       ->capture_default_str();
   cmd->add_flag("--bias-compensation", args->bias_compensation,

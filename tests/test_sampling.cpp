@@ -1,7 +1,10 @@
 // Radical inverses and the particle counts of the quasi-random walk (design.md section 1).
+#include "core/error.h"
 #include "core/particle_counts.h"
 #include "core/radical_inverse.h"
+#include "core/sequence.h"
 
+#include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <limits>
@@ -116,6 +119,60 @@ TEST(ParticleCounts, ZeroAlbedoIsDirectLightOnly) {
   const ParticleCounts c(50, 0.0, 64);
   EXPECT_EQ(c.l_max(), 0);
   EXPECT_EQ(c.vpl_count(), 50u);
+}
+
+} // namespace
+} // namespace irad
+
+namespace irad {
+namespace {
+
+// The first b^k radical inverses fall one into each interval [m b^-k, (m+1) b^-k); a digit
+// permutation keeps that (it permutes the intervals).
+bool stratified(const Sequence& s, std::size_t dim, std::uint32_t base, int k) {
+  std::uint32_t n = 1;
+  for (int j = 0; j < k; ++j) n *= base;
+  std::vector<int> hits(n, 0);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double v = s.sample(dim, i);
+    if (!(v >= 0.0 && v < 1.0)) return false;
+    // Halton values are exact multiples of 1/n up to rounding: nudge before flooring.
+    ++hits[std::min<std::size_t>(static_cast<std::size_t>(v * n + 1e-9), n - 1)];
+  }
+  return std::all_of(hits.begin(), hits.end(), [](int h) { return h == 1; });
+}
+
+TEST(Sequence, HaltonAndScrambledHaltonAreStratified) {
+  const Sequence halton(SequenceKind::Halton, 6);
+  const Sequence scrambled(SequenceKind::ScrambledHalton, 6, 42);
+  const std::uint32_t bases[] = {2, 3, 5, 7, 11, 13};
+  for (std::size_t d = 0; d < 6; ++d) {
+    EXPECT_TRUE(stratified(halton, d, bases[d], 3)) << d;
+    EXPECT_TRUE(stratified(scrambled, d, bases[d], 3)) << d;
+    EXPECT_EQ(halton.sample(d, 5), radical_inverse(bases[d], 5));
+  }
+  // Scrambling changes the points, and the seed decides how.
+  EXPECT_NE(scrambled.sample(0, 1), halton.sample(0, 1));
+  EXPECT_EQ(Sequence(SequenceKind::ScrambledHalton, 6, 42).sample(5, 77), scrambled.sample(5, 77));
+  EXPECT_NE(Sequence(SequenceKind::ScrambledHalton, 6, 43).sample(5, 77), scrambled.sample(5, 77));
+}
+
+TEST(Sequence, ScrambledValuesStayBelowOne) {
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    const Sequence s(SequenceKind::ScrambledHalton, 30, seed);
+    for (std::size_t d = 0; d < 30; ++d)
+      for (std::uint32_t i : {0u, 1u, 0xfffffffeu, 0xffffffffu}) EXPECT_LT(s.sample(d, i), 1.0);
+  }
+}
+
+TEST(Sequence, RandomIsUniformAndSeeded) {
+  const Sequence r(SequenceKind::Random, 4, 9);
+  double sum = 0.0;
+  for (std::uint32_t i = 0; i < 100000; ++i) sum += r.sample(2, i);
+  EXPECT_NEAR(sum / 100000.0, 0.5, 0.005); // 5.5 standard errors of a uniform mean
+  EXPECT_EQ(Sequence(SequenceKind::Random, 4, 9).sample(3, 12), r.sample(3, 12));
+  EXPECT_NE(Sequence(SequenceKind::Random, 4, 10).sample(3, 12), r.sample(3, 12));
+  EXPECT_THROW(parse_sequence("sobol"), Error);
 }
 
 } // namespace

@@ -63,7 +63,7 @@ QuasiRandomWalk::QuasiRandomWalk(const Scene& scene, const RayScene& rays,
     : scene_(&scene), rays_(&rays), lights_(scene),
       counts_(options.paths == 0 ? throw Error("", "--paths", "must be at least 1") : options.paths,
               mean_albedo(scene), options.depth_cap),
-      halton_(2 * static_cast<std::size_t>(counts_.l_max()) + 2) {
+      halton_(options.sequence, 2 * static_cast<std::size_t>(counts_.l_max()) + 2, options.seed) {
   if (lights_.empty())
     throw Error(scene.source, "", "no light: no emissive surface and no punctual light");
   warn_capped(counts_, log, options.depth_cap);

@@ -10,8 +10,8 @@
 #include "core/light_sampler.h"
 #include "core/log.h"
 #include "core/particle_counts.h"
-#include "core/radical_inverse.h"
 #include "core/scene.h"
+#include "core/sequence.h"
 #include "core/vpl.h"
 #include "walk/ray_scene.h"
 
@@ -29,6 +29,8 @@ struct WalkOptions {
   std::uint32_t paths = 256; // N
   // l_max is capped here; it binds only when rho_bar is close to 1 (then a warning is logged).
   int depth_cap = 64;
+  SequenceKind sequence = SequenceKind::Halton; // design.md: Halton
+  std::uint64_t seed = 0;                       // scrambled-halton and random only
 };
 
 // The walk for a fixed scene and N: particles can be traced one at a time (the real-time ring of
@@ -48,7 +50,7 @@ private:
   const RayScene* rays_;
   LightSampler lights_;
   ParticleCounts counts_;
-  Halton halton_;
+  Sequence halton_;
 };
 
 // All N particles. Throws irad::Error when the scene has no light or the options are impossible.
