@@ -14,5 +14,6 @@ struct Commands {
 void add_render_command(CLI::App& app, Commands& commands);
 void add_compare_command(CLI::App& app, Commands& commands);
 void add_scene_command(CLI::App& app, Commands& commands);
+void add_bench_command(CLI::App& app, Commands& commands);
 
 } // namespace irad::apps

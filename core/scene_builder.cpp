@@ -133,3 +133,40 @@ Scene closed_box(float size, float albedo, float patch, float radiance) {
 }
 
 } // namespace irad
+
+namespace irad {
+
+namespace {
+
+// Adds the midpoint vertex of (a, b) (interpolated attributes) and returns its index.
+std::uint32_t midpoint(Scene& s, std::uint32_t a, std::uint32_t b) {
+  s.positions.push_back(0.5f * (s.positions[a] + s.positions[b]));
+  s.normals.push_back(glm::normalize(s.normals[a] + s.normals[b]));
+  if (!s.uvs.empty()) s.uvs.push_back(0.5f * (s.uvs[a] + s.uvs[b]));
+  return static_cast<std::uint32_t>(s.positions.size() - 1);
+}
+
+} // namespace
+
+void subdivide(Scene& scene, int levels) {
+  for (int l = 0; l < levels; ++l) {
+    std::vector<glm::uvec3> triangles;
+    std::vector<std::uint32_t> materials;
+    triangles.reserve(4 * scene.triangles.size());
+    materials.reserve(4 * scene.triangles.size());
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+      const glm::uvec3 v = scene.triangles[t];
+      const std::uint32_t ab = midpoint(scene, v.x, v.y), bc = midpoint(scene, v.y, v.z),
+                          ca = midpoint(scene, v.z, v.x);
+      for (const glm::uvec3& child : {glm::uvec3(v.x, ab, ca), glm::uvec3(ab, v.y, bc),
+                                      glm::uvec3(ca, bc, v.z), glm::uvec3(ab, bc, ca)}) {
+        triangles.push_back(child);
+        materials.push_back(scene.triangle_material[t]);
+      }
+    }
+    scene.triangles = std::move(triangles);
+    scene.triangle_material = std::move(materials);
+  }
+}
+
+} // namespace irad

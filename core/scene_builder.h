@@ -48,3 +48,9 @@ double polygon_irradiance(const std::vector<glm::dvec3>& polygon, const glm::dve
 Scene closed_box(float size, float albedo, float patch, float radiance);
 
 } // namespace irad
+
+namespace irad {
+// Splits every triangle into 4 (edge midpoints), `levels` times: 4^levels times the triangles,
+// the same surfaces, materials and lighting (normals and uvs interpolated). For scaling tests.
+void subdivide(Scene& scene, int levels);
+} // namespace irad

@@ -3,12 +3,14 @@
 #include "core/error.h"
 #include "raster/gl_context.h"
 #include "raster/gpu_scene.h"
+#include "raster/pass_timer.h"
 #include "raster/shaders.h"
 #include "raster/shadow_cube.h"
 #include "raster/target.h"
 
 #include <chrono>
 #include <glm/gtc/type_ptr.hpp>
+#include <optional>
 
 namespace irad {
 
@@ -188,11 +190,16 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   im.depth_prepass(vp);
   im.emitters(vp);
   std::size_t passes = 0;
+  std::optional<gl::PassTimer> timer;
+  if (im.options.gpu_timers) timer.emplace(im.api);
   for (std::size_t k = 0; k < vpls.vpls.size(); ++k) {
     const Vpl& vpl = vpls.vpls[k];
     if (carries_light(vpl)) {
+      if (timer) timer->begin(gl::PassTimer::Shadow);
       const glm::mat3 frame = im.shadow.render(vpl, im.gpu);
+      if (timer) timer->end(), timer->begin(gl::PassTimer::Shading);
       im.shade(vpl, frame, vp);
+      if (timer) timer->end();
       ++passes;
     }
     if (progress) progress(k + 1, vpls.vpls.size());
@@ -202,9 +209,14 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   Image image = im.target->read();
   im.context->check("readback");
   if (timings) {
-    timings->shading = std::chrono::duration<double>(t1 - t0).count();
+    timings->passes_seconds = std::chrono::duration<double>(t1 - t0).count();
     timings->readback = seconds_since(t1);
     timings->passes = passes;
+    if (timer) {
+      const auto gpu = timer->seconds();
+      timings->shadow_gpu = gpu[gl::PassTimer::Shadow];
+      timings->shading_gpu = gpu[gl::PassTimer::Shading];
+    }
   }
   return image;
 }

@@ -20,13 +20,17 @@ struct RasterOptions {
   int shadow_resolution = 256; // texels per cube face edge
   float clamp = 0.05f;         // d_min as a fraction of the scene's bounding diagonal
   GlBackend backend = GlBackend::Auto;
-  int gl_device = -1; // EGL device index; -1: the first hardware device
+  int gl_device = -1;      // EGL device index; -1: the first hardware device
+  bool gpu_timers = false; // split the time between shadow maps and shading (benchmarks)
 };
 
 struct RasterTimings {
-  double shading = 0.0;  // seconds: shadow maps + shading passes + emitters (GL is asynchronous,
-  double readback = 0.0; // so the split between them is not measured), and the final readback
-  std::size_t passes = 0;
+  double passes_seconds = 0.0; // wall clock: shadow maps, shading passes and emitters
+  double readback = 0.0;       // wall clock: the final readback (waits for the GPU)
+  std::size_t passes = 0;      // VPLs drawn
+  // GPU time of the shadow-map and shading passes (GL_TIME_ELAPSED), only with gpu_timers.
+  double shadow_gpu = -1.0;
+  double shading_gpu = -1.0;
 };
 
 using Progress = std::function<void(std::size_t done, std::size_t total)>;

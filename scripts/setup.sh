@@ -9,7 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl-dev libglm-dev libopenexr-dev
   libtinygltf-dev libstb-dev nlohmann-json3-dev libgtest-dev libcli11-dev libfmt-dev
-  python3-glad
+  python3-glad gnuplot-nox
 )
 
 missing=()

@@ -1,0 +1,204 @@
+#include "apps/bench.h"
+
+#include "core/analytic_scenes.h"
+#include "core/error.h"
+#include "core/gltf_loader.h"
+#include "core/image_io.h"
+#include "core/image_metrics.h"
+#include "core/scene_builder.h"
+#include "core/view.h"
+#include "raster/raster_renderer.h"
+#include "walk/path_tracer.h"
+#include "walk/quasi_random_walk.h"
+#include "walk/vpl_tracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fstream>
+
+namespace irad::apps {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+struct Sweep {
+  int size;
+  std::uint32_t reference_spp;
+  std::vector<std::uint32_t> paths;    // raster, every sequence
+  std::vector<std::uint32_t> rt_paths; // rt-vpl, Halton
+  std::vector<std::uint32_t> spp;      // pt
+  int large_levels;                    // 32 * 4^levels triangles
+};
+
+Sweep sweep_for(const BenchOptions& o) {
+  Sweep s =
+      o.quick
+          ? Sweep{64, 256, {16, 64}, {16}, {4, 16}, 7}
+          : Sweep{
+                256, 4096, {16, 32, 64, 128, 256, 512, 1024}, {16, 64, 256}, {4, 16, 64, 256, 1024},
+                7};
+  if (o.size > 0) s.size = o.size;
+  if (o.reference_spp > 0) s.reference_spp = o.reference_spp;
+  return s;
+}
+
+struct BenchScene {
+  std::string name;
+  Scene scene;
+  double load_seconds;
+};
+
+BenchScene make_scene(const std::string& name, const BenchOptions& o, const Sweep& sw, Log& log) {
+  const auto t0 = Clock::now();
+  Scene s;
+  if (name == "cornell") {
+    s = load_gltf(o.cornell, log);
+  } else if (name == "sphere") {
+    s = integrating_sphere(1.0, 0.7, o.quick ? 2 : 3).scene;
+  } else if (name == "large") {
+    s = load_gltf(o.cornell, log); // the Cornell box, every triangle split 4^levels times
+    subdivide(s, sw.large_levels);
+    s.source = "cornell_subdivided";
+  } else {
+    throw Error("", "--scene", "unknown bench scene '" + name + "' (cornell, sphere, large)");
+  }
+  return {name, std::move(s), since(t0)};
+}
+
+// The converged reference, cached as OUT/ref_<scene>_<W>x<H>_spp<S>_seed0.exr.
+Image reference(const BenchScene& b, const RayScene& rays, const View& view, std::uint32_t spp,
+                const std::string& out_dir, Log& log) {
+  const std::string path =
+      fmt::format("{}/ref_{}_{}x{}_spp{}_seed0.exr", out_dir, b.name, view.width, view.height, spp);
+  if (std::filesystem::exists(path)) return read_exr(path);
+  log.info(fmt::format("bench: path-tracing the {} reference ({} spp)", b.name, spp));
+  const Image image = path_trace(b.scene, rays, view, {spp, 0, 0, 1000});
+  write_exr(path, image);
+  return image;
+}
+
+void score(BenchRow& row, const Image& image, const Image& ref) {
+  const ImageMetrics m = compare_images(image, ref);
+  row.rmse = m.rmse;
+  row.relmse = m.relmse;
+  row.mean_ratio = (m.mean_ratio[0] + m.mean_ratio[1] + m.mean_ratio[2]) / 3.0;
+  row.width = image.width();
+  row.height = image.height();
+}
+
+BenchRow base_row(const BenchScene& b, const char* estimator) {
+  BenchRow row;
+  row.scene = b.name;
+  row.triangles = b.scene.triangle_count();
+  row.estimator = estimator;
+  row.load = b.load_seconds;
+  return row;
+}
+
+void log_row(const BenchRow& r, Log& log) {
+  log.info(fmt::format("bench: {:8} {:7} {:16} N {:5} spp {:5} {:6.2f} s  relMSE {:.3e}", r.scene,
+                       r.estimator, r.sequence, r.paths, r.spp, r.total, r.relmse));
+}
+
+void bench_scene(const BenchScene& b, const Sweep& sw, const BenchOptions& o,
+                 std::vector<BenchRow>& rows, Log& log) {
+  const RayScene rays(b.scene);
+  const View view = make_view(b.scene.cameras.at(0), b.scene.bounds, sw.size, sw.size);
+  const Image ref = reference(b, rays, view, sw.reference_spp, o.out_dir, log);
+
+  RasterOptions raster_options;
+  raster_options.gpu_timers = true;
+  RasterRenderer raster(b.scene, raster_options);
+  // The large scene's raster passes are slow on a CPU: a quick run takes only the first N there.
+  std::vector<std::uint32_t> paths = sw.paths;
+  if (o.quick && b.name == "large") paths.resize(1);
+  for (SequenceKind seq :
+       {SequenceKind::Halton, SequenceKind::ScrambledHalton, SequenceKind::Random}) {
+    for (std::uint32_t n : paths) {
+      BenchRow row = base_row(b, "raster");
+      row.sequence = sequence_name(seq);
+      row.paths = n;
+      const auto t0 = Clock::now();
+      const VplSet vpls = quasi_random_walk(b.scene, rays, {n, 64, seq, 1}, log);
+      row.walk = since(t0);
+      RasterTimings t;
+      const Image image = raster.render(view, vpls, &t);
+      row.total = since(t0);
+      row.vpls = t.passes;
+      row.shadow = t.shadow_gpu;
+      row.shading = t.shading_gpu;
+      row.readback = t.readback;
+      row.vpls_per_second = static_cast<double>(t.passes) / (t.passes_seconds + t.readback);
+      score(row, image, ref);
+      log_row(row, log);
+      rows.push_back(row);
+    }
+  }
+  for (std::uint32_t n : sw.rt_paths) {
+    BenchRow row = base_row(b, "rt-vpl");
+    row.sequence = "halton";
+    row.paths = n;
+    const auto t0 = Clock::now();
+    const VplSet vpls = quasi_random_walk(b.scene, rays, {n, 64}, log);
+    row.walk = since(t0);
+    const auto t1 = Clock::now();
+    const Image image = trace_vpls(b.scene, rays, view, vpls, {0.05f, 0});
+    row.trace = since(t1);
+    row.total = since(t0);
+    row.vpls = vpls.vpls.size();
+    row.vpls_per_second = static_cast<double>(row.vpls) / row.trace;
+    score(row, image, ref);
+    log_row(row, log);
+    rows.push_back(row);
+  }
+  for (std::uint32_t spp : sw.spp) {
+    BenchRow row = base_row(b, "pt");
+    row.spp = spp;
+    const auto t0 = Clock::now();
+    const Image image = path_trace(b.scene, rays, view, {spp, 1, 0, 1000});
+    row.trace = row.total = since(t0);
+    score(row, image, ref);
+    log_row(row, log);
+    rows.push_back(row);
+  }
+}
+
+} // namespace
+
+std::vector<BenchRow> run_bench(const BenchOptions& o, Log& log) {
+  std::filesystem::create_directories(o.out_dir);
+  const Sweep sw = sweep_for(o);
+  const std::vector<std::string> names =
+      o.scenes.empty() ? std::vector<std::string>{"cornell", "sphere", "large"} : o.scenes;
+  std::vector<BenchRow> rows;
+  for (const std::string& name : names) {
+    const BenchScene b = make_scene(name, o, sw, log);
+    bench_scene(b, sw, o, rows, log);
+  }
+  write_bench_csv(rows, o.out_dir + "/bench.csv");
+  if (o.plots) write_bench_plots(rows, o.out_dir, log);
+  return rows;
+}
+
+void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path) {
+  std::ofstream out(path);
+  out << "scene,triangles,estimator,sequence,paths,spp,vpls,width,height,seconds_load,"
+         "seconds_walk,seconds_shadow_gpu,seconds_shading_gpu,seconds_readback,seconds_trace,"
+         "seconds_total,vpls_per_second,rmse,relmse,mean_ratio\n";
+  for (const BenchRow& r : rows)
+    out << fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
+                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f}\n",
+                       r.scene, r.triangles, r.estimator, r.sequence, r.paths, r.spp, r.vpls,
+                       r.width, r.height, r.load, r.walk, r.shadow, r.shading, r.readback, r.trace,
+                       r.total, r.vpls_per_second, r.rmse, r.relmse, r.mean_ratio);
+  if (!out) throw Error(path, "", "cannot write");
+}
+
+} // namespace irad::apps

@@ -1,0 +1,47 @@
+#pragma once
+// irad bench: speed against error. For each scene it sweeps the number of paths N, the walk's
+// point sequence and the estimator (raster, rt-vpl, pt with an spp sweep), times every stage and
+// measures the error against a converged path-traced reference (cached on disk, its parameters
+// in the file name). Rows go to CSV; plots are drawn by gnuplot.
+#include "core/log.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace irad::apps {
+
+struct BenchOptions {
+  bool quick = false; // a smoke run in well under 2 minutes
+  std::string out_dir = "out/bench";
+  std::string cornell = "data/cornell_box.gltf";
+  std::vector<std::string> scenes; // subset of cornell, sphere, large (empty: all)
+  int size = 0;                    // image side; 0: 64 quick, 256 full
+  std::uint32_t reference_spp = 0; // 0: 256 quick, 4096 full
+  bool plots = true;
+};
+
+struct BenchRow {
+  std::string scene;
+  std::size_t triangles = 0;
+  std::string estimator; // raster, rt-vpl, pt
+  std::string sequence;  // halton, scrambled-halton, random ("" for pt)
+  std::uint32_t paths = 0, spp = 0;
+  std::size_t vpls = 0;
+  int width = 0, height = 0;
+  double load = 0, walk = 0, shadow = -1, shading = -1, readback = 0, trace = 0, total = 0;
+  double vpls_per_second = 0;
+  double rmse = 0, relmse = 0, mean_ratio = 0;
+};
+
+// Runs the sweep, writes OUT/bench.csv (and plots), returns the rows.
+std::vector<BenchRow> run_bench(const BenchOptions& options, Log& log);
+
+void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path);
+// error_vs_time.png (log-log, every estimator) and error_vs_paths.png (per sequence, with the
+// least-squares slope of log relMSE against log N in the legend). Throws when gnuplot fails.
+void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out_dir, Log& log);
+// Least-squares slope of log(y) against log(x).
+double loglog_slope(const std::vector<double>& x, const std::vector<double>& y);
+
+} // namespace irad::apps
