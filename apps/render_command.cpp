@@ -20,7 +20,7 @@ struct RenderArgs {
   std::vector<std::string> outputs;
   std::string size;
   std::uint32_t paths = 256;
-  int shadow_res = 256;
+  int shadow_res = 0;
   float clamp = 0.05f;
   std::string camera;
   float exposure = 0.0f;
@@ -35,6 +35,7 @@ struct RenderArgs {
   std::uint32_t bias_samples = 16;
   std::string gl = "auto";
   std::string sequence = "halton";
+  int interleave = 4;
   int gl_device = -1;
 };
 
@@ -94,7 +95,8 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"depth_capped", r.vpls.depth_capped},
           {"size", {r.view.width, r.view.height}},
           {"triangles", r.scene.triangle_count()},
-          {"shadow_res", args.shadow_res},
+          {"shadow_res", shadow_resolution_for(args.shadow_res, r.view)},
+          {"interleave", args.interleave},
           {"clamp", args.clamp},
           {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},
           {"camera", r.camera.name},
@@ -147,6 +149,7 @@ int run_render(const RenderArgs& args) {
                            : args.gl == "osmesa" ? GlBackend::OsMesa
                                                  : GlBackend::Auto;
   request.raster.gl_device = args.gl_device;
+  request.raster.interleave = args.interleave;
   request.progress = !args.quiet && isatty(STDERR_FILENO);
   request.estimator = parse_estimator(args.estimator);
   request.pt.spp = args.spp;
@@ -186,7 +189,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--size", args->size,
                   "Image size WIDTHxHEIGHT (default: 512 high, camera aspect)");
   cmd->add_option("--paths", args->paths, "Number of light paths N")->capture_default_str();
-  cmd->add_option("--shadow-res", args->shadow_res, "Shadow cube face resolution")
+  cmd->add_option("--shadow-res", args->shadow_res,
+                  "Shadow cube face resolution (0: a quarter of the image side, 64..1024)")
       ->capture_default_str();
   cmd->add_option("--clamp", args->clamp,
                   "Clamp distance d_min as a fraction of the scene's bounding diagonal")
@@ -216,6 +220,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
                 "raster, rt-vpl: add back what the clamp removes (short ray-traced gather paths)");
   cmd->add_option("--bias-samples", args->bias_samples,
                   "gather directions per pixel for --bias-compensation")
+      ->capture_default_str();
+  cmd->add_option(
+         "--interleave", args->interleave,
+         "Raster: k > 1 splits the VPLs into k x k sets, each pixel of a k x k tile lit by "
+         "one set, then a geometry-aware filter (1: every VPL shades every pixel)")
       ->capture_default_str();
   cmd->add_option("--gl", args->gl,
                   "OpenGL for the raster: auto (a GPU through EGL if there is one, else OSMesa), "

@@ -17,12 +17,21 @@ namespace irad {
 enum class GlBackend { Auto, Egl, OsMesa };
 
 struct RasterOptions {
-  int shadow_resolution = 256; // texels per cube face edge
-  float clamp = 0.05f;         // d_min as a fraction of the scene's bounding diagonal
+  int shadow_resolution = 0; // texels per cube face edge; 0: from the image size (see below)
+  float clamp = 0.05f;       // d_min as a fraction of the scene's bounding diagonal
   GlBackend backend = GlBackend::Auto;
   int gl_device = -1;      // EGL device index; -1: the first hardware device
   bool gpu_timers = false; // split the time between shadow maps and shading (benchmarks)
+  // 1: every VPL shades every pixel (the reference, the design's shape). k > 1: interleaved
+  // sampling, the VPLs split into k x k sets by path, each pixel lit by one set, then a
+  // geometry-aware k x k resolve. 4 is the default: at equal time it wins on error against the
+  // path tracer (docs/performance.md).
+  int interleave = 4;
 };
+
+// The shadow cube resolution used for an image: `requested` if positive, else a quarter of the
+// image's larger side rounded up to a power of two, between 64 and 1024.
+int shadow_resolution_for(int requested, const View& view);
 
 struct RasterTimings {
   double passes_seconds = 0.0; // wall clock: shadow maps, shading passes and emitters

@@ -62,6 +62,7 @@ uniform float u_bias_texel;      // angular size of a shadow texel
 uniform vec3 u_base_color;
 uniform bool u_has_base_texture;
 uniform sampler2D u_base_texture;
+uniform bool u_apply_albedo;     // false: irradiance / pi only (interleaved mode multiplies later)
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
 void main() {
@@ -87,8 +88,11 @@ void main() {
   float tan_x = sqrt(max(1.0 - cos_x * cos_x, 0.0)) / cos_x;
   float bias = u_bias_constant + dist * u_bias_texel * (1.0 + min(tan_x, 8.0));
   if (dist > stored + bias) discard;
-  vec3 albedo = u_base_color;
-  if (u_has_base_texture) albedo *= texture(u_base_texture, v_uv).rgb;
+  vec3 albedo = vec3(1.0);
+  if (u_apply_albedo) {
+    albedo = u_base_color;
+    if (u_has_base_texture) albedo *= texture(u_base_texture, v_uv).rgb;
+  }
   float g = e * cos_x / max(dist2, u_dmin2);
   o_color = vec4(u_vpl_intensity * (g * INV_PI) * albedo, 0.0);
 }
@@ -110,6 +114,84 @@ in vec3 v_position;
 uniform vec3 u_vpl_position;
 out float o_distance;
 void main() { o_distance = length(v_position - u_vpl_position); }
+)";
+
+// G-buffer for interleaved sampling: the world position (w = 1 where there is a surface) and the
+// normal facing the camera (w = albedo's mean is not needed: albedo has its own target).
+inline constexpr const char* gbuffer_fragment = R"(#version 330 core
+in vec3 v_position;
+in vec3 v_normal;
+in vec2 v_uv;
+uniform vec3 u_base_color;
+uniform bool u_has_base_texture;
+uniform sampler2D u_base_texture;
+layout(location = 0) out vec4 o_position;
+layout(location = 1) out vec4 o_normal;
+layout(location = 2) out vec4 o_albedo;
+void main() {
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;
+  o_position = vec4(v_position, 1.0);
+  o_normal = vec4(n, 0.0);
+  vec3 albedo = u_base_color;
+  if (u_has_base_texture) albedo *= texture(u_base_texture, v_uv).rgb;
+  o_albedo = vec4(albedo, 1.0);
+}
+)";
+
+// A triangle covering the viewport (no vertex buffer: gl_VertexID).
+inline constexpr const char* fullscreen_vertex = R"(#version 330 core
+void main() {
+  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
+
+// Interleaved sampling's resolve (Keller & Heidrich 2001): pixel p of a k x k tile was lit by VPL
+// set (p.x mod k, p.y mod k) only, its value stored de-interleaved in the atlas. Each set, scaled
+// by k^2, estimates the whole sum; p averages the sets of the k x k window around it over the
+// pixels on its own surface: q counts when it lies on p's tangent plane (the segment p-q within ~3
+// degrees of it, whatever the viewing angle) and their normals agree within 18 degrees. At
+// discontinuities fewer sets are averaged: still an estimate of the whole sum, only noisier. Then
+// p's albedo.
+inline constexpr const char* resolve_fragment = R"(#version 330 core
+uniform sampler2D u_atlas;
+uniform sampler2D u_position;
+uniform sampler2D u_normal;
+uniform sampler2D u_albedo;
+uniform int u_k;
+uniform ivec2 u_tile;   // tile size in the atlas
+uniform ivec2 u_size;   // full image size
+out vec4 o_color;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 xp = texelFetch(u_position, p, 0);
+  if (xp.w <= 0.0) { o_color = vec4(0.0); return; }
+  vec3 np = texelFetch(u_normal, p, 0).xyz;
+  // A window centred on p in which every set has total weight 1: offsets -h..h with h = k/2, the
+  // outer rows and columns at half weight when k is even (offsets -h and +h are the same set), so
+  // the filter has no half-pixel shift.
+  vec3 sum = vec3(0.0);
+  float weight = 0.0;
+  int h = u_k / 2;
+  bool even = (u_k % 2) == 0;
+  for (int dy = -h; dy <= h; ++dy)
+    for (int dx = -h; dx <= h; ++dx) {
+      if (!even && (abs(dx) > (u_k - 1) / 2 || abs(dy) > (u_k - 1) / 2)) continue;
+      ivec2 q = p + ivec2(dx, dy);
+      if (q.x < 0 || q.y < 0 || q.x >= u_size.x || q.y >= u_size.y) continue;
+      vec4 xq = texelFetch(u_position, q, 0);
+      if (xq.w <= 0.0) continue;
+      vec3 d = xq.xyz - xp.xyz;
+      if (abs(dot(np, d)) > 0.05 * length(d)) continue;
+      if (dot(texelFetch(u_normal, q, 0).xyz, np) < 0.95) continue;
+      float w = (even && abs(dx) == h ? 0.5 : 1.0) * (even && abs(dy) == h ? 0.5 : 1.0);
+      sum += w * texelFetch(u_atlas, (q % u_k) * u_tile + q / u_k, 0).rgb;
+      weight += w;
+    }
+  vec3 albedo = texelFetch(u_albedo, p, 0).rgb;
+  o_color = vec4(albedo * sum * (float(u_k * u_k) / max(weight, 0.25)), 0.0);
+}
 )";
 
 } // namespace irad::gl::shaders

@@ -26,6 +26,23 @@ constexpr std::array<FaceAxes, 6> faces = {{{{1, 0, 0}, {0, -1, 0}},
                                             {{0, 0, -1}, {0, -1, 0}}}};
 constexpr int negative_z_face = 5;
 
+// The window rectangle (x, y, w, h) of side face f (+x, -x, +y, -y) that sees local z >= 0:
+// with the axes above, window x runs toward -z on +x and toward +z on -x, window y toward +z on
+// +y and toward -z on -y. One texel of margin covers lookups right at z = 0.
+glm::ivec4 front_half(int f, int r) {
+  const int h = r / 2 + 1;
+  switch (f) {
+  case 0:
+    return {0, 0, h, r};
+  case 1:
+    return {r - h, 0, h, r};
+  case 2:
+    return {0, r - h, r, h};
+  default:
+    return {0, 0, r, h};
+  }
+}
+
 // World -> cube frame. Surface VPLs: rows (t, b, n), so the normal maps to +z.
 glm::mat3 cube_frame(const Vpl& vpl) {
   if (vpl.kind != VplKind::Surface) return glm::mat3(1.0f);
@@ -83,16 +100,25 @@ glm::mat3 ShadowCube::render(const Vpl& vpl, const GpuScene& scene) {
   api_->ClearColor(3.0e38f, 0.0f, 0.0f, 0.0f); // nothing there: never shadowed
   program_.use();
   api_->Uniform3fv(u_vpl_position_, 1, glm::value_ptr(vpl.position));
+  const bool hemisphere = vpl.kind == VplKind::Surface;
   for (int f = 0; f < 6; ++f) {
-    if (f == negative_z_face && vpl.kind == VplKind::Surface) continue;
+    if (f == negative_z_face && hemisphere) continue;
     api_->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
                                static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), cube_.get(),
                                0);
+    // A side face of a hemisphere cube is needed only on its +z half (plus one texel).
+    const bool half = hemisphere && f < 4;
+    if (half) {
+      const glm::ivec4 r = front_half(f, resolution_);
+      api_->Enable(GL_SCISSOR_TEST);
+      api_->Scissor(r.x, r.y, r.z, r.w);
+    }
     api_->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::mat4 face_view = glm::lookAt(glm::vec3(0.0f), faces[f].forward, faces[f].up);
     const glm::mat4 vp = projection * face_view * to_frame;
     api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE, glm::value_ptr(vp));
     scene.draw_all();
+    if (half) api_->Disable(GL_SCISSOR_TEST);
   }
   return frame;
 }

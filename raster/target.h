@@ -12,7 +12,8 @@ public:
   Target(const GladGLContext& api, int width, int height);
   int width() const { return width_; }
   int height() const { return height_; }
-  void bind() const; // as draw framebuffer, with the viewport set
+  void bind() const;                            // as draw framebuffer, with the viewport set
+  GLuint depth() const { return depth_.get(); } // the depth renderbuffer (shared with a G-buffer)
   // Reads the accumulated values (row 0 at the top) with alpha set to 1.
   Image read() const;
 

@@ -23,7 +23,9 @@ Means measure(const AnalyticScene& a, float clamp, std::uint32_t paths, int size
   const RayScene rays(s);
   const VplSet vpls = quasi_random_walk(s, rays, {paths, 64}, log);
   const View view = make_view(s.cameras.at(0), s.bounds, size, size);
-  RasterRenderer raster(s, RasterOptions{128, clamp});
+  RasterOptions options{128, clamp};
+  options.interleave = 1; // the reference mode: every VPL shades every pixel
+  RasterRenderer raster(s, options);
   const Image image = raster.render(view, vpls);
   const Image residual = clamp_residual(s, rays, view, vpls, {clamp, 16, 1, 0, 16});
   double sum = 0.0, sum_c = 0.0;

@@ -1,0 +1,76 @@
+#include "raster/vpl_shader.h"
+
+#include "raster/shaders.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace irad::gl {
+
+void set_additive_state(const GladGLContext& api) {
+  api.Enable(GL_DEPTH_TEST);
+  api.DepthFunc(GL_LEQUAL);
+  api.DepthMask(GL_FALSE);
+  api.Enable(GL_BLEND);
+  api.BlendEquation(GL_FUNC_ADD);
+  api.BlendFunc(GL_ONE, GL_ONE);
+}
+
+void bind_material_texture(const GladGLContext& api, const GpuScene& gpu, int texture,
+                           GLint has_uniform) {
+  api.Uniform1i(has_uniform, texture >= 0 ? 1 : 0);
+  if (texture < 0) return;
+  api.ActiveTexture(GL_TEXTURE0 + material_unit);
+  api.BindTexture(GL_TEXTURE_2D, gpu.texture(texture));
+}
+
+VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp)
+    : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp),
+      program_(api, "vpl", shaders::camera_vertex, shaders::vpl_fragment),
+      view_projection_(program_.uniform("u_view_projection")),
+      position_(program_.uniform("u_vpl_position")), normal_(program_.uniform("u_vpl_normal")),
+      intensity_(program_.uniform("u_vpl_intensity")), kind_(program_.uniform("u_vpl_kind")),
+      spot_cos_(program_.uniform("u_spot_cos")), dmin2_(program_.uniform("u_dmin2")),
+      min_dist2_(program_.uniform("u_min_dist2")), frame_(program_.uniform("u_shadow_frame")),
+      bias_constant_(program_.uniform("u_bias_constant")),
+      bias_texel_(program_.uniform("u_bias_texel")), base_color_(program_.uniform("u_base_color")),
+      has_base_texture_(program_.uniform("u_has_base_texture")),
+      apply_albedo_(program_.uniform("u_apply_albedo")) {
+  // Samplers of different types may not share a unit: fix every sampler's unit once.
+  program_.use();
+  api.Uniform1i(program_.uniform("u_shadow"), shadow_unit);
+  api.Uniform1i(program_.uniform("u_base_texture"), material_unit);
+  // Scale-relative constants: the clamp, the coincidence guard and the shadow bias.
+  api.Uniform1f(min_dist2_, 1e-12f * diagonal_ * diagonal_);
+  api.Uniform1f(bias_constant_, 2e-4f * diagonal_);
+}
+
+void VplShader::draw(const Vpl& vpl, const ShadowCube& shadow, const glm::mat3& frame,
+                     const glm::mat4& view_projection, bool apply_albedo,
+                     const GpuScene& gpu) const {
+  const GladGLContext& api = *api_;
+  set_additive_state(api);
+  program_.use();
+  const float dmin = vpl.clamped() ? clamp_ * diagonal_ : 0.0f;
+  api.UniformMatrix4fv(view_projection_, 1, GL_FALSE, glm::value_ptr(view_projection));
+  api.Uniform3fv(position_, 1, glm::value_ptr(vpl.position));
+  api.Uniform3fv(normal_, 1, glm::value_ptr(vpl.normal));
+  api.Uniform3fv(intensity_, 1, glm::value_ptr(vpl.intensity));
+  api.Uniform1i(kind_, static_cast<GLint>(vpl.kind));
+  api.Uniform2f(spot_cos_, vpl.cos_inner, vpl.cos_outer);
+  api.Uniform1f(dmin2_, dmin * dmin);
+  api.UniformMatrix3fv(frame_, 1, GL_FALSE, glm::value_ptr(frame));
+  api.Uniform1f(bias_texel_, shadow.texel_angle());
+  api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
+  api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
+  api.BindTexture(GL_TEXTURE_CUBE_MAP, shadow.texture());
+  if (!apply_albedo) {
+    gpu.draw_all();
+    return;
+  }
+  gpu.draw([&](const Material& m) {
+    api.Uniform3fv(base_color_, 1, glm::value_ptr(m.base_color));
+    bind_material_texture(api, gpu, m.base_color_texture, has_base_texture_);
+  });
+}
+
+} // namespace irad::gl

@@ -1,0 +1,40 @@
+#pragma once
+// The shading pass of one VPL: draws the scene with w * C(x) (core/vpl.h) into whatever
+// framebuffer and viewport are bound, added by blending over a depth buffer that already holds
+// the visible surface (GL_LEQUAL, no depth writes).
+#include "core/scene.h"
+#include "core/vpl.h"
+#include "raster/gpu_scene.h"
+#include "raster/shader_program.h"
+#include "raster/shadow_cube.h"
+
+#include <glm/glm.hpp>
+
+namespace irad::gl {
+
+class VplShader {
+public:
+  VplShader(const GladGLContext& api, const Scene& scene, float clamp);
+  // apply_albedo false: irradiance / pi without rho(x) (interleaved mode applies rho later).
+  void draw(const Vpl& vpl, const ShadowCube& shadow, const glm::mat3& frame,
+            const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const;
+
+private:
+  const GladGLContext* api_;
+  float diagonal_, clamp_;
+  ShaderProgram program_;
+  GLint view_projection_, position_, normal_, intensity_, kind_, spot_cos_, dmin2_, min_dist2_,
+      frame_, bias_constant_, bias_texel_, base_color_, has_base_texture_, apply_albedo_;
+};
+
+// Texture units shared by the raster's programs.
+inline constexpr GLint shadow_unit = 0;
+inline constexpr GLint material_unit = 1;
+
+// Additive passes over an existing depth buffer: exactly the visible surface passes GL_LEQUAL.
+void set_additive_state(const GladGLContext& api);
+// Binds a material's texture (if any) on material_unit and sets the shader's has-texture flag.
+void bind_material_texture(const GladGLContext& api, const GpuScene& gpu, int texture,
+                           GLint has_uniform);
+
+} // namespace irad::gl
