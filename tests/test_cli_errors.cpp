@@ -159,8 +159,8 @@ TEST_F(CliErrors, NoLight) {
 
 TEST_F(CliErrors, ImpossibleOptions) {
   const std::string box = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf";
-  for (const char* opt :
-       {"--paths 0", "--size 0x0", "--size 12", "--clamp -1", "--shadow-res 0", "--camera 7"}) {
+  for (const char* opt : {"--paths 0", "--size 0x0", "--size 12", "--clamp -1", "--shadow-res -1",
+                          "--interleave 0", "--camera 7"}) {
     const fs::path out = dir_ / "o.exr";
     const CliRun r = irad("render " + box + " -o '" + out.string() + "' " + std::string(opt));
     EXPECT_EQ(r.code, 1) << opt << ": " << r.err;
