@@ -69,6 +69,10 @@ public:
     eglTerminate(display_);
   }
   std::string backend() const override { return "egl " + platform_; }
+  void make_current() override {
+    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+      throw Error("", "egl " + platform_, "cannot make the context current");
+  }
 
 private:
   void open_display(int device_index) {

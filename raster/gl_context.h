@@ -18,6 +18,9 @@ public:
 
   const GladGLContext& api() const { return api_; }
   virtual std::string backend() const = 0;
+  // Makes this context current on the calling thread (another context may have been made
+  // current since this one was created).
+  virtual void make_current() = 0;
   std::string renderer() const; // GL_RENDERER and GL_VERSION
 
   // Throws irad::Error naming `where` when glGetError reports an error.

@@ -47,6 +47,10 @@ public:
   }
   ~OsMesaContext() override { OSMesaDestroyContext(context_); }
   std::string backend() const override { return "osmesa"; }
+  void make_current() override {
+    if (!OSMesaMakeCurrent(context_, dummy_.data(), GL_UNSIGNED_BYTE, 1, 1))
+      throw Error("", "osmesa", "cannot make the OSMesa context current");
+  }
 
 private:
   OSMesaContext context_ = nullptr;

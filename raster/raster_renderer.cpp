@@ -150,6 +150,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
                              const Progress& progress) {
   Impl& im = *impl_;
   const auto t0 = Clock::now();
+  im.context->make_current();
   im.prepare(view);
   const glm::mat4 vp = view.projection * view.view;
   if (im.interleaved) {

@@ -40,7 +40,7 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp)
   api.Uniform1i(program_.uniform("u_shadow"), shadow_unit);
   api.Uniform1i(program_.uniform("u_base_texture"), material_unit);
   // Scale-relative constants: the clamp, the coincidence guard and the shadow bias.
-  api.Uniform1f(min_dist2_, 1e-12f * diagonal_ * diagonal_);
+  api.Uniform1f(min_dist2_, 1e-10f * diagonal_ * diagonal_); // 1e-5 of the diagonal, as rt-vpl
   api.Uniform1f(bias_constant_, 2e-4f * diagonal_);
 }
 

@@ -45,6 +45,9 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   rtcSetDeviceErrorFunction(impl_->device, on_embree_error, &impl_->errors);
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  // Watertight along shared edges and at corners: without it rays from inside a closed box
+  // escaped through its corners (27 of 4000 in HardCases).
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
 
   RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
