@@ -113,32 +113,42 @@ void bench_scene(const BenchScene& b, const Sweep& sw, const BenchOptions& o,
   const View view = make_view(b.scene.cameras.at(0), b.scene.bounds, sw.size, sw.size);
   const Image ref = reference(b, rays, view, sw.reference_spp, o.out_dir, log);
 
-  RasterOptions raster_options;
-  raster_options.gpu_timers = true;
-  RasterRenderer raster(b.scene, raster_options);
-  // The large scene's raster passes are slow on a CPU: a quick run takes only the first N there.
+  // The default raster (interleaved, k = 4) over every sequence, and the reference mode (every
+  // VPL shades every pixel) with Halton, so both meet the other estimators on one plot.
   std::vector<std::uint32_t> paths = sw.paths;
-  if (o.quick && b.name == "large") paths.resize(1);
-  for (SequenceKind seq :
-       {SequenceKind::Halton, SequenceKind::ScrambledHalton, SequenceKind::Random}) {
-    for (std::uint32_t n : paths) {
-      BenchRow row = base_row(b, "raster");
-      row.sequence = sequence_name(seq);
-      row.paths = n;
-      const auto t0 = Clock::now();
-      const VplSet vpls = quasi_random_walk(b.scene, rays, {n, 64, seq, 1}, log);
-      row.walk = since(t0);
-      RasterTimings t;
-      const Image image = raster.render(view, vpls, &t);
-      row.total = since(t0);
-      row.vpls = t.passes;
-      row.shadow = t.shadow_gpu;
-      row.shading = t.shading_gpu;
-      row.readback = t.readback;
-      row.vpls_per_second = static_cast<double>(t.passes) / (t.passes_seconds + t.readback);
-      score(row, image, ref);
-      log_row(row, log);
-      rows.push_back(row);
+  // The large scene's raster passes are slow on a CPU: a quick run takes only the first N there.
+  if (b.name == "large")
+    paths.erase(std::remove_if(paths.begin(), paths.end(),
+                               [&](std::uint32_t n) { return n > (o.quick ? 16u : 64u); }),
+                paths.end());
+  for (int interleave : {4, 1}) {
+    RasterOptions raster_options;
+    raster_options.gpu_timers = true;
+    raster_options.interleave = interleave;
+    RasterRenderer raster(b.scene, raster_options);
+    const char* estimator = interleave == 1 ? "raster-k1" : "raster";
+    for (SequenceKind seq :
+         {SequenceKind::Halton, SequenceKind::ScrambledHalton, SequenceKind::Random}) {
+      if (interleave == 1 && seq != SequenceKind::Halton) continue;
+      for (std::uint32_t n : paths) {
+        BenchRow row = base_row(b, estimator);
+        row.sequence = sequence_name(seq);
+        row.paths = n;
+        const auto t0 = Clock::now();
+        const VplSet vpls = quasi_random_walk(b.scene, rays, {n, 64, seq, 1}, log);
+        row.walk = since(t0);
+        RasterTimings t;
+        const Image image = raster.render(view, vpls, &t);
+        row.total = since(t0);
+        row.vpls = t.passes;
+        row.shadow = t.shadow_gpu;
+        row.shading = t.shading_gpu;
+        row.readback = t.readback;
+        row.vpls_per_second = static_cast<double>(t.passes) / (t.passes_seconds + t.readback);
+        score(row, image, ref);
+        log_row(row, log);
+        rows.push_back(row);
+      }
     }
   }
   for (std::uint32_t n : sw.rt_paths) {
@@ -184,7 +194,44 @@ std::vector<BenchRow> run_bench(const BenchOptions& o, Log& log) {
   }
   write_bench_csv(rows, o.out_dir + "/bench.csv");
   if (o.plots) write_bench_plots(rows, o.out_dir, log);
+  if (o.scale) run_scale_study(o, log);
   return rows;
+}
+
+void run_scale_study(const BenchOptions& o, Log& log) {
+  // The Cornell box split into 32 * 4^L triangles: the same image at 8k to 2M triangles.
+  const std::string path = o.out_dir + "/scale.csv";
+  std::ofstream out(path);
+  out << "triangles,seconds_bvh,walk_paths,seconds_walk,vpls,seconds_raster_per_vpl,"
+         "seconds_rtvpl_per_vpl\n";
+  for (int levels = 4; levels <= (o.quick ? 5 : 8); ++levels) {
+    Scene s = load_gltf(o.cornell, log);
+    subdivide(s, levels);
+    const auto t0 = Clock::now();
+    const RayScene rays(s);
+    const double bvh = since(t0);
+    const auto t1 = Clock::now();
+    const VplSet big = quasi_random_walk(s, rays, {1024, 64}, log);
+    const double walk = since(t1);
+    const VplSet small = quasi_random_walk(s, rays, {16, 64}, log);
+    const View view = make_view(s.cameras.at(0), s.bounds, 128, 128);
+    RasterOptions ro;
+    ro.interleave = 1;
+    RasterRenderer raster(s, ro);
+    raster.render(view, small); // warm-up: context, upload
+    RasterTimings t;
+    raster.render(view, small, &t);
+    const double per_vpl = (t.passes_seconds + t.readback) / static_cast<double>(t.passes);
+    const auto t2 = Clock::now();
+    trace_vpls(s, rays, view, small, {0.05f, 0});
+    const double rt_per_vpl = since(t2) / static_cast<double>(small.vpls.size());
+    out << fmt::format("{},{:.4f},1024,{:.4f},{},{:.6f},{:.6f}\n", s.triangle_count(), bvh, walk,
+                       small.vpls.size(), per_vpl, rt_per_vpl);
+    log.info(fmt::format("bench: scale {} triangles: BVH {:.3f} s, walk (N=1024) {:.3f} s, raster "
+                         "{:.2f} ms/VPL, rt-vpl {:.2f} ms/VPL at 128x128",
+                         s.triangle_count(), bvh, walk, 1e3 * per_vpl, 1e3 * rt_per_vpl));
+  }
+  if (!out) throw Error(path, "", "cannot write");
 }
 
 void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path) {

@@ -19,6 +19,7 @@ struct BenchOptions {
   int size = 0;                    // image side; 0: 64 quick, 256 full
   std::uint32_t reference_spp = 0; // 0: 256 quick, 4096 full
   bool plots = true;
+  bool scale = true; // the triangle-count study: OUT/scale.csv
 };
 
 struct BenchRow {
@@ -38,6 +39,8 @@ struct BenchRow {
 std::vector<BenchRow> run_bench(const BenchOptions& options, Log& log);
 
 void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path);
+// Walk and per-VPL raster/rt-vpl cost of the Cornell box split into 8k .. 2M triangles.
+void run_scale_study(const BenchOptions& options, Log& log);
 // error_vs_time.png (log-log, every estimator) and error_vs_paths.png (per sequence, with the
 // least-squares slope of log relMSE against log N in the legend). Throws when gnuplot fails.
 void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out_dir, Log& log);

@@ -21,6 +21,9 @@ void add_bench_command(CLI::App& app, Commands& commands) {
                   "Path-traced reference samples per pixel (default 256 quick, 4096 full)");
   cmd->add_flag(
       "--no-plots", [options](std::int64_t) { options->plots = false; }, "Write the CSV only");
+  cmd->add_flag(
+      "--no-scale", [options](std::int64_t) { options->scale = false; },
+      "Skip the triangle-count study");
   cmd->add_flag("-q,--quiet", *quiet, "No progress lines");
   cmd->callback([options, quiet, &commands] {
     commands.selected = [options, quiet] {

@@ -69,7 +69,7 @@ void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out
     std::map<std::string, Series> by_sequence;
     for (const BenchRow& r : rows) {
       if (r.scene != scene || !(r.relmse > 0.0)) continue;
-      if (r.estimator != "raster" || r.sequence == "halton") {
+      if (r.sequence.empty() || r.sequence == "halton") {
         Series& s = by_estimator[r.estimator];
         s.title = r.estimator;
         s.file = fmt::format("{}/plot_{}_time_{}.dat", out_dir, scene, r.estimator);
