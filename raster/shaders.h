@@ -197,4 +197,11 @@ void main() {
 }
 )";
 
+// Copies a same-size texture into the bound framebuffer (with blending: adds or subtracts it).
+inline constexpr const char* copy_fragment = R"(#version 330 core
+uniform sampler2D u_source;
+out vec4 o_color;
+void main() { o_color = texelFetch(u_source, ivec2(gl_FragCoord.xy), 0); }
+)";
+
 } // namespace irad::gl::shaders

@@ -1,0 +1,212 @@
+#include "raster/ring_renderer.h"
+
+#include "core/error.h"
+#include "raster/camera_passes.h"
+#include "raster/gl_context.h"
+#include "raster/gpu_scene.h"
+#include "raster/shaders.h"
+#include "raster/shadow_cube.h"
+#include "raster/target.h"
+#include "raster/vpl_shader.h"
+
+#include <fmt/format.h>
+
+namespace irad {
+
+namespace {
+
+constexpr GLint copy_unit = 6;
+
+gl::Texture float_image(const GladGLContext& api, int width, int height) {
+  gl::Texture t = gl::make_texture(api);
+  api.BindTexture(GL_TEXTURE_2D, t.get());
+  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  api.BindTexture(GL_TEXTURE_2D, 0);
+  return t;
+}
+
+void check_memory(const RingOptions& o) {
+  const std::size_t bytes = static_cast<std::size_t>(o.paths) * static_cast<std::size_t>(o.width) *
+                            static_cast<std::size_t>(o.height) * 16u;
+  if (o.paths == 0) throw Error("", "--paths", "must be at least 1");
+  if (bytes > o.memory_limit)
+    throw Error("", "--paths",
+                fmt::format("a ring of {} path images of {}x{} needs {} MiB, over the limit of {} "
+                            "MiB: use fewer paths or a smaller size",
+                            o.paths, o.width, o.height, bytes >> 20, o.memory_limit >> 20));
+}
+
+gl::Backend backend_of(GlBackend b) {
+  return b == GlBackend::Egl      ? gl::Backend::Egl
+         : b == GlBackend::OsMesa ? gl::Backend::OsMesa
+                                  : gl::Backend::Auto;
+}
+
+} // namespace
+
+struct RingRenderer::Impl {
+  const Scene& scene;
+  RingOptions options;
+  std::unique_ptr<gl::Context> context;
+  const GladGLContext& api;
+  gl::GpuScene gpu;
+  gl::ShadowCube shadow;
+  gl::CameraPasses camera;
+  gl::VplShader vpl_shader;
+  gl::Target target;
+  std::vector<gl::Texture> slots;
+  std::vector<bool> filled;
+  gl::Texture sum;
+  gl::Framebuffer slot_fbo, sum_fbo;
+  gl::VertexArray empty_vao;
+  gl::ShaderProgram copy;
+  int frames_since_resum = 0;
+  std::size_t passes = 0;
+
+  Impl(const Scene& s, const RingOptions& o, std::unique_ptr<gl::Context> c)
+      : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
+        shadow(api,
+               shadow_resolution_for(o.raster.shadow_resolution,
+                                     View{glm::mat4(1.0f), glm::mat4(1.0f), glm::vec3(0.0f),
+                                          o.width, o.height, 0.0f, 0.0f}),
+               s.bounds),
+        camera(api), vpl_shader(api, s, o.raster.clamp), target(api, o.width, o.height),
+        filled(o.paths, false), sum(float_image(api, o.width, o.height)),
+        slot_fbo(gl::make_framebuffer(api)), sum_fbo(gl::make_framebuffer(api)),
+        empty_vao(gl::make_vertex_array(api)),
+        copy(api, "copy", gl::shaders::fullscreen_vertex, gl::shaders::copy_fragment) {
+    for (std::uint32_t i = 0; i < o.paths; ++i)
+      slots.push_back(float_image(api, o.width, o.height));
+    api.BindFramebuffer(GL_FRAMEBUFFER, slot_fbo.get());
+    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                             slots.front().get(), 0);
+    api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                target.depth());
+    gl::check_framebuffer(api, "ring path-image framebuffer");
+    api.BindFramebuffer(GL_FRAMEBUFFER, sum_fbo.get());
+    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, sum.get(), 0);
+    gl::check_framebuffer(api, "ring sum framebuffer");
+    clear_color();
+    copy.use();
+    api.Uniform1i(copy.uniform("u_source"), copy_unit);
+    context->check("ring set-up");
+  }
+
+  void viewport() const { api.Viewport(0, 0, options.width, options.height); }
+  void clear_color() const {
+    viewport();
+    api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    api.Clear(GL_COLOR_BUFFER_BIT);
+  }
+  // Adds (or subtracts) texture t to the bound framebuffer.
+  void blend(const gl::Texture& t, bool subtract) const {
+    api.Disable(GL_DEPTH_TEST);
+    api.Enable(GL_BLEND);
+    api.BlendEquation(subtract ? GL_FUNC_REVERSE_SUBTRACT : GL_FUNC_ADD);
+    api.BlendFunc(GL_ONE, GL_ONE);
+    copy.use();
+    api.ActiveTexture(GL_TEXTURE0 + copy_unit);
+    api.BindTexture(GL_TEXTURE_2D, t.get());
+    api.BindVertexArray(empty_vao.get());
+    api.DrawArrays(GL_TRIANGLES, 0, 3);
+    api.BlendEquation(GL_FUNC_ADD);
+    api.BindTexture(GL_TEXTURE_2D, 0);
+  }
+  void bind_sum() const {
+    api.BindFramebuffer(GL_FRAMEBUFFER, sum_fbo.get());
+    viewport();
+  }
+  void sum_ring_into_bound() const {
+    clear_color();
+    for (std::size_t s = 0; s < slots.size(); ++s)
+      if (filled[s]) blend(slots[s], false);
+  }
+};
+
+RingRenderer::RingRenderer(const Scene& scene, const RingOptions& options) {
+  check_memory(options);
+  impl_ = std::make_unique<Impl>(
+      scene, options,
+      gl::create_context(backend_of(options.raster.backend), options.raster.gl_device));
+}
+
+RingRenderer::~RingRenderer() = default;
+
+std::uint32_t RingRenderer::slots() const {
+  return impl_->options.paths;
+}
+std::size_t RingRenderer::passes() const {
+  return impl_->passes;
+}
+
+void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view) {
+  Impl& im = *impl_;
+  im.context->make_current();
+  const std::size_t s = path % im.options.paths;
+  if (im.filled[s]) {
+    im.bind_sum();
+    im.blend(im.slots[s], true); // the image leaving the ring
+  }
+  // The new path image: depth of the current view, then each VPL's shadow cube and pass.
+  const glm::mat4 vp = view.projection * view.view;
+  const auto bind_slot = [&] {
+    im.api.BindFramebuffer(GL_FRAMEBUFFER, im.slot_fbo.get());
+    im.api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                                im.slots[s].get(), 0);
+    im.viewport();
+  };
+  bind_slot();
+  im.api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  im.api.ClearDepth(1.0);
+  im.api.DepthMask(GL_TRUE);
+  im.api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  im.camera.depth(vp, im.gpu);
+  for (const Vpl& vpl : vpls) {
+    if (!(vpl.intensity.x > 0.0f || vpl.intensity.y > 0.0f || vpl.intensity.z > 0.0f)) continue;
+    const glm::mat3 frame = im.shadow.render(vpl, im.gpu);
+    bind_slot();
+    im.vpl_shader.draw(vpl, im.shadow, frame, vp, true, im.gpu);
+    ++im.passes;
+  }
+  im.bind_sum();
+  im.blend(im.slots[s], false); // the image arriving
+  im.filled[s] = true;
+  if (im.options.resum_every > 0 && ++im.frames_since_resum >= im.options.resum_every) resum();
+  im.context->check("ring path image");
+}
+
+void RingRenderer::resum() {
+  Impl& im = *impl_;
+  im.context->make_current();
+  im.bind_sum();
+  im.sum_ring_into_bound();
+  im.frames_since_resum = 0;
+}
+
+Image RingRenderer::frame(const View& view) {
+  Impl& im = *impl_;
+  im.context->make_current();
+  im.target.bind();
+  im.api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  im.api.ClearDepth(1.0);
+  im.api.DepthMask(GL_TRUE);
+  im.api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  im.blend(im.sum, false);
+  const glm::mat4 vp = view.projection * view.view;
+  im.camera.depth(vp, im.gpu);
+  im.camera.emitters(vp, im.scene, im.gpu);
+  im.context->check("ring frame");
+  return im.target.read();
+}
+
+Image RingRenderer::exact_sum() {
+  Impl& im = *impl_;
+  im.context->make_current();
+  im.target.bind();
+  im.sum_ring_into_bound();
+  return im.target.read();
+}
+
+} // namespace irad

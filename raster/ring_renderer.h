@@ -1,0 +1,54 @@
+#pragma once
+// Real-time instant radiosity (design.md section 1, seed section 5.1.3): a ring of the N most
+// recent path images. Each frame traces one new light path (its VPLs, capped at l_max
+// reflections), renders them into that path's image, and replaces the oldest image; the frame
+// shown is the sum of the ring plus the visible emitters. The sum is kept as a running sum
+// (subtract the image leaving, add the one arriving) and recomputed exactly from the ring every
+// `resum_every` frames, which bounds the float drift. For a static scene and camera the sum of all
+// N path images is exactly the full instant radiosity image of the same VPLs.
+// Public header: no GL types. Memory: N path images of W x H RGBA32F, and two more.
+#include "core/image.h"
+#include "core/scene.h"
+#include "core/view.h"
+#include "core/vpl.h"
+#include "raster/raster_renderer.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace irad {
+
+struct RingOptions {
+  std::uint32_t paths = 64; // N, the ring's length
+  int width = 256, height = 256;
+  RasterOptions raster;  // clamp, shadow resolution, backend (interleave is not used)
+  int resum_every = 256; // frames between exact re-sums (0: never)
+  std::size_t memory_limit = std::size_t{2} << 30; // bytes for the path images
+};
+
+class RingRenderer {
+public:
+  // Throws irad::Error when the ring would exceed its memory limit or GL fails.
+  RingRenderer(const Scene& scene, const RingOptions& options);
+  ~RingRenderer();
+  RingRenderer(const RingRenderer&) = delete;
+  RingRenderer& operator=(const RingRenderer&) = delete;
+
+  // Renders one path's VPLs (seen from `view`) into slot path mod N, replacing what was there.
+  void replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view);
+  // The running sum plus the emitters seen from `view` (alpha 1).
+  Image frame(const View& view);
+  // The sum recomputed from the ring (what the running sum should be).
+  Image exact_sum();
+  void resum();
+
+  std::uint32_t slots() const;
+  std::size_t passes() const; // VPL passes drawn so far
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace irad
