@@ -16,5 +16,6 @@ void add_compare_command(CLI::App& app, Commands& commands);
 void add_scene_command(CLI::App& app, Commands& commands);
 void add_bench_command(CLI::App& app, Commands& commands);
 void add_convert_command(CLI::App& app, Commands& commands);
+void add_walkthrough_command(CLI::App& app, Commands& commands);
 
 } // namespace irad::apps

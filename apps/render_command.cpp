@@ -1,9 +1,15 @@
 // irad render SCENE -o OUT.exr [-o OUT.png] ...: one instant radiosity image.
+// SIGINT and SIGTERM stop the render early and write nothing (each output is written whole or
+// not at all: through a .tmp and a rename); with --partial the image accumulated so far goes to
+// OUT.partial.EXT instead. Then the process ends by the signal. A second signal ends it at once.
 #include "apps/commands.h"
+#include "apps/options.h"
 #include "apps/render_pipeline.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
@@ -37,22 +43,67 @@ struct RenderArgs {
   std::string sequence = "halton";
   int interleave = 4;
   int gl_device = -1;
+  bool partial = false;
+  std::uint64_t max_triangles = LoadLimits{}.max_triangles;
+  std::uint64_t max_file_mib = LoadLimits{}.max_file_bytes >> 20;
+  int max_texture_size = LoadLimits{}.max_texture_size;
 };
+
+// Set by SIGINT or SIGTERM during a render (lock-free, so async-signal-safe).
+std::atomic<bool> g_interrupted{false};
+volatile std::sig_atomic_t g_signal = 0;
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void on_interrupt(int signal) {
+  g_signal = signal;
+  g_interrupted.store(true);
+}
+
+// Installs on_interrupt for SIGINT and SIGTERM for its lifetime; the handler resets itself, so a
+// second signal takes the default action (the process ends at once).
+class InterruptHandler {
+public:
+  InterruptHandler() {
+    struct sigaction action = {};
+    action.sa_handler = &on_interrupt;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESETHAND;
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~InterruptHandler() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+
+private:
+  struct sigaction old_int_ = {};
+  struct sigaction old_term_ = {};
+};
+
+// OUT.partial.EXT for OUT.EXT.
+std::string partial_name(const std::string& output) {
+  std::filesystem::path p(output);
+  const std::string extension = p.extension().string();
+  p.replace_extension(".partial" + extension);
+  return p.string();
+}
+
+// Ends the process by `signal` with its default action, as if irad had not caught it.
+[[noreturn]] void die_by(int signal) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+  std::_Exit(128 + signal); // not reached for SIGINT and SIGTERM
+}
 
 Estimator parse_estimator(const std::string& name) {
   if (name == "rt-vpl") return Estimator::RtVpl;
   if (name == "pt") return Estimator::Pt;
   return Estimator::Raster;
-}
-
-std::pair<int, int> parse_size(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
-    throw Error("", "--size", fmt::format("'{}' is not WIDTHxHEIGHT", text));
-  if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw Error("", "--size", fmt::format("{}x{} is out of range (1..16384 per side)", w, h));
-  return {w, h};
 }
 
 // Every output must be writable before any work starts: known type, existing folder.
@@ -106,14 +157,31 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"seconds", seconds}};
 }
 
+// Written as image_io writes images: into PATH.tmp, renamed over PATH; the .tmp never stays.
 void write_stats(const std::string& path, const nlohmann::json& stats) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw Error(path, "--stats", "cannot write: it exists and is not a regular file");
+  // Invalid UTF-8 (in a file name) is replaced rather than thrown midway.
+  const std::string text =
+      stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   const std::string tmp = path + ".tmp";
+  std::string reason;
   {
-    std::ofstream out(tmp);
-    out << stats.dump(2) << '\n';
-    if (!out) throw Error(path, "--stats", "cannot write");
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (out) out << text;
+    if (out) out.close();
+    if (!out) reason = errno != 0 ? std::generic_category().message(errno) : "I/O error";
   }
-  std::filesystem::rename(tmp, path);
+  if (reason.empty()) {
+    fs::rename(tmp, path, ec);
+    if (!ec) return;
+    reason = ec.message();
+  }
+  if (fs::is_regular_file(fs::symlink_status(tmp, ec))) fs::remove(tmp, ec);
+  throw Error(path, "--stats", "cannot write: " + reason);
 }
 
 void print_summary(const RenderArgs& args, const RenderResult& r) {
@@ -138,16 +206,14 @@ int run_render(const RenderArgs& args) {
   log.set_quiet(args.quiet);
   RenderRequest request;
   request.scene_path = args.scene;
-  if (!args.size.empty()) request.size = parse_size(args.size);
+  if (!args.size.empty()) request.size = parse_size_option(args.size);
   request.camera = args.camera;
   request.walk.paths = args.paths;
   request.walk.sequence = parse_sequence(args.sequence);
   request.walk.seed = args.seed;
   request.raster.shadow_resolution = args.shadow_res;
   request.raster.clamp = args.clamp;
-  request.raster.backend = args.gl == "egl"      ? GlBackend::Egl
-                           : args.gl == "osmesa" ? GlBackend::OsMesa
-                                                 : GlBackend::Auto;
+  request.raster.backend = parse_backend(args.gl);
   request.raster.gl_device = args.gl_device;
   request.raster.interleave = args.interleave;
   request.progress = !args.quiet && isatty(STDERR_FILENO);
@@ -158,6 +224,13 @@ int run_render(const RenderArgs& args) {
   request.bias_compensation = args.bias_compensation;
   request.bias_samples = args.bias_samples;
   request.clamped_fraction = !args.stats.empty();
+  request.limits.max_triangles = args.max_triangles;
+  request.limits.max_file_bytes = args.max_file_mib << 20;
+  request.limits.max_texture_size = args.max_texture_size;
+  if (args.max_triangles < 1) throw Error("", "--max-triangles", "must be at least 1");
+  if (args.max_file_mib < 1 || args.max_file_mib > (std::uint64_t(1) << 20))
+    throw Error("", "--max-file-size", "must lie in [1, 1048576] MiB");
+  if (args.max_texture_size < 1) throw Error("", "--max-texture-size", "must be at least 1");
   if (args.paths == 0) throw Error("", "--paths", "must be at least 1");
   if (args.spp == 0) throw Error("", "--spp", "must be at least 1");
   for (const std::string& o : args.outputs) {
@@ -166,13 +239,31 @@ int run_render(const RenderArgs& args) {
   }
   if (!args.stats.empty()) check_folder(args.stats, "--stats");
 
+  const InterruptHandler interrupt_handler;
+  request.cancel = &g_interrupted;
   const RenderResult r = render_scene(request, log);
   PngOptions png;
   png.exposure = args.exposure;
   png.tone_map = args.tone_map == "reinhard" ? ToneMap::Reinhard : ToneMap::Clamp;
+  if (r.cancelled) {
+    const int signal = g_signal;
+    const char* name = signal == SIGTERM ? "SIGTERM" : "SIGINT";
+    std::string written;
+    if (args.partial && r.image.width() > 0) {
+      for (const std::string& o : args.outputs) {
+        write_image(partial_name(o), r.image, png);
+        written += (written.empty() ? "" : ", ") + partial_name(o);
+      }
+    }
+    std::fprintf(stderr, "irad: %s: interrupted by %s; %s\n", args.scene.c_str(), name,
+                 written.empty() ? "nothing written" : ("partial image in " + written).c_str());
+    die_by(signal);
+  }
   for (const std::string& o : args.outputs) write_image(o, r.image, png);
   if (!args.stats.empty()) write_stats(args.stats, stats_json(args, r));
   if (!args.quiet) print_summary(args, r);
+  // A signal after the image was complete: the outputs are whole; end as the signal asks.
+  if (g_interrupted.load()) die_by(g_signal);
   return 0;
 }
 
@@ -232,6 +323,18 @@ void add_render_command(CLI::App& app, Commands& commands) {
       ->check(CLI::IsMember({"auto", "egl", "osmesa"}))
       ->capture_default_str();
   cmd->add_option("--gl-device", args->gl_device, "EGL device index (implies EGL)");
+  cmd->add_flag("--partial", args->partial,
+                "On SIGINT or SIGTERM, write the image accumulated so far as OUT.partial.EXT "
+                "(without it an interrupted render writes nothing)");
+  cmd->add_option("--max-triangles", args->max_triangles,
+                  "Refuse scenes with more triangles (all instances)")
+      ->capture_default_str();
+  cmd->add_option("--max-file-size", args->max_file_mib,
+                  "Refuse scene files and external files larger than this many MiB")
+      ->capture_default_str();
+  cmd->add_option("--max-texture-size", args->max_texture_size,
+                  "Refuse images with more texels per side")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", args->quiet, "No progress, warnings or summary on stderr");
   cmd->callback([args, &commands] { commands.selected = [args] { return run_render(*args); }; });
 }

@@ -76,7 +76,9 @@ namespace {
 
 void run_raster(const RenderRequest& request, RenderResult& r) {
   const auto t0 = Clock::now();
-  RasterRenderer raster(r.scene, request.raster);
+  RasterOptions options = request.raster;
+  options.cancel = request.cancel;
+  RasterRenderer raster(r.scene, options);
   r.gl = raster.description();
   RasterTimings timings;
   ProgressLine progress(request.progress);
@@ -104,37 +106,48 @@ void compensate(const RenderRequest& request, const RayScene& rays, RenderResult
 
 RenderResult render_scene(const RenderRequest& request, Log& log) {
   RenderResult r;
+  const auto cancelled = [&] {
+    r.cancelled = r.cancelled || (request.cancel != nullptr && request.cancel->load());
+    return r.cancelled;
+  };
   const auto t0 = Clock::now();
-  r.scene = load_gltf(request.scene_path, log);
+  r.scene = load_gltf(request.scene_path, log, request.limits);
   r.camera = select_camera(r.scene, request.camera);
   const auto [width, height] = image_size(r.camera, request.size);
   r.view = make_view(r.camera, r.scene.bounds, width, height);
   const RayScene rays(r.scene);
   r.seconds.load = since(t0);
 
-  if (request.estimator == Estimator::Pt) {
+  if (cancelled()) {
+    // Interrupted while loading: nothing was rendered.
+  } else if (request.estimator == Estimator::Pt) {
     const auto t1 = Clock::now();
     ProgressLine progress(request.progress);
-    r.image = path_trace(r.scene, rays, r.view, request.pt,
-                         [&](int done, int rows) { progress(done, rows); });
+    PathTracerOptions pt = request.pt;
+    pt.cancel = request.cancel;
+    r.image =
+        path_trace(r.scene, rays, r.view, pt, [&](int done, int rows) { progress(done, rows); });
     r.seconds.trace = since(t1);
   } else {
     const auto t1 = Clock::now();
     r.vpls = quasi_random_walk(r.scene, rays, request.walk, log);
     r.seconds.walk = since(t1);
-    if (request.estimator == Estimator::Raster) {
+    if (cancelled()) {
+      // Interrupted during the walk: nothing was rendered.
+    } else if (request.estimator == Estimator::Raster) {
       run_raster(request, r);
     } else {
       const auto t2 = Clock::now();
-      r.image =
-          trace_vpls(r.scene, rays, r.view, r.vpls, {request.raster.clamp, request.pt.threads});
+      r.image = trace_vpls(r.scene, rays, r.view, r.vpls,
+                           {request.raster.clamp, request.pt.threads, request.cancel});
       r.seconds.trace = since(t2);
     }
-    if (request.bias_compensation) compensate(request, rays, r);
-    if (request.clamped_fraction)
+    if (request.bias_compensation && !cancelled()) compensate(request, rays, r);
+    if (request.clamped_fraction && !cancelled())
       r.clamped_fraction = clamped_fraction(r.scene, rays, r.view, r.vpls, request.raster.clamp);
   }
   r.seconds.total = since(t0);
+  if (cancelled()) return r;
 
   if (const std::size_t bad = r.image.non_finite_count(); bad > 0)
     throw Error(request.scene_path, "image",

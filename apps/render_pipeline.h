@@ -1,5 +1,6 @@
 #pragma once
 // load -> walk -> raster, the path every rendering subcommand takes, with per-stage times.
+#include "core/gltf_loader.h"
 #include "core/image.h"
 #include "core/log.h"
 #include "core/scene.h"
@@ -9,6 +10,7 @@
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 
+#include <atomic>
 #include <optional>
 #include <string>
 
@@ -30,6 +32,10 @@ struct RenderRequest {
   std::uint32_t bias_samples = 16;
   bool clamped_fraction = false; // estimate the share of light the clamp removes
   bool progress = false;         // a progress line on stderr
+  LoadLimits limits;             // scene size limits (core/gltf_loader.h)
+  // When it becomes true (a signal handler), the render stops early: no further stage starts,
+  // the running one returns what it has, and the result says cancelled.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct StageSeconds {
@@ -41,8 +47,10 @@ struct RenderResult {
   Camera camera;
   View view;
   VplSet vpls;
-  Image image;
+  Image
+      image; // when cancelled: what was accumulated (pt, rt-vpl: pixels not done are 0, alpha too)
   StageSeconds seconds;
+  bool cancelled = false;         // stopped early by request.cancel
   std::size_t passes = 0;         // VPL passes drawn (raster)
   double clamped_fraction = -1.0; // when requested
   std::string gl;                 // GL renderer (raster)

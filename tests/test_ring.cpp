@@ -1,12 +1,16 @@
 // The real-time ring of path images (seed section 5.1.3) against the full instant radiosity image.
 #include "core/error.h"
 #include "core/gltf_loader.h"
+#include "core/image_io.h"
 #include "core/image_metrics.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "walk/quasi_random_walk.h"
 
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 namespace irad {
@@ -86,6 +90,39 @@ TEST(Ring, MemoryLimitIsAnError) {
   Fixture f;
   RingOptions o = ring_options(4096, 512, 0);
   EXPECT_THROW(RingRenderer(f.scene, o), Error);
+}
+
+} // namespace
+} // namespace irad
+
+namespace irad {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The walkthrough app writes its frames headlessly through OSMesa and through EGL, identically.
+TEST(Walkthrough, FramesThroughOsMesaAndEgl) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "irad_walkthrough";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const char* gl : {"osmesa", "egl"}) {
+    const std::string cmd = std::string(IRAD_BINARY) + " walkthrough " + IRAD_SOURCE_DIR +
+                            "/data/cornell_box.gltf --frames 0:3 --size 32x32 --paths 8 --quiet " +
+                            "--orbit 30 --gl " + gl + " -o " + (dir / gl).string() +
+                            "_%02d.exr > /dev/null";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  for (int f = 0; f < 3; ++f) {
+    const Image a = read_exr(dir / fmt::format("osmesa_{:02d}.exr", f));
+    const Image b = read_exr(dir / fmt::format("egl_{:02d}.exr", f));
+    EXPECT_EQ(a.non_finite_count(), 0u);
+    EXPECT_LT(compare_images(a, b).max_abs_error, 1e-6) << f; // measured: identical
+  }
+  const std::string bad = std::string(IRAD_BINARY) + " walkthrough " + IRAD_SOURCE_DIR +
+                          "/data/cornell_box.gltf -o " + (dir / "nopattern.png").string() +
+                          " 2> /dev/null";
+  EXPECT_NE(std::system(bad.c_str()), 0);
+  fs::remove_all(dir);
 }
 
 } // namespace

@@ -1,0 +1,27 @@
+#include "apps/options.h"
+
+#include "core/error.h"
+
+#include <cstdio>
+#include <fmt/format.h>
+
+namespace irad::apps {
+
+std::pair<int, int> parse_size_option(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
+    throw Error("", "--size", fmt::format("'{}' is not WIDTHxHEIGHT", text));
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw Error("", "--size", fmt::format("{}x{} is out of range (1..16384 per side)", w, h));
+  return {w, h};
+}
+
+GlBackend parse_backend(const std::string& name) {
+  if (name == "egl") return GlBackend::Egl;
+  if (name == "osmesa") return GlBackend::OsMesa;
+  if (name == "auto") return GlBackend::Auto;
+  throw Error("", "--gl", "unknown backend '" + name + "' (auto, egl, osmesa)");
+}
+
+} // namespace irad::apps
