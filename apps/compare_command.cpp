@@ -2,6 +2,7 @@
 // accuracy of image A against the reference B (see core/image_metrics.h for the metrics). Prints
 // one line per metric on stdout; exits 0 whenever the images could be compared, however different.
 #include "apps/commands.h"
+#include "apps/options.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/image_metrics.h"
@@ -29,18 +30,6 @@ struct CompareArgs {
   std::string json;
 };
 
-// Throws unless `path` can be written: its folder exists and it is not, say, a folder itself.
-void check_output(const std::string& path, const char* option) {
-  namespace fs = std::filesystem;
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw Error(path, option, fmt::format("output folder '{}' does not exist", parent.string()));
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (fs::exists(status) && !fs::is_regular_file(status))
-    throw Error(path, option, "it exists and is not a regular file");
-}
-
 // Everything that can be checked before reading the images.
 void check_args(const CompareArgs& args) {
   if (args.block < 1)
@@ -49,9 +38,9 @@ void check_args(const CompareArgs& args) {
     throw Error("", "--diff-max", fmt::format("{} is not a positive number", args.diff_max));
   if (!args.diff.empty()) {
     image_format_of(args.diff);
-    check_output(args.diff, "--diff");
+    require_writable(args.diff, "--diff");
   }
-  if (!args.json.empty()) check_output(args.json, "--json");
+  if (!args.json.empty()) require_writable(args.json, "--json");
 }
 
 // Non-finite values spelled "nan", "inf", "-inf" (whatever the NaN's sign bit), others as %.6g.

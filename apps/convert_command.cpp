@@ -1,6 +1,7 @@
 // irad convert IN.exr -o OUT.png|OUT.exr [--exposure EV] [--tonemap clamp|reinhard]: re-encodes
 // a linear EXR (for example a reference rendered earlier) with the same PNG pipeline as render.
 #include "apps/commands.h"
+#include "apps/options.h"
 #include "core/error.h"
 #include "core/image_io.h"
 
@@ -21,9 +22,7 @@ struct ConvertArgs {
 int run_convert(const ConvertArgs& args) {
   for (const std::string& o : args.outputs) {
     image_format_of(o);
-    const std::filesystem::path parent = std::filesystem::path(o).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent))
-      throw Error(o, "-o", "output folder '" + parent.string() + "' does not exist");
+    require_writable(o, "-o");
   }
   const Image image = read_exr(args.input);
   PngOptions png;

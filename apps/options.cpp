@@ -3,6 +3,7 @@
 #include "core/error.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <fmt/format.h>
 
 namespace irad::apps {
@@ -22,6 +23,17 @@ GlBackend parse_backend(const std::string& name) {
   if (name == "osmesa") return GlBackend::OsMesa;
   if (name == "auto") return GlBackend::Auto;
   throw Error("", "--gl", "unknown backend '" + name + "' (auto, egl, osmesa)");
+}
+
+void require_writable(const std::string& path, const char* option) {
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent))
+    throw Error(path, option, fmt::format("output folder '{}' does not exist", parent.string()));
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw Error(path, option, "it exists and is not a regular file");
 }
 
 } // namespace irad::apps

@@ -10,6 +10,7 @@
 // plane side 6), so a scale-invariant estimator must give the same image at any S. Options that do
 // not apply to the chosen scene (--subdivisions other than for the sphere) are errors.
 #include "apps/commands.h"
+#include "apps/options.h"
 #include "core/analytic_scenes.h"
 #include "core/error.h"
 #include "core/gltf_writer.h"
@@ -43,10 +44,7 @@ void check_args(const SceneArgs& args) {
   const std::filesystem::path out(args.output);
   if (out.extension() != ".gltf")
     throw Error(args.output, "-o", "the scene is written as .gltf (JSON, embedded buffer)");
-  const std::filesystem::path parent = out.parent_path();
-  if (!parent.empty() && !std::filesystem::is_directory(parent))
-    throw Error(args.output, "-o",
-                fmt::format("output folder '{}' does not exist", parent.string()));
+  require_writable(args.output, "-o");
 }
 
 // The scene and the line that states its answer.

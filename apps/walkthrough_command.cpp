@@ -54,9 +54,7 @@ void check_pattern(const std::string& pattern) {
       pattern.find('d', p) == std::string::npos)
     throw Error(pattern, "-o", "needs exactly one frame number, e.g. frames/%04d.png");
   image_format_of(frame_path(pattern, 0));
-  const std::filesystem::path parent = std::filesystem::path(pattern).parent_path();
-  if (!parent.empty() && !std::filesystem::is_directory(parent))
-    throw Error(pattern, "-o", "output folder '" + parent.string() + "' does not exist");
+  require_writable(frame_path(pattern, 0), "-o");
 }
 
 // The camera turned about the vertical axis through the bounds' centre.

@@ -17,15 +17,15 @@ void Context::check(const char* where) const {
   if (e != GL_NO_ERROR) throw Error("", where, fmt::format("OpenGL error 0x{:04x}", e));
 }
 
-std::unique_ptr<Context> create_context(Backend backend, int device) {
+std::unique_ptr<Context> create_context(GlBackend backend, int device) {
   switch (backend) {
-  case Backend::Egl:
+  case GlBackend::Egl:
     return create_egl_context(device);
-  case Backend::OsMesa:
+  case GlBackend::OsMesa:
     if (!osmesa_available())
       throw Error("", "--gl", "this build has no OSMesa (Mesa 25.1 removed it): use --gl egl");
     return create_osmesa_context();
-  case Backend::Auto:
+  case GlBackend::Auto:
     break;
   }
   // A GPU when EGL sees one, else the embedded default (OSMesa), else Mesa's surfaceless EGL.

@@ -4,6 +4,8 @@
 // embedded default) and EGL (a GPU through EGL_EXT_platform_device, or Mesa's surfaceless
 // platform).
 // Internal to raster/: the GL types stay out of the public headers.
+#include "raster/gl_backend.h"
+
 #include <glad/gl.h>
 #include <memory>
 #include <string>
@@ -31,11 +33,9 @@ protected:
   GladGLContext api_{};
 };
 
-enum class Backend { Auto, Egl, OsMesa };
-
 // Auto: an EGL hardware device when there is one (or `device` >= 0 asks for one), else OSMesa,
 // else EGL surfaceless. Throws irad::Error naming the backend when it cannot be had.
-std::unique_ptr<Context> create_context(Backend backend, int device = -1);
+std::unique_ptr<Context> create_context(GlBackend backend, int device = -1);
 
 std::unique_ptr<Context> create_osmesa_context();
 bool osmesa_available();

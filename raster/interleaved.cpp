@@ -7,27 +7,18 @@ namespace irad::gl {
 
 namespace {
 
-Texture float_texture(const GladGLContext& api, int width, int height) {
-  Texture t = make_texture(api);
-  api.BindTexture(GL_TEXTURE_2D, t.get());
-  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  api.BindTexture(GL_TEXTURE_2D, 0);
-  return t;
-}
-
 constexpr GLint atlas_unit = 2, position_unit = 3, normal_unit = 4, albedo_unit = 5;
 
 } // namespace
 
 Interleaved::Interleaved(const GladGLContext& api, int width, int height, int k, GLuint depth)
     : api_(&api), width_(width), height_(height), k_(k), tile_w_((width + k - 1) / k),
-      tile_h_((height + k - 1) / k), position_(float_texture(api, width, height)),
-      normal_(float_texture(api, width, height)), albedo_(float_texture(api, width, height)),
-      atlas_(float_texture(api, k * tile_w_, k * tile_h_)), atlas_depth_(make_renderbuffer(api)),
-      gbuffer_fbo_(make_framebuffer(api)), atlas_fbo_(make_framebuffer(api)),
-      empty_vao_(make_vertex_array(api)),
+      tile_h_((height + k - 1) / k), position_(make_float_texture(api, width, height)),
+      normal_(make_float_texture(api, width, height)),
+      albedo_(make_float_texture(api, width, height)),
+      atlas_(make_float_texture(api, k * tile_w_, k * tile_h_)),
+      atlas_depth_(make_renderbuffer(api)), gbuffer_fbo_(make_framebuffer(api)),
+      atlas_fbo_(make_framebuffer(api)), empty_vao_(make_vertex_array(api)),
       resolve_(api, "resolve", shaders::fullscreen_vertex, shaders::resolve_fragment) {
   if (k < 1) throw Error("", "--interleave", "must be at least 1");
   api.BindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_.get());

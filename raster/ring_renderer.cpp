@@ -17,16 +17,6 @@ namespace {
 
 constexpr GLint copy_unit = 6;
 
-gl::Texture float_image(const GladGLContext& api, int width, int height) {
-  gl::Texture t = gl::make_texture(api);
-  api.BindTexture(GL_TEXTURE_2D, t.get());
-  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  api.BindTexture(GL_TEXTURE_2D, 0);
-  return t;
-}
-
 void check_memory(const RingOptions& o) {
   const std::size_t bytes = static_cast<std::size_t>(o.paths) * static_cast<std::size_t>(o.width) *
                             static_cast<std::size_t>(o.height) * 16u;
@@ -36,12 +26,6 @@ void check_memory(const RingOptions& o) {
                 fmt::format("a ring of {} path images of {}x{} needs {} MiB, over the limit of {} "
                             "MiB: use fewer paths or a smaller size",
                             o.paths, o.width, o.height, bytes >> 20, o.memory_limit >> 20));
-}
-
-gl::Backend backend_of(GlBackend b) {
-  return b == GlBackend::Egl      ? gl::Backend::Egl
-         : b == GlBackend::OsMesa ? gl::Backend::OsMesa
-                                  : gl::Backend::Auto;
 }
 
 } // namespace
@@ -73,12 +57,12 @@ struct RingRenderer::Impl {
                                           o.width, o.height, 0.0f, 0.0f}),
                s.bounds),
         camera(api), vpl_shader(api, s, o.raster.clamp), target(api, o.width, o.height),
-        filled(o.paths, false), sum(float_image(api, o.width, o.height)),
+        filled(o.paths, false), sum(gl::make_float_texture(api, o.width, o.height)),
         slot_fbo(gl::make_framebuffer(api)), sum_fbo(gl::make_framebuffer(api)),
         empty_vao(gl::make_vertex_array(api)),
         copy(api, "copy", gl::shaders::fullscreen_vertex, gl::shaders::copy_fragment) {
     for (std::uint32_t i = 0; i < o.paths; ++i)
-      slots.push_back(float_image(api, o.width, o.height));
+      slots.push_back(gl::make_float_texture(api, o.width, o.height));
     api.BindFramebuffer(GL_FRAMEBUFFER, slot_fbo.get());
     api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                              slots.front().get(), 0);
@@ -128,8 +112,7 @@ struct RingRenderer::Impl {
 RingRenderer::RingRenderer(const Scene& scene, const RingOptions& options) {
   check_memory(options);
   impl_ = std::make_unique<Impl>(
-      scene, options,
-      gl::create_context(backend_of(options.raster.backend), options.raster.gl_device));
+      scene, options, gl::create_context(options.raster.backend, options.raster.gl_device));
 }
 
 RingRenderer::~RingRenderer() = default;
