@@ -27,18 +27,6 @@ bool carries_light(const Vpl& v) {
   return v.intensity.x > 0.0f || v.intensity.y > 0.0f || v.intensity.z > 0.0f;
 }
 
-gl::Backend backend_of(GlBackend b) {
-  switch (b) {
-  case GlBackend::Egl:
-    return gl::Backend::Egl;
-  case GlBackend::OsMesa:
-    return gl::Backend::OsMesa;
-  case GlBackend::Auto:
-    break;
-  }
-  return gl::Backend::Auto;
-}
-
 // The interleaved set of a particle: contiguous segments of the N particles, each a Halton segment
 // and so a quadrature rule of its own. (i mod k^2 would fix the leading base-2 digits of Phi_2(i)
 // in a set and give every set one strip of the light: 4x the error of segments at the light's
@@ -108,6 +96,7 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const VplSet& vpl
       tile_vp.push_back(interleaved->tile_projection(s, view.projection) * view.view);
   std::size_t passes = 0;
   for (std::size_t k = 0; k < vpls.vpls.size(); ++k) {
+    if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) break;
     const Vpl& vpl = vpls.vpls[k];
     if (carries_light(vpl)) {
       if (timer) timer->begin(gl::PassTimer::Shadow);
@@ -136,8 +125,8 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
   if (!(options.clamp >= 0.0f)) throw Error("", "--clamp", "must be >= 0");
   if (options.interleave < 1 || options.interleave > 16)
     throw Error("", "--interleave", "must be between 1 and 16");
-  impl_ = std::make_unique<Impl>(
-      scene, options, gl::create_context(backend_of(options.backend), options.gl_device));
+  impl_ = std::make_unique<Impl>(scene, options,
+                                 gl::create_context(options.backend, options.gl_device));
 }
 
 RasterRenderer::~RasterRenderer() = default;

@@ -6,15 +6,13 @@
 #include "core/scene.h"
 #include "core/view.h"
 #include "core/vpl.h"
+#include "raster/gl_backend.h"
 
+#include <atomic>
 #include <functional>
 #include <memory>
 
 namespace irad {
-
-// Which OpenGL: auto (a GPU through EGL when there is one, else OSMesa, else EGL surfaceless),
-// egl (a device, or Mesa's surfaceless platform) or osmesa.
-enum class GlBackend { Auto, Egl, OsMesa };
 
 struct RasterOptions {
   int shadow_resolution = 0; // texels per cube face edge; 0: from the image size (see below)
@@ -27,6 +25,9 @@ struct RasterOptions {
   // geometry-aware k x k resolve. 4 is the default: at equal time it wins on error against the
   // path tracer (docs/performance.md).
   int interleave = 4;
+  // When it becomes true (a signal handler), render() draws no further VPL passes and returns
+  // what the passes so far accumulated.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // The shadow cube resolution used for an image: `requested` if positive, else a quarter of the
