@@ -74,10 +74,11 @@ std::pair<int, int> image_size(const Camera& camera, std::optional<std::pair<int
 
 namespace {
 
-void run_raster(const RenderRequest& request, RenderResult& r) {
+void run_raster(const RenderRequest& request, RenderResult& r, Log& log) {
   const auto t0 = Clock::now();
   RasterOptions options = request.raster;
   options.cancel = request.cancel;
+  options.gl_messages = [&log](const std::string& message) { log.warn(message); };
   RasterRenderer raster(r.scene, options);
   r.gl = raster.description();
   RasterTimings timings;
@@ -135,7 +136,7 @@ RenderResult render_scene(const RenderRequest& request, Log& log) {
     if (cancelled()) {
       // Interrupted during the walk: nothing was rendered.
     } else if (request.estimator == Estimator::Raster) {
-      run_raster(request, r);
+      run_raster(request, r, log);
     } else {
       const auto t2 = Clock::now();
       r.image = trace_vpls(r.scene, rays, r.view, r.vpls,

@@ -6,6 +6,7 @@
 // Internal to raster/: the GL types stay out of the public headers.
 #include "raster/gl_backend.h"
 
+#include <functional>
 #include <glad/gl.h>
 #include <memory>
 #include <string>
@@ -28,9 +29,17 @@ public:
   // Throws irad::Error naming `where` when glGetError reports an error.
   void check(const char* where) const;
 
+  // Routes the driver's KHR_debug messages (where the extension exists) to `sink`, one line each,
+  // synchronously on the rendering thread; notifications are left out. The sink must outlive
+  // the context or be replaced.
+  void route_debug_messages(std::function<void(const std::string&)> sink);
+
 protected:
   Context() = default;
   GladGLContext api_{};
+
+private:
+  std::function<void(const std::string&)> debug_sink_;
 };
 
 // Auto: an EGL hardware device when there is one (or `device` >= 0 asks for one), else OSMesa,

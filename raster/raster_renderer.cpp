@@ -125,8 +125,9 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
   if (!(options.clamp >= 0.0f)) throw Error("", "--clamp", "must be >= 0");
   if (options.interleave < 1 || options.interleave > 16)
     throw Error("", "--interleave", "must be between 1 and 16");
-  impl_ = std::make_unique<Impl>(scene, options,
-                                 gl::create_context(options.backend, options.gl_device));
+  auto context = gl::create_context(options.backend, options.gl_device);
+  if (options.gl_messages) context->route_debug_messages(options.gl_messages);
+  impl_ = std::make_unique<Impl>(scene, options, std::move(context));
 }
 
 RasterRenderer::~RasterRenderer() = default;

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <string>
 
 namespace irad {
 
@@ -28,6 +29,8 @@ struct RasterOptions {
   // When it becomes true (a signal handler), render() draws no further VPL passes and returns
   // what the passes so far accumulated.
   const std::atomic<bool>* cancel = nullptr;
+  // Where the driver's KHR_debug messages go (nullptr: nowhere).
+  std::function<void(const std::string&)> gl_messages = nullptr;
 };
 
 // The shadow cube resolution used for an image: `requested` if positive, else a quarter of the

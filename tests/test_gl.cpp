@@ -58,6 +58,19 @@ TEST(Gl, OsMesaAndEglGiveTheSameImage) {
   EXPECT_LT(m.max_abs_error, 1e-6);
 }
 
+// KHR_debug messages reach the sink the renderer gives (the log), one line each.
+TEST(Gl, DebugMessagesAreRouted) {
+  const auto context = gl::create_osmesa_context();
+  std::vector<std::string> messages;
+  context->route_debug_messages([&](const std::string& m) { messages.push_back(m); });
+  if (!context->api().KHR_debug) GTEST_SKIP() << "no KHR_debug on " << context->renderer();
+  context->api().BindTexture(GL_TEXTURE_2D, 123456u); // not a texture name: an error
+  ASSERT_FALSE(messages.empty());
+  EXPECT_NE(messages.front().find("OpenGL error"), std::string::npos) << messages.front();
+  EXPECT_EQ(messages.front().find('\n'), std::string::npos);
+  EXPECT_THROW(context->check("after a bad bind"), Error);
+}
+
 TEST(Gl, CompileErrorIsOneLineNamingTheShader) {
   const auto context = gl::create_osmesa_context();
   const std::string m = message_of([&] {
