@@ -191,8 +191,8 @@ std::vector<BenchRow> run_bench(const BenchOptions& o, Log& log) {
   for (const std::string& name : names) {
     const BenchScene b = make_scene(name, o, sw, log);
     bench_scene(b, sw, o, rows, log);
+    write_bench_csv(rows, o.out_dir + "/bench.csv"); // after every scene: a long run keeps its rows
   }
-  write_bench_csv(rows, o.out_dir + "/bench.csv");
   if (o.plots) write_bench_plots(rows, o.out_dir, log);
   if (o.scale) run_scale_study(o, log);
   return rows;
