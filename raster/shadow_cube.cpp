@@ -58,7 +58,7 @@ ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& b
       program_(api, "shadow", shaders::shadow_vertex, shaders::shadow_fragment),
       u_face_view_projection_(program_.uniform("u_face_view_projection")),
       u_vpl_position_(program_.uniform("u_vpl_position")), cube_(make_texture(api)),
-      depth_(make_renderbuffer(api)), fbo_(make_framebuffer(api)) {
+      depth_(make_renderbuffer(api)) {
   api.BindTexture(GL_TEXTURE_CUBE_MAP, cube_.get());
   for (int f = 0; f < 6; ++f)
     api.TexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_R32F, resolution,
@@ -70,11 +70,15 @@ ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& b
   api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
   api.BindRenderbuffer(GL_RENDERBUFFER, depth_.get());
   api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, resolution, resolution);
-  api.BindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
-  api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.get());
-  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_CUBE_MAP_POSITIVE_X,
-                           cube_.get(), 0);
-  check_framebuffer(api, "shadow cube framebuffer");
+  for (int f = 0; f < 6; ++f) {
+    fbos_[f] = make_framebuffer(api);
+    api.BindFramebuffer(GL_FRAMEBUFFER, fbos_[f].get());
+    api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.get());
+    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                             static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), cube_.get(),
+                             0);
+    check_framebuffer(api, "shadow cube framebuffer");
+  }
 }
 
 glm::mat3 ShadowCube::render(const Vpl& vpl, const GpuScene& scene) {
@@ -91,7 +95,6 @@ glm::mat3 ShadowCube::render(const Vpl& vpl, const GpuScene& scene) {
   const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, near, far);
   const glm::mat4 to_frame = glm::mat4(frame) * glm::translate(glm::mat4(1.0f), -vpl.position);
 
-  api_->BindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
   api_->Viewport(0, 0, resolution_, resolution_);
   api_->Enable(GL_DEPTH_TEST);
   api_->DepthFunc(GL_LESS);
@@ -103,9 +106,7 @@ glm::mat3 ShadowCube::render(const Vpl& vpl, const GpuScene& scene) {
   const bool hemisphere = vpl.kind == VplKind::Surface;
   for (int f = 0; f < 6; ++f) {
     if (f == negative_z_face && hemisphere) continue;
-    api_->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
-                               static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), cube_.get(),
-                               0);
+    api_->BindFramebuffer(GL_FRAMEBUFFER, fbos_[f].get());
     // A side face of a hemisphere cube is needed only on its +z half (plus one texel).
     const bool half = hemisphere && f < 4;
     if (half) {

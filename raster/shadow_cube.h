@@ -7,6 +7,7 @@
 #include "raster/gpu_scene.h"
 #include "raster/shader_program.h"
 
+#include <array>
 #include <glm/glm.hpp>
 
 namespace irad::gl {
@@ -33,7 +34,7 @@ private:
   GLint u_vpl_position_;
   Texture cube_;
   Renderbuffer depth_;
-  Framebuffer fbo_;
+  std::array<Framebuffer, 6> fbos_; // one per face, built once: no re-attachment per VPL
 };
 
 } // namespace irad::gl
