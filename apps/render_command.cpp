@@ -106,13 +106,6 @@ Estimator parse_estimator(const std::string& name) {
   return Estimator::Raster;
 }
 
-// Every output must be writable before any work starts: known type, existing folder.
-void check_folder(const std::string& path, const char* option) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  if (!parent.empty() && !std::filesystem::is_directory(parent))
-    throw Error(path, option, fmt::format("output folder '{}' does not exist", parent.string()));
-}
-
 nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
   nlohmann::json seconds = {{"load", r.seconds.load}, {"total", r.seconds.total}};
   if (args.estimator == "pt") {
@@ -228,16 +221,16 @@ int run_render(const RenderArgs& args) {
   request.limits.max_file_bytes = args.max_file_mib << 20;
   request.limits.max_texture_size = args.max_texture_size;
   if (args.max_triangles < 1) throw Error("", "--max-triangles", "must be at least 1");
-  if (args.max_file_mib < 1 || args.max_file_mib > (std::uint64_t(1) << 20))
-    throw Error("", "--max-file-size", "must lie in [1, 1048576] MiB");
+  if (args.max_file_mib < 1 || args.max_file_mib > 4095)
+    throw Error("", "--max-file-size", "must lie in [1, 4095] MiB");
   if (args.max_texture_size < 1) throw Error("", "--max-texture-size", "must be at least 1");
   if (args.paths == 0) throw Error("", "--paths", "must be at least 1");
   if (args.spp == 0) throw Error("", "--spp", "must be at least 1");
   for (const std::string& o : args.outputs) {
     image_format_of(o);
-    check_folder(o, "-o");
+    require_writable(o, "-o");
   }
-  if (!args.stats.empty()) check_folder(args.stats, "--stats");
+  if (!args.stats.empty()) require_writable(args.stats, "--stats");
 
   const InterruptHandler interrupt_handler;
   request.cancel = &g_interrupted;

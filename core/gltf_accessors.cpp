@@ -152,6 +152,10 @@ void apply_sparse(const Context& ctx, const tinygltf::Accessor& a, const std::st
       ctx.fail(name, "sparse index " + std::to_string(target) + " out of range (count " +
                          std::to_string(e.count) + ")");
     }
+    if (j > 0 && target <= read_index(indices + (j - 1) * isize, s.indices.componentType)) {
+      ctx.fail(name, "sparse indices must increase strictly (overlapping substitutions at " +
+                         std::to_string(target) + ")");
+    }
     std::memcpy(&e.dense[target * e.size], values + j * e.size, e.size);
   }
 }
@@ -165,6 +169,10 @@ Elements elements(const Context& ctx, int index, const std::string& use) {
   e.size = component_size(a.componentType) * component_count(a.type);
   if (e.size == 0) ctx.fail(name, "unsupported componentType or type");
   if (a.count < 1) ctx.fail(name, "count must be >= 1");
+  if (a.count > 3 * ctx.limits.max_triangles) {
+    ctx.fail(name, "count " + std::to_string(a.count) + " is over the limit of 3 x " +
+                       std::to_string(ctx.limits.max_triangles) + " elements (--max-triangles)");
+  }
   e.count = a.count;
   if (a.bufferView >= 0) attach_view(ctx, a, name, e);
   if (a.bufferView < 0 || a.sparse.isSparse) densify(ctx, name, e);
@@ -172,9 +180,11 @@ Elements elements(const Context& ctx, int index, const std::string& use) {
   return e;
 }
 
-// Fails unless accessor `index` has the given type and one of the allowed component types.
+// Fails unless accessor `index` exists and has the given type and one of the allowed component
+// types (checked before its data: the type decides the element size).
 void require_layout(const Context& ctx, int index, const std::string& use, int type,
                     std::initializer_list<int> component_types, const std::string& expected) {
+  checked_index(ctx, index, ctx.model.accessors.size(), use, "accessor");
   const tinygltf::Accessor& a = ctx.model.accessors[std::size_t(index)];
   bool ok = a.type == type;
   bool component_ok = false;
@@ -201,8 +211,8 @@ float read_unorm(const unsigned char* p, int component_type) {
 } // namespace
 
 std::vector<glm::vec3> read_vec3(const Context& ctx, int accessor, const std::string& use) {
-  const Elements e = elements(ctx, accessor, use);
   require_layout(ctx, accessor, use, TINYGLTF_TYPE_VEC3, {kFloat}, "a float VEC3 accessor");
+  const Elements e = elements(ctx, accessor, use);
   std::vector<glm::vec3> out(e.count);
   for (std::size_t i = 0; i < e.count; ++i) {
     const unsigned char* p = e.at(i);
@@ -212,7 +222,6 @@ std::vector<glm::vec3> read_vec3(const Context& ctx, int accessor, const std::st
 }
 
 std::vector<glm::vec2> read_texcoords(const Context& ctx, int accessor, const std::string& use) {
-  const Elements e = elements(ctx, accessor, use);
   const std::string expected = "a VEC2 accessor of floats or normalized unsigned bytes/shorts";
   require_layout(ctx, accessor, use, TINYGLTF_TYPE_VEC2, {kFloat, kUnsignedByte, kUnsignedShort},
                  expected);
@@ -221,6 +230,7 @@ std::vector<glm::vec2> read_texcoords(const Context& ctx, int accessor, const st
     ctx.fail(element("accessors", std::size_t(accessor)),
              "used as " + use + ", must be " + expected);
   }
+  const Elements e = elements(ctx, accessor, use);
   const std::size_t c = component_size(a.componentType);
   std::vector<glm::vec2> out(e.count);
   for (std::size_t i = 0; i < e.count; ++i) {
@@ -233,10 +243,10 @@ std::vector<glm::vec2> read_texcoords(const Context& ctx, int accessor, const st
 }
 
 std::vector<std::uint32_t> read_indices(const Context& ctx, int accessor, const std::string& use) {
-  const Elements e = elements(ctx, accessor, use);
   require_layout(ctx, accessor, use, TINYGLTF_TYPE_SCALAR,
                  {kUnsignedByte, kUnsignedShort, kUnsignedInt},
                  "a SCALAR accessor of unsigned bytes, shorts or ints");
+  const Elements e = elements(ctx, accessor, use);
   const int type = ctx.model.accessors[std::size_t(accessor)].componentType;
   std::vector<std::uint32_t> out(e.count);
   for (std::size_t i = 0; i < e.count; ++i) out[i] = read_index(e.at(i), type);

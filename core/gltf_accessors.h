@@ -3,7 +3,8 @@
 // Every accessor is validated before a byte is read: its bufferView and buffer indices, the
 // bufferView's range within the buffer's data, byteStride >= element size, and
 // byteOffset + stride (count - 1) + element size <= bufferView.byteLength. Sparse accessors are
-// supported (densified; sparse indices must lie below count). Errors name "accessors[N]",
+// supported (densified; sparse indices must increase strictly and lie below count). count may
+// not exceed 3 x limits.max_triangles. Errors name "accessors[N]",
 // "bufferViews[N]", or `use` (the referring element) for a bad accessor index.
 #include "core/gltf_context.h"
 

@@ -2,6 +2,7 @@
 // Internal to the glTF loader (not part of irad's API): the parsed tinygltf model with the file
 // name for messages and the logger, plus index checking shared by the loader's parts.
 #include "core/error.h"
+#include "core/gltf_loader.h"
 #include "core/log.h"
 
 #include <cstddef>
@@ -14,6 +15,7 @@ struct Context {
   const tinygltf::Model& model;
   std::string file; // as given by the caller; the prefix of every message
   Log& log;
+  const LoadLimits& limits;
 
   // Throws Error("FILE", element, message).
   [[noreturn]] void fail(const std::string& element, const std::string& message) const {

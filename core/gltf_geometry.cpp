@@ -28,11 +28,6 @@ Attributes read_attributes(const Context& ctx, const tinygltf::Primitive& p,
   const int position = attribute(p, "POSITION");
   if (position < 0) ctx.fail(where, "has no POSITION attribute");
   a.positions = read_vec3(ctx, position, where + ".attributes.POSITION");
-  for (const glm::vec3& v : a.positions) {
-    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) {
-      ctx.fail(element("accessors", std::size_t(position)), "non-finite vertex position");
-    }
-  }
   const std::size_t n = a.positions.size();
   if (const int normal = attribute(p, "NORMAL"); normal >= 0) {
     a.normals = read_vec3(ctx, normal, where + ".attributes.NORMAL");
@@ -125,6 +120,42 @@ std::uint32_t push_vertex(const Context& ctx, const Attributes& a, std::size_t v
   return std::uint32_t(soup.positions.size() - 1);
 }
 
+// Triangles an index list of n entries gives in `mode` (TRIANGLES, TRIANGLE_STRIP or _FAN).
+std::uint64_t triangle_count(int mode, std::size_t n) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) return n / 3;
+  return n >= 3 ? n - 2 : 0;
+}
+
+void check_triangle_limit(const Context& ctx, std::uint64_t more, const Soup& soup,
+                          const std::string& where) {
+  const std::uint64_t total = soup.triangles.size() + more;
+  if (total > ctx.limits.max_triangles) {
+    ctx.fail(where, "the scene would have " + std::to_string(total) +
+                        " triangles, over the limit of " +
+                        std::to_string(ctx.limits.max_triangles) + " (--max-triangles)");
+  }
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// The triangles whose three placed vertices are finite; the others are counted in the soup (one
+// warning for the file, from finish_geometry).
+std::vector<glm::uvec3> drop_non_finite(std::vector<glm::uvec3> triangles, const Attributes& a,
+                                        const Placement& pl, const std::string& where, Soup& soup) {
+  std::vector<char> ok(a.positions.size());
+  for (std::size_t v = 0; v < ok.size(); ++v) ok[v] = finite(place_point(pl, a.positions[v]));
+  std::size_t kept = 0;
+  for (const glm::uvec3& t : triangles) {
+    if (ok[t.x] && ok[t.y] && ok[t.z]) triangles[kept++] = t;
+  }
+  if (kept < triangles.size() && soup.non_finite_dropped == 0) soup.non_finite_where = where;
+  soup.non_finite_dropped += triangles.size() - kept;
+  triangles.resize(kept);
+  return triangles;
+}
+
 void push_triangle(glm::uvec3 t, bool flip, std::uint32_t material, Soup& soup) {
   soup.triangles.push_back(flip ? glm::uvec3(t.x, t.z, t.y) : t);
   soup.triangle_material.push_back(material);
@@ -144,9 +175,17 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
     ctx.fail(where, "invalid mode " + std::to_string(p.mode));
   }
   const Attributes a = read_attributes(ctx, p, where);
-  const std::vector<glm::uvec3> local =
-      assemble(ctx, p.mode, read_vertex_indices(ctx, p, a.positions.size(), where), where);
+  const std::vector<std::uint32_t> indices = read_vertex_indices(ctx, p, a.positions.size(), where);
+  check_triangle_limit(ctx, triangle_count(p.mode, indices.size()), soup, where);
   const Placement pl = placement(world);
+  const std::vector<glm::uvec3> local =
+      drop_non_finite(assemble(ctx, p.mode, indices, where), a, pl, where, soup);
+  const std::uint64_t vertices = a.normals.empty() ? 3 * local.size() : a.positions.size();
+  if (soup.positions.size() + vertices > 3 * ctx.limits.max_triangles) {
+    ctx.fail(where, "the scene would have " + std::to_string(soup.positions.size() + vertices) +
+                        " vertices, over the limit of 3 x " +
+                        std::to_string(ctx.limits.max_triangles) + " (--max-triangles)");
+  }
   soup.has_uvs = soup.has_uvs || !a.uvs.empty();
   if (!a.normals.empty()) {
     const std::uint32_t base = push_vertex(ctx, a, 0, pl, soup);
@@ -229,6 +268,11 @@ void compact(Soup& s) {
 } // namespace
 
 void finish_geometry(const Context& ctx, Soup soup, Scene& scene) {
+  if (soup.non_finite_dropped > 0) {
+    ctx.warn(std::to_string(soup.non_finite_dropped) +
+             " triangle(s) with a NaN or Inf vertex position dropped (the first in " +
+             soup.non_finite_where + ")");
+  }
   if (const std::size_t dropped = drop_degenerate(soup); dropped > 0) {
     ctx.warn(std::to_string(dropped) + " degenerate (zero-area) triangles dropped");
   }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 namespace irad::gltf {
@@ -17,6 +18,8 @@ struct Soup {
   bool has_uvs = false;           // some primitive had TEXCOORD_0
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint32_t> triangle_material;
+  std::size_t non_finite_dropped = 0; // triangles with a NaN or Inf (placed) vertex position
+  std::string non_finite_where;       // the primitive of the first of them
 };
 
 // Appends meshes[mesh].primitives[primitive] placed by `world`, all its triangles getting scene
@@ -27,12 +30,15 @@ struct Soup {
 // inverse. When det A < 0 the winding is reversed, so cross(p1 - p0, p2 - p0) keeps pointing to
 // the side N n points to (cross(Aa, Ab) = cofactor(A) cross(a, b)). Without NORMAL the primitive
 // is de-indexed (three vertices per triangle) and its normals are left for finish_geometry.
-// Fails on missing POSITION, non-finite positions, mismatched attribute counts and index values
-// >= the vertex count.
+// Triangles with a vertex whose placed position is NaN or Inf are dropped (counted in the soup;
+// finish_geometry warns once). Fails on missing POSITION, mismatched attribute counts, index
+// values >= the vertex count, and triangles or vertices beyond ctx.limits (3 vertices per allowed
+// triangle), before allocating them.
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
                       const glm::dmat4& world, std::uint32_t material, Soup& soup);
 
 // Moves the soup into scene (positions, normals, uvs, triangles, triangle_material, bounds):
+// warns once when triangles with non-finite positions were dropped,
 // drops triangles with a repeated vertex or with area <= 1e-12 diagonal^2 (one warning with the
 // count), gives each vertex without a usable normal the geometric normal of the first triangle
 // that uses it, and drops vertices no triangle uses. uvs stay empty unless soup.has_uvs.

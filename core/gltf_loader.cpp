@@ -2,6 +2,7 @@
 
 #include "core/gltf_cameras_lights.h"
 #include "core/gltf_context.h"
+#include "core/gltf_file.h"
 #include "core/gltf_geometry.h"
 #include "core/gltf_materials.h"
 #include "core/gltf_nodes.h"
@@ -14,6 +15,7 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <stb_image.h>
 #include <string_view>
 #include <system_error>
 
@@ -50,50 +52,88 @@ std::string one_line(const std::string& text) {
   return out;
 }
 
-// Whether the file is binary glTF: it starts with the "glTF" magic, or its extension is .glb.
-// Throws Error(file, "", "cannot open file: <reason>") when it cannot be read.
-bool is_binary(const std::filesystem::path& path, const std::string& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw Error(file, "", "cannot open file: is a directory");
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(file, "", "cannot open file: " + std::generic_category().message(errno));
-  char magic[4] = {};
-  in.read(magic, sizeof magic);
-  if (in.gcount() == 4 && std::memcmp(magic, "glTF", 4) == 0) return true;
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  return extension == ".glb";
-}
+// State of one tinygltf load, shared with its callbacks.
+struct LoadState {
+  const tinygltf::Model* model;
+  const std::string* file;
+  const LoadLimits* limits;
+  std::uint64_t texels = 0; // decoded so far, all images
+};
 
-// tinygltf image callback (user data: the model being loaded). tinygltf 2.7 hands an image's
-// bufferView bytes to the decoder without checking that the view lies within its buffer; this
-// checks it first, then delegates to tinygltf's stb_image decoder (which expands to RGBA).
-bool load_image(tinygltf::Image* image, int index, std::string* err, std::string* warn, int width,
+// tinygltf image callback. tinygltf 2.7 hands an image's bufferView bytes to the decoder without
+// checking that the view lies within its buffer; this checks it, checks that the bytes are a PNG
+// or JPEG within the texture limits, then delegates to tinygltf's stb_image decoder (which
+// expands to RGBA).
+bool load_image(tinygltf::Image* image, int index, std::string*, std::string* warn, int width,
                 int height, const unsigned char* bytes, int size, void* user) {
-  const auto* model = static_cast<const tinygltf::Model*>(user);
+  auto& state = *static_cast<LoadState*>(user);
+  const std::string where = gltf::element("images", std::size_t(index));
   if (image->bufferView >= 0) {
-    const tinygltf::BufferView& view = model->bufferViews[std::size_t(image->bufferView)];
-    const std::size_t available = model->buffers[std::size_t(view.buffer)].data.size();
+    const auto& model = *state.model;
+    const std::size_t v = std::size_t(image->bufferView);
+    const std::size_t b = std::size_t(model.bufferViews[v].buffer);
+    if (b >= model.buffers.size()) {
+      throw Error(*state.file, gltf::element("bufferViews", v),
+                  "buffer index " + std::to_string(b) + " out of range (" +
+                      std::to_string(model.buffers.size()) + " available)");
+    }
+    const tinygltf::BufferView& view = model.bufferViews[v];
+    const std::size_t available = model.buffers[b].data.size();
     if (view.byteLength > available || view.byteOffset > available - view.byteLength) {
-      *err += "images[" + std::to_string(index) + "]: bufferView exceeds its buffer\n";
-      return false;
+      throw Error(*state.file, where, "bufferView exceeds its buffer");
     }
   }
-  return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
+  gltf::check_image_bytes(*state.file, where, bytes, std::size_t(size), *state.limits,
+                          state.texels);
+  std::string decode_error;
+  if (!tinygltf::LoadImageData(image, index, &decode_error, warn, width, height, bytes, size,
+                               nullptr)) {
+    const char* reason = stbi_failure_reason();
+    throw Error(*state.file, where,
+                std::string("the image does not decode") +
+                    (reason ? std::string(" (stb_image: ") + reason + ")" : ""));
+  }
+  return true;
 }
 
-tinygltf::Model parse(const std::filesystem::path& path, const std::string& file, Log& log) {
-  const bool binary = is_binary(path, file);
+// tinygltf's file access: only external files read_scene_file() has checked are looked up, and
+// none is read beyond the size limit.
+bool file_exists(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec);
+}
+std::string expand_path(const std::string& path, void*) {
+  return path;
+}
+bool read_whole_file(std::vector<unsigned char>* out, std::string*, const std::string& path,
+                     void* user) {
+  const auto& state = *static_cast<const LoadState*>(user);
+  *out = gltf::read_file_limited(path, state.limits->max_file_bytes, *state.file, path);
+  return true;
+}
+bool write_whole_file(std::string* err, const std::string&, const std::vector<unsigned char>&,
+                      void*) {
+  *err = "irad does not write through tinygltf";
+  return false;
+}
+
+tinygltf::Model parse(const std::filesystem::path& path, const std::string& file,
+                      const LoadLimits& limits, Log& log) {
+  const gltf::SceneFile f = gltf::read_scene_file(path, file, limits);
   tinygltf::Model model;
+  LoadState state{&model, &file, &limits};
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&load_image, &model);
+  loader.SetImageLoader(&load_image, &state);
+  loader.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &write_whole_file, &state});
   std::string err;
   std::string warn;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+  const std::string base_dir = path.parent_path().string();
+  const bool ok =
+      f.binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, f.bytes.data(),
+                                             static_cast<unsigned int>(f.bytes.size()), base_dir)
+               : loader.LoadASCIIFromString(&model, &err, &warn,
+                                            reinterpret_cast<const char*>(f.bytes.data()),
+                                            static_cast<unsigned int>(f.bytes.size()), base_dir);
   if (!one_line(warn).empty()) log.warn(file + ": " + one_line(warn));
   if (!ok || !one_line(err).empty()) {
     throw Error(file, "", err.empty() ? "tinygltf could not load the file" : one_line(err));
@@ -186,10 +226,10 @@ private:
 
 } // namespace
 
-Scene load_gltf(const std::filesystem::path& path, Log& log) {
+Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& limits) {
   const std::string file = path.string();
-  const tinygltf::Model model = parse(path, file, log);
-  const Context ctx{model, file, log};
+  const tinygltf::Model model = parse(path, file, limits, log);
+  const Context ctx{model, file, log, limits};
   check_asset(ctx);
   check_extensions(ctx);
 

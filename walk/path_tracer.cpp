@@ -159,6 +159,7 @@ Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
   const std::uint64_t seed = mix64(options.seed);
   auto row = [&](int y) {
     for (int x = 0; x < view.width; ++x) {
+      if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
       const glm::vec3 dir = pixel_direction(view, x, y);
       const std::uint64_t pixel = static_cast<std::uint64_t>(y) * view.width + x;
       glm::dvec3 sum(0.0);

@@ -11,6 +11,7 @@
 #include "core/view.h"
 #include "walk/ray_scene.h"
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 
@@ -21,6 +22,9 @@ struct PathTracerOptions {
   std::uint64_t seed = 0;
   unsigned threads = 0; // 0: hardware concurrency
   int max_depth = 1000; // bounces (Russian roulette ends paths long before)
+  // When it becomes true (a signal handler), no further pixel is started: those left are 0,
+  // alpha included.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 Image path_trace(const Scene& scene, const RayScene& rays, const View& view,

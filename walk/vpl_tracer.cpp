@@ -12,6 +12,7 @@ Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, con
   const float eps = rays.epsilon();
   parallel_rows(view.height, options.threads, [&](int y) {
     for (int x = 0; x < view.width; ++x) {
+      if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
       const glm::vec3 dir = pixel_direction(view, x, y);
       glm::vec3 c(0.0f);
       if (const auto hit = rays.intersect(view.eye, dir, view.znear, 2.0f * view.zfar)) {

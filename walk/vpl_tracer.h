@@ -9,11 +9,16 @@
 #include "core/vpl.h"
 #include "walk/ray_scene.h"
 
+#include <atomic>
+
 namespace irad {
 
 struct VplTracerOptions {
   float clamp = 0.05f;  // d_min as a fraction of the bounding diagonal (as RasterOptions::clamp)
   unsigned threads = 0; // 0: hardware concurrency
+  // When it becomes true (a signal handler), no further pixel is started: those left are 0,
+  // alpha included.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, const VplSet& vpls,
