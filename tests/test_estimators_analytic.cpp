@@ -67,7 +67,13 @@ TEST_P(EstimatorsAnalytic, IntegratingSphere) {
 
 INSTANTIATE_TEST_SUITE_P(AllVplEstimators, EstimatorsAnalytic,
                          ::testing::Values(Estimator::RasterReference, Estimator::RasterInterleaved,
-                                           Estimator::RtVpl));
+                                           Estimator::RtVpl),
+                         [](const ::testing::TestParamInfo<Estimator>& info) {
+                           return std::string(info.param == Estimator::RasterReference ? "RasterK1"
+                                              : info.param == Estimator::RasterInterleaved
+                                                  ? "RasterK4"
+                                                  : "RtVpl");
+                         });
 
 // rt-vpl against Lambert's formula (direct light only: the light's albedo is 0).
 TEST(RtVplAnalytic, SquareLightOverPlaneMatchesLambert) {
