@@ -68,9 +68,9 @@ TEST_P(EstimatorsAnalytic, IntegratingSphere) {
 INSTANTIATE_TEST_SUITE_P(AllVplEstimators, EstimatorsAnalytic,
                          ::testing::Values(Estimator::RasterReference, Estimator::RasterInterleaved,
                                            Estimator::RtVpl),
-                         [](const ::testing::TestParamInfo<Estimator>& info) {
-                           return std::string(info.param == Estimator::RasterReference ? "RasterK1"
-                                              : info.param == Estimator::RasterInterleaved
+                         [](const ::testing::TestParamInfo<Estimator>& param) {
+                           return std::string(param.param == Estimator::RasterReference ? "RasterK1"
+                                              : param.param == Estimator::RasterInterleaved
                                                   ? "RasterK4"
                                                   : "RtVpl");
                          });
