@@ -139,7 +139,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"depth_capped", r.vpls.depth_capped},
           {"size", {r.view.width, r.view.height}},
           {"triangles", r.scene.triangle_count()},
-          {"shadow_res", shadow_resolution_for(args.shadow_res, r.view)},
+          {"shadow_res", shadow_resolution_for(args.shadow_res, r.view.width, r.view.height)},
           {"interleave", args.interleave},
           {"clamp", args.clamp},
           {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},

@@ -41,13 +41,13 @@ int set_of(std::uint32_t path, int sets) {
 
 } // namespace
 
-int shadow_resolution_for(int requested, const View& view) {
+int shadow_resolution_for(int requested, int width, int height) {
   if (requested > 0) return requested;
   // A cube face spans 90 degrees; a quarter of the image's larger side per face edge (rounded up
   // to a power of two, 64..1024) kept the shadow-map error of the Cornell box 20x below its total
   // error at 256x256 (relMSE 2.5e-4 against 5.3e-3, docs/accuracy.md).
   int r = 64;
-  while (r < 1024 && r < std::max(view.width, view.height) / 4) r *= 2;
+  while (r < 1024 && r < std::max(width, height) / 4) r *= 2;
   return r;
 }
 
@@ -80,7 +80,7 @@ void RasterRenderer::Impl::prepare(const View& view) {
     interleaved.reset();
     target = std::make_unique<gl::Target>(api, view.width, view.height);
   }
-  const int resolution = shadow_resolution_for(options.shadow_resolution, view);
+  const int resolution = shadow_resolution_for(options.shadow_resolution, view.width, view.height);
   if (!shadow || shadow->resolution() != resolution)
     shadow = std::make_unique<gl::ShadowCube>(api, resolution, scene.bounds);
   if (options.interleave > 1 && !interleaved)

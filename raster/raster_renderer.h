@@ -35,7 +35,7 @@ struct RasterOptions {
 
 // The shadow cube resolution used for an image: `requested` if positive, else a quarter of the
 // image's larger side rounded up to a power of two, between 64 and 1024.
-int shadow_resolution_for(int requested, const View& view);
+int shadow_resolution_for(int requested, int width, int height);
 
 struct RasterTimings {
   double passes_seconds = 0.0; // wall clock: shadow maps, shading passes and emitters

@@ -51,11 +51,7 @@ struct RingRenderer::Impl {
 
   Impl(const Scene& s, const RingOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
-        shadow(api,
-               shadow_resolution_for(o.raster.shadow_resolution,
-                                     View{glm::mat4(1.0f), glm::mat4(1.0f), glm::vec3(0.0f),
-                                          o.width, o.height, 0.0f, 0.0f}),
-               s.bounds),
+        shadow(api, shadow_resolution_for(o.raster.shadow_resolution, o.width, o.height), s.bounds),
         camera(api), vpl_shader(api, s, o.raster.clamp), target(api, o.width, o.height),
         filled(o.paths, false), sum(gl::make_float_texture(api, o.width, o.height)),
         slot_fbo(gl::make_framebuffer(api)), sum_fbo(gl::make_framebuffer(api)),
