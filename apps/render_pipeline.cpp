@@ -1,5 +1,7 @@
 #include "apps/render_pipeline.h"
 
+#include "core/animation.h"
+
 #include "core/error.h"
 #include "core/gltf_loader.h"
 #include "walk/bias_compensation.h"
@@ -103,6 +105,15 @@ void compensate(const RenderRequest& request, const RayScene& rays, RenderResult
   r.seconds.compensation = since(t0);
 }
 
+void pose_at(Scene& scene, float time, Log& log) {
+  if (!std::isfinite(time)) throw Error("", "--time", "must be a finite number of seconds");
+  if (!scene.animation) {
+    log.warn(scene.source + ": the scene has no animation; --time is ignored");
+    return;
+  }
+  scene.animation->pose(time, scene);
+}
+
 } // namespace
 
 RenderResult render_scene(const RenderRequest& request, Log& log) {
@@ -113,6 +124,7 @@ RenderResult render_scene(const RenderRequest& request, Log& log) {
   };
   const auto t0 = Clock::now();
   r.scene = load_gltf(request.scene_path, log, request.limits);
+  if (request.time) pose_at(r.scene, *request.time, log);
   r.camera = select_camera(r.scene, request.camera);
   const auto [width, height] = image_size(r.camera, request.size);
   r.view = make_view(r.camera, r.scene.bounds, width, height);

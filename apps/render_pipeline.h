@@ -25,6 +25,7 @@ struct RenderRequest {
   std::string scene_path;
   std::optional<std::pair<int, int>> size; // WxH; default from the camera's aspect, 512 high
   std::string camera;                      // name or index; empty: the first camera
+  std::optional<float> time; // seconds: pose the scene's glTF animation (else the rest pose)
   WalkOptions walk;
   RasterOptions raster;           // clamp and shadow resolution (clamp also for rt-vpl)
   PathTracerOptions pt;           // spp, seed, threads

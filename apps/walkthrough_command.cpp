@@ -1,23 +1,24 @@
 // irad walkthrough SCENE -o frames/%04d.png: real-time instant radiosity frame by frame (seed
 // section 5.1.3), written headlessly. Modes: ring (each frame traces one new path into a ring of
-// the N most recent path images; path images keep the camera they were drawn with) and reshade
-// (each frame replaces one path's VPLs and re-shades all of them from the current camera).
-// The camera can orbit the scene (--orbit degrees per second) to show camera motion.
+// the N most recent path images; path images keep the camera they were drawn with), reshade
+// (everything redrawn every frame)
+// and cached (each frame replaces one path's VPLs and their shadow maps and re-shades all of
+// them from the current camera), see apps/walkthrough_engine.h. glTF animations play at
+// t = frame / fps; the camera can also orbit the scene (--orbit degrees per second).
 #include "apps/commands.h"
 #include "apps/options.h"
 #include "apps/render_pipeline.h"
+#include "apps/walkthrough_engine.h"
 #include "core/error.h"
 #include "core/gltf_loader.h"
 #include "core/image_io.h"
-#include "raster/ring_renderer.h"
-#include "walk/quasi_random_walk.h"
 
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
-#include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <tuple>
 #include <unistd.h>
 
 namespace irad::apps {
@@ -57,15 +58,15 @@ void check_pattern(const std::string& pattern) {
   require_writable(frame_path(pattern, 0), "-o");
 }
 
-// The camera turned about the vertical axis through the bounds' centre.
-Camera orbit_camera(const Camera& c, const Bounds& b, float degrees) {
-  Camera moved = c;
-  const glm::vec3 centre = b.center();
-  const glm::mat4 turn = glm::translate(glm::mat4(1.0f), centre) *
-                         glm::rotate(glm::mat4(1.0f), glm::radians(degrees), {0, 1, 0}) *
-                         glm::translate(glm::mat4(1.0f), -centre);
-  moved.camera_to_world = turn * c.camera_to_world;
-  return moved;
+void encode_video(const WalkthroughArgs& args, int first) {
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    std::printf("walkthrough: ffmpeg is not installed: no video; the frames are written\n");
+    return;
+  }
+  const std::string cmd = fmt::format(
+      "ffmpeg -loglevel error -y -framerate {} -start_number {} -i '{}' -pix_fmt yuv420p '{}'",
+      args.fps, first, args.output, args.video);
+  if (std::system(cmd.c_str()) != 0) throw Error(args.video, "--video", "ffmpeg failed");
 }
 
 int run_walkthrough(const WalkthroughArgs& args) {
@@ -73,59 +74,25 @@ int run_walkthrough(const WalkthroughArgs& args) {
   log.set_quiet(args.quiet);
   const auto [first, last] = parse_frames(args.frames);
   check_pattern(args.output);
-  if (!(args.fps > 0.0f)) throw Error("", "--fps", "must be positive");
-  const Scene scene = load_gltf(args.scene, log);
-  const Camera& camera = select_camera(scene, args.camera);
-  const auto [width, height] = parse_size_option(args.size);
-  const RayScene rays(scene);
-  const QuasiRandomWalk walk(scene, rays, {args.paths, 64}, log);
-  const std::uint32_t n = walk.header().paths;
-  const auto view_at = [&](int frame) {
-    const float seconds = static_cast<float>(frame) / args.fps;
-    return make_view(orbit_camera(camera, scene.bounds, args.orbit * seconds), scene.bounds, width,
-                     height);
-  };
-  RingOptions ring_options;
-  ring_options.paths = n;
-  ring_options.width = width;
-  ring_options.height = height;
-  ring_options.raster.backend = parse_backend(args.gl);
-  RasterOptions raster_options = ring_options.raster;
-  const bool ring_mode = args.mode == "ring";
-  std::unique_ptr<RingRenderer> ring;
-  std::unique_ptr<RasterRenderer> raster;
-  if (ring_mode)
-    ring = std::make_unique<RingRenderer>(scene, ring_options);
-  else
-    raster = std::make_unique<RasterRenderer>(scene, raster_options);
-  std::vector<std::vector<Vpl>> paths(n);
-  std::uint32_t next = 0; // the particle traced by the next frame
-  if (!args.no_warmup) {  // fill the ring before the first frame
-    const View v = view_at(first);
-    for (; next < n; ++next) {
-      walk.trace(next, paths[next]);
-      if (ring) ring->replace(next, paths[next], v);
-    }
-  }
+  Scene scene = load_gltf(args.scene, log);
+  const Camera& chosen = select_camera(scene, args.camera);
+  const std::size_t camera = static_cast<std::size_t>(&chosen - scene.cameras.data());
+  WalkthroughSettings settings;
+  settings.mode = parse_walk_mode(args.mode);
+  settings.paths = args.paths;
+  std::tie(settings.width, settings.height) = parse_size_option(args.size);
+  settings.fps = args.fps;
+  settings.orbit = args.orbit;
+  settings.backend = parse_backend(args.gl);
+  Walkthrough walk(scene, camera, settings, log);
+  if (!args.no_warmup) walk.warm_up(first); // the first frame shows N paths
   using Clock = std::chrono::steady_clock;
   double render_seconds = 0.0;
   const auto t_all = Clock::now();
   const bool progress = !args.quiet && isatty(STDERR_FILENO);
-  for (int f = first; f < last; ++f, ++next) {
+  for (int f = first; f < last; ++f) {
     const auto t0 = Clock::now();
-    const View v = view_at(f);
-    const std::uint32_t i = next % n;
-    paths[i].clear();
-    walk.trace(i, paths[i]); // one new path per frame, with the current scene
-    Image image;
-    if (ring) {
-      ring->replace(i, paths[i], v);
-      image = ring->frame(v);
-    } else {
-      VplSet all = walk.header();
-      for (const auto& p : paths) all.vpls.insert(all.vpls.end(), p.begin(), p.end());
-      image = raster->render(v, all);
-    }
+    const Image image = walk.frame(f);
     render_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     write_image(frame_path(args.output, f), image);
     if (progress) std::fprintf(stderr, "\rirad: frame %d/%d", f - first + 1, last - first);
@@ -133,20 +100,12 @@ int run_walkthrough(const WalkthroughArgs& args) {
   if (progress) std::fputs("\r\033[K", stderr);
   const int frames = last - first;
   const double total = std::chrono::duration<double>(Clock::now() - t_all).count();
-  std::printf("walkthrough: %d frames %dx%d, mode %s, N %u, l_max %d: %.1f frames/s rendering "
+  std::printf("walkthrough: %d frames %dx%d, mode %s, N %u, l_max %d%s: %.1f frames/s rendering "
               "(%.1f with image writing)\n",
-              frames, width, height, args.mode.c_str(), n, walk.header().l_max,
-              frames / render_seconds, frames / total);
-  if (!args.video.empty()) {
-    if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
-      std::printf("walkthrough: ffmpeg is not installed: no video; the frames are written\n");
-    } else {
-      const std::string cmd = fmt::format(
-          "ffmpeg -loglevel error -y -framerate {} -start_number {} -i '{}' -pix_fmt yuv420p '{}'",
-          args.fps, first, args.output, args.video);
-      if (std::system(cmd.c_str()) != 0) throw Error(args.video, "--video", "ffmpeg failed");
-    }
-  }
+              frames, settings.width, settings.height, args.mode.c_str(), walk.paths(),
+              walk.l_max(), scene.animation ? ", animated" : "", frames / render_seconds,
+              frames / total);
+  if (!args.video.empty()) encode_video(args, first);
   return 0;
 }
 
@@ -162,8 +121,10 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--fps", args->fps, "Frames per second of animation time")->capture_default_str();
   cmd->add_option("--paths", args->paths, "N: the ring holds the N most recent paths")
       ->capture_default_str();
-  cmd->add_option("--mode", args->mode, "ring (seed 5.1.3) or reshade (re-shade every VPL)")
-      ->check(CLI::IsMember({"ring", "reshade"}))
+  cmd->add_option("--mode", args->mode,
+                  "ring (seed 5.1.3: one image per path), cached (shadow maps kept, every path "
+                  "re-shaded from the current camera) or reshade (everything redrawn)")
+      ->check(CLI::IsMember({"ring", "cached", "reshade"}))
       ->capture_default_str();
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index");

@@ -1,5 +1,7 @@
 #include "core/gltf_accessors.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace irad::gltf {
@@ -208,6 +210,23 @@ float read_unorm(const unsigned char* p, int component_type) {
   return float(v) / 65535.0f;
 }
 
+// Normalized component (any glTF integer type, signed: max(c / (2^(bits-1) - 1), -1)) or float.
+float read_normalized(const unsigned char* p, int component_type) {
+  switch (component_type) {
+  case kFloat:
+    return read_float(p);
+  case TINYGLTF_COMPONENT_TYPE_BYTE:
+    return std::max(float(static_cast<std::int8_t>(*p)) / 127.0f, -1.0f);
+  case TINYGLTF_COMPONENT_TYPE_SHORT: {
+    std::int16_t v;
+    std::memcpy(&v, p, sizeof v);
+    return std::max(float(v) / 32767.0f, -1.0f);
+  }
+  default:
+    return read_unorm(p, component_type);
+  }
+}
+
 } // namespace
 
 std::vector<glm::vec3> read_vec3(const Context& ctx, int accessor, const std::string& use) {
@@ -238,6 +257,39 @@ std::vector<glm::vec2> read_texcoords(const Context& ctx, int accessor, const st
     out[i] = a.componentType == kFloat
                  ? glm::vec2(read_float(p), read_float(p + 4))
                  : glm::vec2(read_unorm(p, a.componentType), read_unorm(p + c, a.componentType));
+  }
+  return out;
+}
+
+std::vector<glm::vec4> read_animation_values(const Context& ctx, int accessor,
+                                             const std::string& use, int type) {
+  const bool vec4 = type == TINYGLTF_TYPE_VEC4;
+  const std::string expected = type == TINYGLTF_TYPE_SCALAR ? "a float SCALAR accessor"
+                               : vec4 ? "a VEC4 accessor of floats or normalized integers"
+                                      : "a float VEC3 accessor";
+  require_layout(ctx, accessor, use, type,
+                 vec4 ? std::initializer_list<int>{kFloat, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                                   kUnsignedByte, TINYGLTF_COMPONENT_TYPE_SHORT,
+                                                   kUnsignedShort}
+                      : std::initializer_list<int>{kFloat},
+                 expected);
+  const tinygltf::Accessor& a = ctx.model.accessors[std::size_t(accessor)];
+  if (a.componentType != kFloat && !a.normalized) {
+    ctx.fail(element("accessors", std::size_t(accessor)),
+             "used as " + use + ", must be " + expected);
+  }
+  const Elements e = elements(ctx, accessor, use);
+  const std::size_t c = component_size(a.componentType);
+  const std::size_t n = component_count(type);
+  std::vector<glm::vec4> out(e.count, glm::vec4(0.0f));
+  for (std::size_t i = 0; i < e.count; ++i) {
+    const unsigned char* p = e.at(i);
+    for (std::size_t k = 0; k < n; ++k) {
+      const float v = read_normalized(p + k * c, a.componentType);
+      if (!std::isfinite(v))
+        ctx.fail(element("accessors", std::size_t(accessor)), "non-finite value");
+      out[i][int(k)] = v;
+    }
   }
   return out;
 }

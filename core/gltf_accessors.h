@@ -18,6 +18,12 @@ namespace irad::gltf {
 std::vector<glm::vec3> read_vec3(const Context& ctx, int accessor, const std::string& use);
 // VEC2 accessor of floats or normalized unsigned bytes/shorts (TEXCOORD_0), as floats.
 std::vector<glm::vec2> read_texcoords(const Context& ctx, int accessor, const std::string& use);
+// Animation sampler data as vec4s (unused components 0): `type` TINYGLTF_TYPE_SCALAR (input
+// times) or VEC3 (translation, scale) of floats, or VEC4 (rotation) of floats or normalized
+// integers (signed c / (2^(bits-1) - 1) clamped to -1, unsigned c / (2^bits - 1)). Fails on
+// non-finite values.
+std::vector<glm::vec4> read_animation_values(const Context& ctx, int accessor,
+                                             const std::string& use, int type);
 // SCALAR accessor of unsigned bytes, shorts or ints (indices).
 std::vector<std::uint32_t> read_indices(const Context& ctx, int accessor, const std::string& use);
 

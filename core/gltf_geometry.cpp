@@ -257,17 +257,20 @@ void compact(Soup& s) {
     remap[v] = next;
     s.positions[next] = s.positions[v];
     s.normals[next] = s.normals[v];
+    if (!s.vertex_node.empty()) s.vertex_node[next] = s.vertex_node[v];
     s.uvs[next++] = s.uvs[v];
   }
   s.positions.resize(next);
   s.normals.resize(next);
   s.uvs.resize(next);
+  if (!s.vertex_node.empty()) s.vertex_node.resize(next);
   for (glm::uvec3& t : s.triangles) t = {remap[t.x], remap[t.y], remap[t.z]};
 }
 
 } // namespace
 
-void finish_geometry(const Context& ctx, Soup soup, Scene& scene) {
+void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
+                     std::vector<std::uint32_t>* vertex_node) {
   if (soup.non_finite_dropped > 0) {
     ctx.warn(std::to_string(soup.non_finite_dropped) +
              " triangle(s) with a NaN or Inf vertex position dropped (the first in " +
@@ -284,6 +287,7 @@ void finish_geometry(const Context& ctx, Soup soup, Scene& scene) {
   if (soup.has_uvs) scene.uvs = std::move(soup.uvs);
   scene.triangles = std::move(soup.triangles);
   scene.triangle_material = std::move(soup.triangle_material);
+  if (vertex_node) *vertex_node = std::move(soup.vertex_node);
 }
 
 } // namespace irad::gltf

@@ -18,8 +18,9 @@ struct Soup {
   bool has_uvs = false;           // some primitive had TEXCOORD_0
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint32_t> triangle_material;
-  std::size_t non_finite_dropped = 0; // triangles with a NaN or Inf (placed) vertex position
-  std::string non_finite_where;       // the primitive of the first of them
+  std::vector<std::uint32_t> vertex_node; // glTF node per vertex, kept only for animated files
+  std::size_t non_finite_dropped = 0;     // triangles with a NaN or Inf (placed) vertex position
+  std::string non_finite_where;           // the primitive of the first of them
 };
 
 // Appends meshes[mesh].primitives[primitive] placed by `world`, all its triangles getting scene
@@ -37,11 +38,13 @@ struct Soup {
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
                       const glm::dmat4& world, std::uint32_t material, Soup& soup);
 
-// Moves the soup into scene (positions, normals, uvs, triangles, triangle_material, bounds):
+// Moves the soup into scene (and soup.vertex_node, compacted like the vertices, into
+// *vertex_node when given) (positions, normals, uvs, triangles, triangle_material, bounds):
 // warns once when triangles with non-finite positions were dropped,
 // drops triangles with a repeated vertex or with area <= 1e-12 diagonal^2 (one warning with the
 // count), gives each vertex without a usable normal the geometric normal of the first triangle
 // that uses it, and drops vertices no triangle uses. uvs stay empty unless soup.has_uvs.
-void finish_geometry(const Context& ctx, Soup soup, Scene& scene);
+void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
+                     std::vector<std::uint32_t>* vertex_node = nullptr);
 
 } // namespace irad::gltf

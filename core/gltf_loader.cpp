@@ -1,5 +1,6 @@
 #include "core/gltf_loader.h"
 
+#include "core/gltf_animation.h"
 #include "core/gltf_cameras_lights.h"
 #include "core/gltf_context.h"
 #include "core/gltf_file.h"
@@ -172,17 +173,25 @@ public:
   void add(const gltf::NodeInstance& instance) {
     const tinygltf::Node& n = ctx_.model.nodes[instance.node];
     if (n.mesh >= 0) add_mesh(std::size_t(n.mesh), instance.world);
+    if (track_nodes_)
+      soup_.vertex_node.resize(soup_.positions.size(), std::uint32_t(instance.node));
     if (n.camera >= 0) {
       auto camera = gltf::place_camera(ctx_, std::size_t(n.camera), instance.node, instance.world);
       if (camera) scene_.cameras.push_back(std::move(*camera));
+      if (camera) content_.camera_node.push_back(instance.node);
     }
     if (const int l = gltf::node_light(ctx_, instance.node); l >= 0) {
       auto light = gltf::place_light(ctx_, std::size_t(l), instance.node, instance.world);
       if (light) scene_.lights.push_back(std::move(*light));
+      if (light) content_.light_node.push_back(instance.node);
     }
   }
 
-  void finish() { gltf::finish_geometry(ctx_, std::move(soup_), scene_); }
+  // The triangle soup into the scene; returns where each vertex, camera and light came from.
+  gltf::ContentNodes finish() {
+    gltf::finish_geometry(ctx_, std::move(soup_), scene_, &content_.vertex_node);
+    return std::move(content_);
+  }
 
 private:
   void add_mesh(std::size_t mesh, const glm::dmat4& world) {
@@ -221,6 +230,8 @@ private:
   const Context& ctx_;
   Scene& scene_;
   gltf::Soup soup_;
+  bool track_nodes_ = !ctx_.model.animations.empty(); // vertex -> node only when it can move
+  gltf::ContentNodes content_;
   std::optional<std::uint32_t> default_material_;
 };
 
@@ -237,13 +248,15 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
   scene.source = file;
   gltf::convert_materials(ctx, scene);
   Builder builder(ctx, scene);
-  for (const gltf::NodeInstance& instance : gltf::flatten_scene(ctx)) builder.add(instance);
-  builder.finish();
+  const std::vector<gltf::NodeInstance> instances = gltf::flatten_scene(ctx);
+  for (const gltf::NodeInstance& instance : instances) builder.add(instance);
+  const gltf::ContentNodes content = builder.finish();
 
   if (scene.triangles.empty()) throw Error(file, "", "no triangles");
   if (!scene.has_emitters() && scene.lights.empty()) {
     throw Error(file, "", "no light: no emissive material and no KHR_lights_punctual light");
   }
+  scene.animation = gltf::read_animation(ctx, instances, content, scene);
   if (scene.cameras.empty()) scene.cameras.push_back(gltf::default_camera(scene.bounds));
   return scene;
 }

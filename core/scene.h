@@ -6,11 +6,14 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace irad {
+
+class Animation;
 
 // Diffuse material: albedo rho(x) = base_color * texture(uv) (linear), emitted radiance
 // L_e(x) = emission * emissive_texture(uv), Lambertian, from the front face only unless
@@ -66,7 +69,11 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<PunctualLight> lights;
 
-  Bounds bounds; // of all triangles
+  Bounds bounds; // of all triangles (over the whole animation when there is one)
+
+  // glTF node animation (core/animation.h), or nullptr for a static scene. Animation::pose moves
+  // this scene's triangles, cameras and lights to a time.
+  std::shared_ptr<const Animation> animation;
 
   std::size_t triangle_count() const { return triangles.size(); }
   const Material& material_of(std::size_t triangle) const {

@@ -1,5 +1,7 @@
 #include "raster/gpu_scene.h"
 
+#include "core/animation.h"
+
 #include <algorithm>
 #include <numeric>
 
@@ -38,18 +40,37 @@ Texture upload_texture(const GladGLContext& api, const irad::Texture& t) {
   return tex;
 }
 
+Vertex vertex_of(const Scene& scene, std::size_t i) {
+  const glm::vec3& p = scene.positions[i];
+  const glm::vec3& n = scene.normals[i];
+  const glm::vec2 uv = scene.uvs.empty() ? glm::vec2(0.0f) : scene.uvs[i];
+  return {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}};
+}
+
 } // namespace
+
+void GpuScene::update_vertices() {
+  if (!scene_->animation) return;
+  api_->BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
+  std::vector<Vertex> run;
+  for (const Animation::MeshPart& part : scene_->animation->parts) {
+    // A node's vertices are contiguous runs of the scene's arrays: one upload per run.
+    for (std::size_t k = 0; k < part.vertices.size();) {
+      const std::uint32_t first = part.vertices[k];
+      run.clear();
+      while (k < part.vertices.size() && part.vertices[k] == first + run.size())
+        run.push_back(vertex_of(*scene_, part.vertices[k++]));
+      api_->BufferSubData(GL_ARRAY_BUFFER, GLintptr(first * sizeof(Vertex)),
+                          GLsizeiptr(run.size() * sizeof(Vertex)), run.data());
+    }
+  }
+}
 
 GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
     : api_(&api), scene_(&scene), vao_(make_vertex_array(api)), vertices_(make_buffer(api)),
       indices_(make_buffer(api)) {
   std::vector<Vertex> vertices(scene.positions.size());
-  for (std::size_t i = 0; i < vertices.size(); ++i) {
-    const glm::vec3& p = scene.positions[i];
-    const glm::vec3& n = scene.normals[i];
-    const glm::vec2 uv = scene.uvs.empty() ? glm::vec2(0.0f) : scene.uvs[i];
-    vertices[i] = {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}};
-  }
+  for (std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = vertex_of(scene, i);
   // Triangles grouped by material (stable, so the file's order is kept within a material).
   std::vector<std::uint32_t> order(scene.triangle_count());
   std::iota(order.begin(), order.end(), 0u);
@@ -69,7 +90,7 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   api.BindVertexArray(vao_.get());
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
   api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)),
-                 vertices.data(), GL_STATIC_DRAW);
+                 vertices.data(), scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
   api.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
   api.BufferData(GL_ELEMENT_ARRAY_BUFFER,
                  static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),

@@ -15,6 +15,10 @@ class GpuScene {
 public:
   GpuScene(const GladGLContext& api, const Scene& scene);
 
+  // Re-uploads the positions and normals of the vertices the scene's animation moves (after
+  // Animation::pose); nothing for a static scene.
+  void update_vertices();
+
   // Draws every triangle, calling `bind(material)` before each material's range.
   void draw(const std::function<void(const Material&)>& bind) const;
   // Draws every triangle with no per-material state (depth and shadow passes).

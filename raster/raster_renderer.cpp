@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <optional>
 
 namespace irad {
@@ -62,6 +63,14 @@ struct RasterRenderer::Impl {
   gl::VplShader vpl_shader;
   std::unique_ptr<gl::Target> target;
   std::unique_ptr<gl::Interleaved> interleaved;
+  // Shadow maps kept per path slot (render_cached): one cube per VPL that carries light.
+  struct CachedPath {
+    std::vector<Vpl> vpls;
+    std::vector<gl::Texture> cubes;
+    std::vector<glm::mat3> frames;
+  };
+  std::vector<CachedPath> cache;
+  std::unique_ptr<gl::ShadowCube> cache_shadow; // draws into the cached cubes
 
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s), camera(api),
@@ -70,9 +79,19 @@ struct RasterRenderer::Impl {
   }
 
   void prepare(const View& view);
-  // The VPL passes, each VPL shadow map then shading; returns the number drawn.
-  std::size_t vpl_passes(const View& view, const VplSet& vpls, gl::PassTimer* timer,
+  // Clears the target and draws what every VPL pass adds to: the visible surface's depth (and,
+  // interleaved, the G-buffer and each tile's depth).
+  void begin_image(const View& view);
+  // A VPL pass needs its shadow cube: drawn now (render) or kept from before (render_cached).
+  using ShadowFor = std::function<GLuint(std::size_t k, glm::mat3& frame)>;
+  // The VPL passes of vpls[k] for every k, each VPL's shadow map then shading; returns the number
+  // drawn.
+  std::size_t vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
+                         const ShadowFor& shadow_for, float texel_angle, gl::PassTimer* timer,
                          const Progress& progress);
+  // The resolve (interleaved), the emitters and the readback.
+  Image finish_image(const View& view, Clock::time_point t0, std::size_t passes,
+                     gl::PassTimer* timer, RasterTimings* timings);
 };
 
 void RasterRenderer::Impl::prepare(const View& view) {
@@ -88,7 +107,8 @@ void RasterRenderer::Impl::prepare(const View& view) {
                                                     options.interleave, target->depth());
 }
 
-std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const VplSet& vpls,
+std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
+                                             const ShadowFor& shadow_for, float texel_angle,
                                              gl::PassTimer* timer, const Progress& progress) {
   const glm::mat4 vp = view.projection * view.view;
   std::vector<glm::mat4> tile_vp;
@@ -96,28 +116,79 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const VplSet& vpl
     for (int s = 0; s < interleaved->sets(); ++s)
       tile_vp.push_back(interleaved->tile_projection(s, view.projection) * view.view);
   std::size_t passes = 0;
-  for (std::size_t k = 0; k < vpls.vpls.size(); ++k) {
+  for (std::size_t k = 0; k < vpls.size(); ++k) {
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) break;
-    const Vpl& vpl = vpls.vpls[k];
+    const Vpl& vpl = *vpls[k];
     if (carries_light(vpl)) {
       if (timer) timer->begin(gl::PassTimer::Shadow);
-      const glm::mat3 frame = shadow->render(vpl, gpu);
+      glm::mat3 frame;
+      const GLuint cube = shadow_for(k, frame);
       if (timer) timer->end();
       if (timer) timer->begin(gl::PassTimer::Shading);
       if (interleaved) {
         const int set = set_of(vpl.path, static_cast<int>(tile_vp.size()));
         interleaved->bind_tile(set);
-        vpl_shader.draw(vpl, *shadow, frame, tile_vp[static_cast<std::size_t>(set)], false, gpu);
+        vpl_shader.draw(vpl, cube, texel_angle, frame, tile_vp[static_cast<std::size_t>(set)],
+                        false, gpu);
       } else {
         target->bind();
-        vpl_shader.draw(vpl, *shadow, frame, vp, true, gpu);
+        vpl_shader.draw(vpl, cube, texel_angle, frame, vp, true, gpu);
       }
       if (timer) timer->end();
       ++passes;
     }
-    if (progress) progress(k + 1, vpls.vpls.size());
+    if (progress) progress(k + 1, vpls.size());
   }
   return passes;
+}
+
+void RasterRenderer::Impl::begin_image(const View& view) {
+  context->make_current();
+  prepare(view);
+  const glm::mat4 vp = view.projection * view.view;
+  if (interleaved) {
+    // The full-resolution G-buffer (its depth is the target's), then each set's depth in its tile.
+    interleaved->bind_gbuffer();
+    camera.gbuffer(vp, gpu);
+    interleaved->bind_atlas();
+    api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    api.ClearDepth(1.0);
+    api.DepthMask(GL_TRUE);
+    api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    for (int s = 0; s < interleaved->sets(); ++s) {
+      interleaved->bind_tile(s);
+      camera.depth(interleaved->tile_projection(s, view.projection) * view.view, gpu);
+    }
+  } else {
+    target->bind();
+    api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    api.ClearDepth(1.0);
+    api.DepthMask(GL_TRUE);
+    api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    camera.depth(vp, gpu);
+  }
+}
+
+Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0, std::size_t passes,
+                                         gl::PassTimer* timer, RasterTimings* timings) {
+  target->bind();
+  if (interleaved) interleaved->resolve();
+  camera.emitters(view.projection * view.view, scene, gpu);
+  context->check("raster passes");
+  const auto t1 = Clock::now();
+  Image image = target->read();
+  context->check("readback");
+  if (timings) {
+    timings->passes_seconds = seconds(t0, t1);
+    timings->readback = seconds(t1, Clock::now());
+    timings->passes = passes;
+    if (timer) {
+      const auto gpu_seconds = timer->seconds();
+      timings->shadow_gpu = gpu_seconds[gl::PassTimer::Shadow];
+      timings->shading_gpu = gpu_seconds[gl::PassTimer::Shading];
+    }
+  }
+  return image;
 }
 
 RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options) {
@@ -133,6 +204,11 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
 
 RasterRenderer::~RasterRenderer() = default;
 
+void RasterRenderer::scene_changed() {
+  impl_->context->make_current();
+  impl_->gpu.update_vertices();
+}
+
 std::string RasterRenderer::description() const {
   return impl_->context->backend() + ": " + impl_->context->renderer();
 }
@@ -141,51 +217,67 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
                              const Progress& progress) {
   Impl& im = *impl_;
   const auto t0 = Clock::now();
-  im.context->make_current();
-  im.prepare(view);
-  const glm::mat4 vp = view.projection * view.view;
-  if (im.interleaved) {
-    // The full-resolution G-buffer (its depth is the target's), then each set's depth in its tile.
-    im.interleaved->bind_gbuffer();
-    im.camera.gbuffer(vp, im.gpu);
-    im.interleaved->bind_atlas();
-    im.api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    im.api.ClearDepth(1.0);
-    im.api.DepthMask(GL_TRUE);
-    im.api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    for (int s = 0; s < im.interleaved->sets(); ++s) {
-      im.interleaved->bind_tile(s);
-      im.camera.depth(im.interleaved->tile_projection(s, view.projection) * view.view, im.gpu);
-    }
-  } else {
-    im.target->bind();
-    im.api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    im.api.ClearDepth(1.0);
-    im.api.DepthMask(GL_TRUE);
-    im.api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    im.camera.depth(vp, im.gpu);
-  }
+  im.begin_image(view);
   std::optional<gl::PassTimer> timer;
   if (im.options.gpu_timers) timer.emplace(im.api);
-  const std::size_t passes = im.vpl_passes(view, vpls, timer ? &*timer : nullptr, progress);
-  im.target->bind();
-  if (im.interleaved) im.interleaved->resolve();
-  im.camera.emitters(vp, im.scene, im.gpu);
-  im.context->check("raster passes");
-  const auto t1 = Clock::now();
-  Image image = im.target->read();
-  im.context->check("readback");
-  if (timings) {
-    timings->passes_seconds = seconds(t0, t1);
-    timings->readback = seconds(t1, Clock::now());
-    timings->passes = passes;
-    if (timer) {
-      const auto gpu = timer->seconds();
-      timings->shadow_gpu = gpu[gl::PassTimer::Shadow];
-      timings->shading_gpu = gpu[gl::PassTimer::Shading];
-    }
+  std::vector<const Vpl*> list;
+  list.reserve(vpls.vpls.size());
+  for (const Vpl& v : vpls.vpls) list.push_back(&v);
+  const auto draw_now = [&](std::size_t k, glm::mat3& frame) {
+    frame = im.shadow->render(*list[k], im.gpu);
+    return im.shadow->texture();
+  };
+  const std::size_t passes = im.vpl_passes(view, list, draw_now, im.shadow->texel_angle(),
+                                           timer ? &*timer : nullptr, progress);
+  return im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
+}
+
+void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width,
+                                int height) {
+  Impl& im = *impl_;
+  im.context->make_current();
+  const int resolution = shadow_resolution_for(im.options.shadow_resolution, width, height);
+  if (!im.cache_shadow || im.cache_shadow->resolution() != resolution) {
+    im.cache.clear(); // cubes of another resolution
+    im.cache_shadow = std::make_unique<gl::ShadowCube>(im.api, resolution, im.scene.bounds);
   }
-  return image;
+  if (slot >= im.cache.size()) im.cache.resize(std::size_t(slot) + 1);
+  Impl::CachedPath& path = im.cache[slot];
+  path = {};
+  for (const Vpl& v : vpls) {
+    if (!carries_light(v)) continue;
+    path.vpls.push_back(v);
+    path.cubes.push_back(gl::ShadowCube::make_cube(im.api, resolution));
+    path.frames.push_back(im.cache_shadow->render_into(v, im.gpu, path.cubes.back().get()));
+  }
+  im.context->check("cached shadow maps");
+}
+
+Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
+  Impl& im = *impl_;
+  const auto t0 = Clock::now();
+  im.begin_image(view);
+  std::vector<const Vpl*> list;
+  std::vector<std::pair<GLuint, glm::mat3>> maps;
+  for (const Impl::CachedPath& p : im.cache)
+    for (std::size_t i = 0; i < p.vpls.size(); ++i) {
+      list.push_back(&p.vpls[i]);
+      maps.emplace_back(p.cubes[i].get(), p.frames[i]);
+    }
+  const auto kept = [&](std::size_t k, glm::mat3& frame) {
+    frame = maps[k].second;
+    return maps[k].first;
+  };
+  const float texel = im.cache_shadow ? im.cache_shadow->texel_angle() : 1.0f;
+  const std::size_t passes = im.vpl_passes(view, list, kept, texel, nullptr, {});
+  return im.finish_image(view, t0, passes, nullptr, timings);
+}
+
+std::size_t RasterRenderer::cache_bytes() const {
+  std::size_t cubes = 0;
+  for (const Impl::CachedPath& p : impl_->cache) cubes += p.cubes.size();
+  const std::size_t r = impl_->cache_shadow ? std::size_t(impl_->cache_shadow->resolution()) : 0;
+  return cubes * 6 * r * r * sizeof(float);
 }
 
 } // namespace irad

@@ -60,6 +60,19 @@ public:
   Image render(const View& view, const VplSet& vpls, RasterTimings* timings = nullptr,
                const Progress& progress = {});
 
+  // Shadow maps kept per path (camera motion without ghosting): cache_path draws the shadow cubes
+  // of one path's VPLs (at the resolution for a width x height image) into slot `slot`,
+  // replacing what the slot held; render_cached shades every cached VPL from `view` without
+  // redrawing a shadow map, then adds the emitters. The shadow maps do not depend on the camera,
+  // so a moving camera sees no ghosts; they keep the geometry they were drawn with.
+  void cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width, int height);
+  Image render_cached(const View& view, RasterTimings* timings = nullptr);
+  std::size_t cache_bytes() const; // GPU memory of the cached shadow maps
+
+  // Re-uploads what the scene's animation moved (after Animation::pose on the scene given to
+  // the constructor).
+  void scene_changed();
+
   std::string description() const; // backend and GL renderer
 
 private:

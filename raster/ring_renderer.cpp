@@ -113,6 +113,11 @@ RingRenderer::RingRenderer(const Scene& scene, const RingOptions& options) {
 
 RingRenderer::~RingRenderer() = default;
 
+void RingRenderer::scene_changed() {
+  impl_->context->make_current();
+  impl_->gpu.update_vertices();
+}
+
 std::uint32_t RingRenderer::slots() const {
   return impl_->options.paths;
 }

@@ -43,6 +43,10 @@ public:
   Image exact_sum();
   void resum();
 
+  // Re-uploads what the scene's animation moved (after Animation::pose on the scene given to
+  // the constructor); the path images already in the ring keep the geometry they were drawn with.
+  void scene_changed();
+
   std::uint32_t slots() const;
   std::size_t passes() const; // VPL passes drawn so far
 

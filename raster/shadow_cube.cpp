@@ -53,13 +53,9 @@ glm::mat3 cube_frame(const Vpl& vpl) {
 
 } // namespace
 
-ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds)
-    : api_(&api), resolution_(resolution), bounds_(bounds),
-      program_(api, "shadow", shaders::shadow_vertex, shaders::shadow_fragment),
-      u_face_view_projection_(program_.uniform("u_face_view_projection")),
-      u_vpl_position_(program_.uniform("u_vpl_position")), cube_(make_texture(api)),
-      depth_(make_renderbuffer(api)) {
-  api.BindTexture(GL_TEXTURE_CUBE_MAP, cube_.get());
+Texture ShadowCube::make_cube(const GladGLContext& api, int resolution) {
+  Texture cube = make_texture(api);
+  api.BindTexture(GL_TEXTURE_CUBE_MAP, cube.get());
   for (int f = 0; f < 6; ++f)
     api.TexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_R32F, resolution,
                    resolution, 0, GL_RED, GL_FLOAT, nullptr);
@@ -68,6 +64,15 @@ ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& b
   api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  return cube;
+}
+
+ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds)
+    : api_(&api), resolution_(resolution), bounds_(bounds),
+      program_(api, "shadow", shaders::shadow_vertex, shaders::shadow_fragment),
+      u_face_view_projection_(program_.uniform("u_face_view_projection")),
+      u_vpl_position_(program_.uniform("u_vpl_position")), cube_(make_cube(api, resolution)),
+      depth_(make_renderbuffer(api)) {
   api.BindRenderbuffer(GL_RENDERBUFFER, depth_.get());
   api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, resolution, resolution);
   for (int f = 0; f < 6; ++f) {
@@ -79,9 +84,18 @@ ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& b
                              0);
     check_framebuffer(api, "shadow cube framebuffer");
   }
+  attached_ = cube_.get();
 }
 
-glm::mat3 ShadowCube::render(const Vpl& vpl, const GpuScene& scene) {
+glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint cube) {
+  if (cube != attached_) {
+    for (int f = 0; f < 6; ++f) {
+      api_->BindFramebuffer(GL_FRAMEBUFFER, fbos_[f].get());
+      api_->FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0,
+                                 static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), cube, 0);
+    }
+    attached_ = cube;
+  }
   const glm::mat3 frame = cube_frame(vpl);
   // Near and far fitted to this VPL: far reaches the farthest corner of the scene's bounds.
   float far = 0.0f;

@@ -18,7 +18,13 @@ public:
 
   // Renders the cube for `vpl` (changes the bound framebuffer, viewport and program) and returns
   // the rotation world -> cube frame to use for lookups.
-  glm::mat3 render(const Vpl& vpl, const GpuScene& scene);
+  glm::mat3 render(const Vpl& vpl, const GpuScene& scene) {
+    return render_into(vpl, scene, cube_.get());
+  }
+  // The same into `cube`, a cube map from make_cube(resolution()) (shadow maps kept per VPL).
+  glm::mat3 render_into(const Vpl& vpl, const GpuScene& scene, GLuint cube);
+  // An R32F cube map of resolution^2 faces with the lookup state the shading pass expects.
+  static Texture make_cube(const GladGLContext& api, int resolution);
 
   GLuint texture() const { return cube_.get(); }
   int resolution() const { return resolution_; }
@@ -35,6 +41,7 @@ private:
   Texture cube_;
   Renderbuffer depth_;
   std::array<Framebuffer, 6> fbos_; // one per face, built once: no re-attachment per VPL
+  GLuint attached_ = 0;             // the cube whose faces the framebuffers hold
 };
 
 } // namespace irad::gl

@@ -44,7 +44,7 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp)
   api.Uniform1f(bias_constant_, 2e-4f * diagonal_);
 }
 
-void VplShader::draw(const Vpl& vpl, const ShadowCube& shadow, const glm::mat3& frame,
+void VplShader::draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,
                      const glm::mat4& view_projection, bool apply_albedo,
                      const GpuScene& gpu) const {
   const GladGLContext& api = *api_;
@@ -59,10 +59,10 @@ void VplShader::draw(const Vpl& vpl, const ShadowCube& shadow, const glm::mat3& 
   api.Uniform2f(spot_cos_, vpl.cos_inner, vpl.cos_outer);
   api.Uniform1f(dmin2_, dmin * dmin);
   api.UniformMatrix3fv(frame_, 1, GL_FALSE, glm::value_ptr(frame));
-  api.Uniform1f(bias_texel_, shadow.texel_angle());
+  api.Uniform1f(bias_texel_, texel_angle);
   api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
-  api.BindTexture(GL_TEXTURE_CUBE_MAP, shadow.texture());
+  api.BindTexture(GL_TEXTURE_CUBE_MAP, shadow_cube);
   if (!apply_albedo) {
     gpu.draw_all();
     return;

@@ -17,6 +17,11 @@ public:
   VplShader(const GladGLContext& api, const Scene& scene, float clamp);
   // apply_albedo false: irradiance / pi without rho(x) (interleaved mode applies rho later).
   void draw(const Vpl& vpl, const ShadowCube& shadow, const glm::mat3& frame,
+            const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const {
+    draw(vpl, shadow.texture(), shadow.texel_angle(), frame, view_projection, apply_albedo, gpu);
+  }
+  // The same with any cube map ShadowCube::render_into drew (texel_angle of its resolution).
+  void draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,
             const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const;
 
 private:

@@ -433,7 +433,66 @@ struct BadCase {
   const char* message;
 };
 
+// Animates node 0's `path` with one sampler (times, values of `type`) and one channel.
+void animate(Gltf& g, const std::vector<float>& times, const std::vector<float>& values,
+             const char* type, const char* path, const char* interpolation = "LINEAR") {
+  const int t = g.accessor(g.view(times.data(), times.size() * 4), kFloat, times.size(), "SCALAR");
+  const std::size_t n = values.size() / (std::string(type) == "VEC4" ? 4 : 3);
+  const int v = g.accessor(g.view(values.data(), values.size() * 4), kFloat, n, type);
+  json sampler = {{"input", t}, {"output", v}, {"interpolation", interpolation}};
+  json channel = {{"sampler", 0}, {"target", {{"node", 0}, {"path", path}}}};
+  json animation = {{"samplers", json::array({sampler})}, {"channels", json::array({channel})}};
+  g.doc["animations"] = json::array({animation});
+}
+
 const BadCase kBadCases[] = {
+    {"animation_times_decrease",
+     [](Gltf& g) {
+       animate(g, {0, 2, 1}, {0, 0, 0, 1, 0, 0, 2, 0, 0}, "VEC3", "translation");
+     },
+     "animations[0].samplers[0]", "increase strictly"},
+    {"animation_output_count",
+     [](Gltf& g) {
+       animate(g, {0, 1}, {0, 0, 0, 1, 0, 0}, "VEC3", "scale", "CUBICSPLINE");
+     },
+     "animations[0].samplers[0]", "6 expected"},
+    {"animation_interpolation",
+     [](Gltf& g) {
+       animate(g, {0, 1}, {0, 0, 0, 1, 0, 0}, "VEC3", "translation", "SMOOTH");
+     },
+     "animations[0].samplers[0]", "interpolation 'SMOOTH'"},
+    {"animation_rotation_type",
+     [](Gltf& g) {
+       animate(g, {0, 1}, {0, 0, 0, 1, 0, 0}, "VEC3", "rotation");
+     },
+     "accessors[", "VEC4"},
+    {"animation_zero_quaternion",
+     [](Gltf& g) {
+       animate(g, {0, 1}, {0, 0, 0, 1, 0, 0, 0, 0}, "VEC4", "rotation");
+     },
+     "animations[0].samplers[0]", "zero quaternion"},
+    {"animation_path",
+     [](Gltf& g) {
+       animate(g, {0, 1}, {0, 0, 0, 1, 0, 0}, "VEC3", "shear");
+     },
+     "animations[0].channels[0]", "unknown target path 'shear'"},
+    {"animation_of_matrix_node",
+     [](Gltf& g) {
+       animate(g, {0, 1}, {0, 0, 0, 1, 0, 0}, "VEC3", "translation");
+       g.doc["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+     },
+     "nodes[0]", "must not have a matrix"},
+    {"animation_mirrors_mesh",
+     [](Gltf& g) {
+       animate(g, {0, 1}, {1, 1, 1, -1, 1, 1}, "VEC3", "scale");
+     },
+     "nodes[0]", "mirrors"},
+    {"animation_target_node",
+     [](Gltf& g) {
+       animate(g, {0, 1}, {0, 0, 0, 1, 0, 0}, "VEC3", "translation");
+       g.doc["animations"][0]["channels"][0]["target"]["node"] = 7;
+     },
+     "animations[0].channels[0]", "target node index 7"},
     {"accessor_beyond_view", [](Gltf& g) { g.doc["accessors"][0]["byteOffset"] = 8; },
      "accessors[0]", "exceeds"},
     {"view_beyond_buffer", [](Gltf& g) { g.doc["bufferViews"][0]["byteLength"] = 4096; },

@@ -1,6 +1,11 @@
 #include "walk/ray_scene.h"
 
+#include "core/animation.h"
 #include "core/error.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
 
 #include <cmath>
 #include <embree3/rtcore.h>
@@ -23,12 +28,36 @@ void on_embree_error(void* user, RTCError code, const char* str) {
                     (str ? str : "(no message)");
 }
 
+// One Embree triangle geometry over a subset of the scene's triangles.
+struct GeometryPart {
+  unsigned id = RTC_INVALID_GEOMETRY_ID;
+  std::vector<std::uint32_t> triangles; // Embree primID -> scene triangle
+  std::vector<std::uint32_t> vertices;  // Embree vertex -> scene vertex
+  RTCGeometry geometry = nullptr;       // owned by the scene once attached
+  float* vertex_buffer = nullptr;
+};
+
+// The triangles that move with the scene's animation (a vertex in one of its mesh parts).
+std::vector<char> moving_triangles(const Scene& scene) {
+  std::vector<char> moving(scene.triangles.size(), 0);
+  if (!scene.animation || !scene.animation->moves_geometry()) return moving;
+  std::vector<char> moving_vertex(scene.positions.size(), 0);
+  for (const Animation::MeshPart& part : scene.animation->parts)
+    for (std::uint32_t v : part.vertices) moving_vertex[v] = 1;
+  for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+    const glm::uvec3 tri = scene.triangles[t];
+    moving[t] = moving_vertex[tri.x] || moving_vertex[tri.y] || moving_vertex[tri.z];
+  }
+  return moving;
+}
+
 } // namespace
 
 struct RayScene::Impl {
   ErrorSink errors;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  GeometryPart fixed, moving; // moving: empty for a static scene
 
   void check(const std::string& where) {
     if (!errors.message.empty()) throw Error("", where, errors.message);
@@ -37,7 +66,55 @@ struct RayScene::Impl {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
   }
+  std::uint32_t triangle(unsigned geom, unsigned prim) const {
+    const GeometryPart& part = geom == moving.id ? moving : fixed;
+    return part.triangles.empty() ? prim : part.triangles[prim];
+  }
+
+  // Builds the geometry of the triangles t with select[t] == want (all when select is empty).
+  void add_part(const Scene& s, const std::vector<char>& select, char want, RTCBuildQuality quality,
+                GeometryPart& part);
+  void copy_vertices(const Scene& s, GeometryPart& part) const {
+    for (std::size_t i = 0; i < part.vertices.size(); ++i)
+      for (int c = 0; c < 3; ++c) part.vertex_buffer[3 * i + c] = s.positions[part.vertices[i]][c];
+  }
 };
+
+void RayScene::Impl::add_part(const Scene& s, const std::vector<char>& select, char want,
+                              RTCBuildQuality quality, GeometryPart& part) {
+  std::vector<std::uint32_t> remap(s.positions.size(), UINT32_MAX);
+  std::vector<glm::uvec3> local;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    if (!select.empty() && select[t] != want) continue;
+    glm::uvec3 tri = s.triangles[t];
+    for (int c = 0; c < 3; ++c) {
+      std::uint32_t& r = remap[tri[c]];
+      if (r == UINT32_MAX) {
+        r = std::uint32_t(part.vertices.size());
+        part.vertices.push_back(tri[c]);
+      }
+      tri[c] = r;
+    }
+    local.push_back(tri);
+    if (!select.empty()) part.triangles.push_back(std::uint32_t(t));
+  }
+  if (local.empty()) return;
+  part.geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryBuildQuality(part.geometry, quality);
+  part.vertex_buffer = static_cast<float*>(
+      rtcSetNewGeometryBuffer(part.geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                              3 * sizeof(float), part.vertices.size()));
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(part.geometry, RTC_BUFFER_TYPE_INDEX,
+                                                             0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), local.size()));
+  check("embree.buffers");
+  copy_vertices(s, part);
+  for (std::size_t i = 0; i < local.size(); ++i)
+    for (int c = 0; c < 3; ++c) idx[3 * i + c] = local[i][c];
+  rtcCommitGeometry(part.geometry);
+  part.id = rtcAttachGeometry(scene, part.geometry);
+  rtcReleaseGeometry(part.geometry); // the scene holds it
+}
 
 RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   impl_->device = rtcNewDevice(nullptr);
@@ -47,23 +124,15 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
   // Watertight along shared edges and at corners: without it rays from inside a closed box
   // escaped through its corners (27 of 4000 in HardCases).
-  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
-
-  RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                        scene.positions.size()));
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-                                                             RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                             scene.triangles.size()));
-  impl_->check("embree.buffers");
-  for (std::size_t i = 0; i < scene.positions.size(); ++i)
-    for (int c = 0; c < 3; ++c) v[3 * i + c] = scene.positions[i][c];
-  for (std::size_t i = 0; i < scene.triangles.size(); ++i)
-    for (int c = 0; c < 3; ++c) idx[3 * i + c] = scene.triangles[i][c];
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(impl_->scene, geom);
-  rtcReleaseGeometry(geom);
+  const std::vector<char> moving = moving_triangles(scene);
+  const bool animated = std::find(moving.begin(), moving.end(), 1) != moving.end();
+  rtcSetSceneFlags(impl_->scene, animated ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC
+                                          : RTC_SCENE_FLAG_ROBUST);
+  // A static scene is one geometry; an animated one keeps its still triangles in a high-quality
+  // BVH and the moving ones in a second geometry that update() refits.
+  impl_->add_part(scene, animated ? moving : std::vector<char>{}, 0, RTC_BUILD_QUALITY_HIGH,
+                  impl_->fixed);
+  if (animated) impl_->add_part(scene, moving, 1, RTC_BUILD_QUALITY_REFIT, impl_->moving);
   rtcCommitScene(impl_->scene);
   impl_->check("embree.commit");
 
@@ -71,6 +140,16 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   const float extent = glm::max(glm::length(scene.bounds.lo), glm::length(scene.bounds.hi));
   epsilon_ = glm::max(1e-5f * scene.bounds.diagonal(),
                       32.0f * std::numeric_limits<float>::epsilon() * extent);
+}
+
+void RayScene::update(const Scene& scene) {
+  GeometryPart& part = impl_->moving;
+  if (part.geometry == nullptr) return;
+  impl_->copy_vertices(scene, part);
+  rtcUpdateGeometryBuffer(part.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+  rtcCommitGeometry(part.geometry);
+  rtcCommitScene(impl_->scene);
+  impl_->check("embree.refit");
 }
 
 RayScene::~RayScene() = default;
@@ -92,7 +171,8 @@ std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::ve
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  return RayHit{rh.ray.tfar, rh.hit.primID, glm::vec2(rh.hit.u, rh.hit.v)};
+  return RayHit{rh.ray.tfar, impl_->triangle(rh.hit.geomID, rh.hit.primID),
+                glm::vec2(rh.hit.u, rh.hit.v)};
 }
 
 bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin,

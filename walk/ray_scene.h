@@ -30,6 +30,10 @@ public:
   // Whether anything blocks the open segment origin + t * direction, t in (tmin, tmax).
   bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax) const;
 
+  // After Animation::pose moved the scene's vertices: refits the moving triangles' BVH (the
+  // still ones are untouched). Nothing happens for a static scene. Not thread-safe with queries.
+  void update(const Scene& scene);
+
   // Ray offsets: a fixed fraction of the bounding diagonal (plus float spacing of the scene's
   // coordinates) so that the same scene at any scale behaves the same.
   float epsilon() const { return epsilon_; }

@@ -1,0 +1,115 @@
+#include "apps/walkthrough_engine.h"
+
+#include "core/animation.h"
+#include "core/error.h"
+#include "core/view.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace irad::apps {
+
+namespace {
+
+// The camera turned about the vertical axis through the bounds' centre.
+Camera orbit_camera(const Camera& c, const Bounds& b, float degrees) {
+  Camera moved = c;
+  const glm::vec3 centre = b.center();
+  const glm::mat4 turn = glm::translate(glm::mat4(1.0f), centre) *
+                         glm::rotate(glm::mat4(1.0f), glm::radians(degrees), {0, 1, 0}) *
+                         glm::translate(glm::mat4(1.0f), -centre);
+  moved.camera_to_world = turn * c.camera_to_world;
+  return moved;
+}
+
+RingOptions ring_options(const WalkthroughSettings& s, std::uint32_t n) {
+  RingOptions o;
+  o.paths = n;
+  o.width = s.width;
+  o.height = s.height;
+  o.raster.backend = s.backend;
+  return o;
+}
+
+RasterOptions raster_options(const WalkthroughSettings& s) {
+  RasterOptions o;
+  o.backend = s.backend;
+  o.interleave = s.interleave;
+  return o;
+}
+
+} // namespace
+
+WalkMode parse_walk_mode(const std::string& name) {
+  if (name == "ring") return WalkMode::Ring;
+  if (name == "cached") return WalkMode::Cached;
+  if (name == "reshade") return WalkMode::Reshade;
+  throw Error("", "--mode", "'" + name + "' is not ring, cached or reshade");
+}
+
+Walkthrough::Walkthrough(Scene& scene, std::size_t camera, const WalkthroughSettings& settings,
+                         Log& log)
+    : scene_(scene), camera_(camera), settings_(settings), rays_(scene),
+      walk_(scene, rays_, {settings.paths, 64}, log), n_(walk_.header().paths), vpls_(n_) {
+  if (!(settings.fps > 0.0f)) throw Error("", "--fps", "must be positive");
+  if (settings.mode == WalkMode::Ring)
+    ring_ = std::make_unique<RingRenderer>(scene, ring_options(settings, n_));
+  else
+    raster_ = std::make_unique<RasterRenderer>(scene, raster_options(settings));
+}
+
+std::string Walkthrough::description() const {
+  return ring_ ? std::string("ring") : raster_->description();
+}
+
+void Walkthrough::pose(int frame) {
+  if (!scene_.animation || frame == posed_frame_) return;
+  scene_.animation->pose(static_cast<float>(frame) / settings_.fps, scene_);
+  posed_frame_ = frame;
+  if (!scene_.animation->moves_geometry()) return;
+  rays_.update(scene_);
+  if (ring_) ring_->scene_changed();
+  if (raster_) raster_->scene_changed();
+}
+
+Camera Walkthrough::camera_at(int frame) {
+  pose(frame);
+  const float seconds = static_cast<float>(frame) / settings_.fps;
+  return orbit_camera(scene_.cameras[camera_], scene_.bounds, settings_.orbit * seconds);
+}
+
+void Walkthrough::trace(std::uint32_t slot, const View& view) {
+  vpls_[slot].clear();
+  walk_.trace(next_, vpls_[slot]); // particle next_ fills slot next_ mod N
+  if (ring_) ring_->replace(slot, vpls_[slot], view);
+  if (settings_.mode == WalkMode::Cached)
+    raster_->cache_path(slot, vpls_[slot], settings_.width, settings_.height);
+  ++next_;
+}
+
+void Walkthrough::warm_up(int frame) {
+  const View view = make_view(camera_at(frame), scene_.bounds, settings_.width, settings_.height);
+  while (next_ < n_) trace(next_ % n_, view);
+}
+
+Image Walkthrough::frame(int frame) {
+  return this->frame(frame, camera_at(frame));
+}
+
+Image Walkthrough::frame(int frame, const Camera& camera) {
+  pose(frame);
+  const View view = make_view(camera, scene_.bounds, settings_.width, settings_.height);
+  trace(next_ % n_, view); // one new path per frame, with the current geometry
+  switch (settings_.mode) {
+  case WalkMode::Ring:
+    return ring_->frame(view);
+  case WalkMode::Cached:
+    return raster_->render_cached(view);
+  case WalkMode::Reshade:
+    break;
+  }
+  VplSet all = walk_.header();
+  for (const auto& p : vpls_) all.vpls.insert(all.vpls.end(), p.begin(), p.end());
+  return raster_->render(view, all);
+}
+
+} // namespace irad::apps

@@ -1,0 +1,205 @@
+#include "core/gltf_animation.h"
+
+#include "core/gltf_accessors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <map>
+#include <set>
+
+namespace irad::gltf {
+
+namespace {
+
+constexpr int kUniformSamples = 64; // bounds: sampled times besides every key time
+
+Interpolation interpolation_of(const Context& ctx, const std::string& name,
+                               const std::string& where) {
+  if (name.empty() || name == "LINEAR") return Interpolation::Linear;
+  if (name == "STEP") return Interpolation::Step;
+  if (name == "CUBICSPLINE") return Interpolation::CubicSpline;
+  ctx.fail(where, "unknown interpolation '" + name + "'");
+}
+
+std::vector<float> read_times(const Context& ctx, int accessor, const std::string& where) {
+  const std::vector<glm::vec4> v =
+      read_animation_values(ctx, accessor, where + ".input", TINYGLTF_TYPE_SCALAR);
+  std::vector<float> times(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    times[i] = v[i].x;
+    if (times[i] < 0.0f) ctx.fail(where, fmt::format("input time {} is negative", times[i]));
+    if (i > 0 && !(times[i] > times[i - 1]))
+      ctx.fail(where, fmt::format("input times must increase strictly ({} after {})", times[i],
+                                  times[i - 1]));
+  }
+  return times;
+}
+
+// The keyframes of sampler `s` of animation `a` for `path`.
+Keyframes read_keyframes(const Context& ctx, std::size_t a, int s, Animation::Path path) {
+  const tinygltf::Animation& anim = ctx.model.animations[a];
+  const std::string owner = element("animations", a);
+  const std::size_t si = checked_index(ctx, s, anim.samplers.size(), owner, "sampler");
+  const tinygltf::AnimationSampler& sampler = anim.samplers[si];
+  const std::string where = owner + element(".samplers", si);
+  Keyframes k;
+  k.interpolation = interpolation_of(ctx, sampler.interpolation, where);
+  k.rotation = path == Animation::Path::Rotation;
+  k.times = read_times(ctx, sampler.input, where);
+  k.values = read_animation_values(ctx, sampler.output, where + ".output",
+                                   k.rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3);
+  const std::size_t per_key = k.interpolation == Interpolation::CubicSpline ? 3 : 1;
+  if (k.values.size() != per_key * k.times.size())
+    ctx.fail(where, fmt::format("output has {} elements, {} expected ({} keys)", k.values.size(),
+                                per_key * k.times.size(), k.times.size()));
+  if (k.rotation && per_key == 1) {
+    for (glm::vec4& q : k.values) {
+      const float len = glm::length(q);
+      if (!(len > 1e-6f)) ctx.fail(where, "a rotation output is a zero quaternion");
+      q /= len;
+    }
+  }
+  return k;
+}
+
+Animation::Node node_at_rest(const Context& ctx, std::size_t n) {
+  const tinygltf::Node& node = ctx.model.nodes[n];
+  Animation::Node out;
+  const auto& t = node.translation;
+  const auto& r = node.rotation;
+  const auto& s = node.scale;
+  if (t.size() == 3) out.translation = {t[0], t[1], t[2]};
+  if (r.size() == 4) out.rotation = glm::normalize(glm::dquat(r[3], r[0], r[1], r[2]));
+  if (s.size() == 3) out.scale = {s[0], s[1], s[2]};
+  if (node.matrix.size() == 16) {
+    out.has_matrix = true;
+    for (int c = 0; c < 4; ++c)
+      for (int row = 0; row < 4; ++row) out.matrix[c][row] = node.matrix[std::size_t(4 * c + row)];
+  }
+  return out;
+}
+
+Animation::Path path_of(const std::string& path) {
+  if (path == "translation") return Animation::Path::Translation;
+  if (path == "rotation") return Animation::Path::Rotation;
+  return Animation::Path::Scale;
+}
+
+// The tracks of every channel targeting a reached node (`index` maps glTF node -> nodes).
+void read_tracks(const Context& ctx, const std::map<std::size_t, std::uint32_t>& index,
+                 Animation& out) {
+  for (std::size_t a = 0; a < ctx.model.animations.size(); ++a) {
+    const auto& channels = ctx.model.animations[a].channels;
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const tinygltf::AnimationChannel& ch = channels[c];
+      const std::string where = element("animations", a) + element(".channels", c);
+      const std::string& path = ch.target_path;
+      if (path == "weights") {
+        ctx.warn("morph target weights are not supported; their animation is ignored");
+        continue;
+      }
+      if (path != "translation" && path != "rotation" && path != "scale")
+        ctx.fail(where, "unknown target path '" + path + "'");
+      if (ch.target_node < 0) continue; // no target node: the channel animates nothing here
+      const std::size_t node =
+          checked_index(ctx, ch.target_node, ctx.model.nodes.size(), where, "target node");
+      const auto it = index.find(node);
+      if (it == index.end()) continue; // not in the scene being loaded
+      if (out.nodes[it->second].has_matrix)
+        ctx.fail(element("nodes", node), "an animated node must not have a matrix (glTF 3.11)");
+      out.tracks.push_back(
+          {it->second, path_of(path), read_keyframes(ctx, a, ch.sampler, path_of(path))});
+    }
+  }
+}
+
+std::vector<float> sample_times(const Animation& anim) {
+  std::set<float> times;
+  for (const Animation::Track& k : anim.tracks)
+    times.insert(k.keys.times.begin(), k.keys.times.end());
+  const float a = anim.start(), b = anim.end();
+  for (int i = 0; i <= kUniformSamples; ++i) times.insert(a + (b - a) * float(i) / kUniformSamples);
+  return {times.begin(), times.end()};
+}
+
+// Each moving mesh's node-local bounding box placed at every sampled time widens the bounds; a
+// transform whose determinant changes sign (a mirroring scale) fails.
+void widen_bounds(const Context& ctx, const Animation& anim, const std::vector<glm::dmat4>& rest,
+                  const std::vector<std::size_t>& gltf_node, Bounds& bounds) {
+  std::vector<Bounds> local(anim.parts.size());
+  for (std::size_t i = 0; i < anim.parts.size(); ++i)
+    for (const glm::vec3& p : anim.parts[i].positions) local[i].extend(p);
+  for (float t : sample_times(anim)) {
+    const std::vector<glm::dmat4> world = anim.world_matrices(t);
+    for (std::size_t i = 0; i < anim.parts.size(); ++i) {
+      const Animation::MeshPart& part = anim.parts[i];
+      const Bounds& box = local[i];
+      const glm::dmat4& w = world[part.node];
+      if (glm::determinant(glm::dmat3(w)) * glm::determinant(glm::dmat3(rest[part.node])) <= 0.0)
+        ctx.fail(element("nodes", gltf_node[part.node]),
+                 fmt::format("the animation mirrors or collapses the mesh at t = {} s", t));
+      for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 corner((c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y,
+                                (c & 4) ? box.hi.z : box.lo.z);
+        bounds.extend(glm::vec3(w * glm::dvec4(corner, 1.0)));
+      }
+    }
+  }
+}
+
+// The vertices of every moving node's meshes, taken back to the node's frame.
+void build_parts(const std::vector<char>& dynamic, const std::vector<glm::dmat4>& rest,
+                 const std::map<std::size_t, std::uint32_t>& index, const ContentNodes& content,
+                 const Scene& scene, Animation& out) {
+  std::map<std::uint32_t, Animation::MeshPart> parts;
+  for (std::size_t v = 0; v < content.vertex_node.size(); ++v) {
+    const std::uint32_t n = index.at(content.vertex_node[v]);
+    if (!dynamic[n]) continue;
+    Animation::MeshPart& part = parts[n];
+    part.node = n;
+    const glm::dmat4 inverse = glm::inverse(rest[n]);
+    part.vertices.push_back(std::uint32_t(v));
+    part.positions.push_back(glm::vec3(inverse * glm::dvec4(glm::dvec3(scene.positions[v]), 1.0)));
+    part.normals.push_back(
+        glm::vec3(glm::transpose(glm::dmat3(rest[n])) * glm::dvec3(scene.normals[v])));
+  }
+  for (auto& [n, part] : parts) out.parts.push_back(std::move(part));
+}
+
+} // namespace
+
+std::shared_ptr<const Animation> read_animation(const Context& ctx,
+                                                const std::vector<NodeInstance>& instances,
+                                                const ContentNodes& content, Scene& scene) {
+  if (ctx.model.animations.empty()) return nullptr;
+  auto anim = std::make_shared<Animation>();
+  std::map<std::size_t, std::uint32_t> index; // glTF node -> anim->nodes
+  std::vector<std::size_t> gltf_node;
+  std::vector<glm::dmat4> rest;
+  for (const NodeInstance& inst : instances) {
+    index[inst.node] = std::uint32_t(anim->nodes.size());
+    gltf_node.push_back(inst.node);
+    rest.push_back(inst.world);
+    anim->nodes.push_back(node_at_rest(ctx, inst.node));
+  }
+  for (const NodeInstance& inst : instances) // parents are reached before their children
+    for (int child : ctx.model.nodes[inst.node].children)
+      anim->nodes[index.at(std::size_t(child))].parent = int(index.at(inst.node));
+  read_tracks(ctx, index, *anim);
+  if (anim->tracks.empty()) return nullptr;
+  const std::vector<char> dynamic = anim->dynamic_nodes();
+  build_parts(dynamic, rest, index, content, scene, *anim);
+  for (std::size_t n : content.camera_node) {
+    const std::uint32_t i = index.at(n);
+    anim->camera_node.push_back(dynamic[i] ? int(i) : -1);
+  }
+  for (std::size_t n : content.light_node) {
+    const std::uint32_t i = index.at(n);
+    anim->light_node.push_back(dynamic[i] ? int(i) : -1);
+  }
+  widen_bounds(ctx, *anim, rest, gltf_node, scene.bounds);
+  return anim;
+}
+
+} // namespace irad::gltf
