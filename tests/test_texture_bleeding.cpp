@@ -8,6 +8,7 @@
 #include "core/texture.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"
+#include "tests/doc_images.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/ray_scene.h"
@@ -148,6 +149,16 @@ protected:
     RasterRenderer r(*scene_, options);
     return r.render(*view_, vpls);
   }
+  // Documentation pictures (only with IRAD_DOC_IMAGES), 4x nearest, side by side.
+  static void picture(const char* name, std::initializer_list<const Image*> images) {
+    if (doc_images::directory().empty()) return;
+    std::vector<Image> big;
+    for (const Image* i : images)
+      big.push_back(doc_images::magnified_crop(*i, 0, 0, kSize, kSize, 4));
+    if (big.size() == 2) doc_images::write(name, doc_images::side_by_side({&big[0], &big[1]}, 8));
+    if (big.size() == 3)
+      doc_images::write(name, doc_images::side_by_side({&big[0], &big[1], &big[2]}, 8));
+  }
   static Image rt_vpl() { return trace_vpls(*scene_, *rays_, *view_, *vpls_, {}); }
   static inline Log* log_ = nullptr;
   static inline Scene* scene_ = nullptr;
@@ -159,9 +170,11 @@ protected:
 };
 
 TEST_F(TextureBleeding, FloorTakesTheColourOfTheTextureHalfNextToIt) {
+  const Image raster_image = raster(*vpls_), rt_image = rt_vpl();
   const RegionMeans pt = region_means(*reference_, *region_);
-  const RegionMeans ra = region_means(raster(*vpls_), *region_);
-  const RegionMeans rt = region_means(rt_vpl(), *region_);
+  const RegionMeans ra = region_means(raster_image, *region_);
+  const RegionMeans rt = region_means(rt_image, *region_);
+  picture("ext_texture_bleeding.png", {reference_, &raster_image, &rt_image});
   print("pt", pt);
   print("raster", ra);
   print("rt-vpl", rt);
@@ -206,7 +219,9 @@ TEST_F(TextureBleeding, AWalkIgnoringTheTextureLosesTheContrast) {
   for (Material& m : untextured.materials) m.base_color_texture = -1;
   const RayScene rays(untextured);
   const VplSet vpls = quasi_random_walk(untextured, rays, {kPaths, 64}, *log_);
-  const RegionMeans m = region_means(raster(vpls), *region_);
+  const Image image = raster(vpls);
+  const RegionMeans m = region_means(image, *region_);
+  picture("ext_texture_bleeding_control.png", {reference_, &image});
   print("no-tex", m);
   std::printf("contrast without the texture in the walk %.3f\n", contrast(m));
   // Measured 1.000: the floor's colour comes from the walk alone, and the assertion above (> 1.25)
