@@ -13,8 +13,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 namespace irad {
@@ -78,6 +81,18 @@ TEST(PixelJitter, OffsetsStayInsideThePixel) {
     EXPECT_LT(std::abs(o.x), 0.5f);
     EXPECT_LE(std::abs(o.y), 0.5f);
   }
+}
+
+TEST(PixelJitter, CommandLineOption) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "irad_jitter_cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string base = std::string(IRAD_BINARY) + " render " + cornell.string() +
+                           " --size 32x32 --paths 8 --quiet -o " + (dir / "c.exr").string();
+  ASSERT_EQ(std::system((base + " --jitter on --stats " + (dir / "s.json").string()).c_str()), 0);
+  std::ifstream in(dir / "s.json");
+  EXPECT_TRUE(nlohmann::json::parse(in)["jitter"].get<bool>());
+  EXPECT_NE(std::system((base + " --jitter maybe 2>/dev/null").c_str()), 0);
 }
 
 // The Cornell box at 64 x 64 (its blocks' silhouettes and the walls' corners make the edges), 64
