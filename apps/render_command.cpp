@@ -43,6 +43,7 @@ struct RenderArgs {
   std::string gl = "auto";
   std::string sequence = "halton";
   int interleave = 4;
+  std::string jitter = "off";
   int gl_device = -1;
   bool partial = false;
   std::uint64_t max_triangles = LoadLimits{}.max_triangles;
@@ -142,6 +143,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"triangles", r.scene.triangle_count()},
           {"shadow_res", shadow_resolution_for(args.shadow_res, r.view.width, r.view.height)},
           {"interleave", args.interleave},
+          {"jitter", args.jitter == "on"},
           {"clamp", args.clamp},
           {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},
           {"camera", r.camera.name},
@@ -211,6 +213,7 @@ int run_render(const RenderArgs& args) {
   request.raster.backend = parse_backend(args.gl);
   request.raster.gl_device = args.gl_device;
   request.raster.interleave = args.interleave;
+  request.raster.jitter = args.jitter == "on";
   request.progress = !args.quiet && isatty(STDERR_FILENO);
   request.estimator = parse_estimator(args.estimator);
   request.pt.spp = args.spp;
@@ -312,6 +315,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
          "--interleave", args->interleave,
          "Raster: k > 1 splits the VPLs into k x k sets, each pixel of a k x k tile lit by "
          "one set, then a geometry-aware filter (1: every VPL shades every pixel)")
+      ->capture_default_str();
+  cmd->add_option("--jitter", args->jitter,
+                  "Raster: every VPL pass and the emitters at a sub-pixel offset from the path's "
+                  "low-discrepancy point (antialiased edges without multisampling)")
+      ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--gl", args->gl,
                   "OpenGL for the raster: auto (a GPU through EGL if there is one, else OSMesa), "

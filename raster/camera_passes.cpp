@@ -56,10 +56,14 @@ void CameraPasses::gbuffer(const glm::mat4& view_projection, const GpuScene& gpu
 }
 
 void CameraPasses::emitters(const glm::mat4& view_projection, const Scene& scene,
-                            const GpuScene& gpu) const {
+                            const GpuScene& gpu, float weight) const {
   if (!scene.has_emitters()) return;
   const GladGLContext& api = *api_;
   set_additive_state(api);
+  if (weight != 1.0f) {
+    api.BlendColor(0.0f, 0.0f, 0.0f, weight);
+    api.BlendFunc(GL_CONSTANT_ALPHA, GL_ONE);
+  }
   emission_.use();
   api.UniformMatrix4fv(emission_vp_, 1, GL_FALSE, glm::value_ptr(view_projection));
   gpu.draw_if([](const Material& m) { return m.emissive(); },

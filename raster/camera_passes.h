@@ -17,8 +17,10 @@ public:
   void depth(const glm::mat4& view_projection, const GpuScene& gpu) const;
   // Clears and writes position, normal and albedo (three colour attachments) and depth.
   void gbuffer(const glm::mat4& view_projection, const GpuScene& gpu) const;
-  // Adds L_e of the visible emitters (front faces unless double-sided) over the bound depth.
-  void emitters(const glm::mat4& view_projection, const Scene& scene, const GpuScene& gpu) const;
+  // Adds weight * L_e of the visible emitters (front faces unless double-sided) over the bound
+  // depth (weight < 1: one of several jittered passes, raster/jitter_passes.h).
+  void emitters(const glm::mat4& view_projection, const Scene& scene, const GpuScene& gpu,
+                float weight = 1.0f) const;
 
 private:
   const GladGLContext* api_;

@@ -6,7 +6,9 @@
 #include "raster/gl_context.h"
 #include "raster/gpu_scene.h"
 #include "raster/interleaved.h"
+#include "raster/jitter_passes.h"
 #include "raster/pass_timer.h"
+#include "raster/pixel_jitter.h"
 #include "raster/shadow_cube.h"
 #include "raster/target.h"
 #include "raster/vpl_shader.h"
@@ -63,6 +65,7 @@ struct RasterRenderer::Impl {
   gl::VplShader vpl_shader;
   std::unique_ptr<gl::Target> target;
   std::unique_ptr<gl::Interleaved> interleaved;
+  std::unique_ptr<gl::JitterPasses> jitter; // with options.jitter
   // Shadow maps kept per path slot (render_cached): one cube per VPL that carries light.
   struct CachedPath {
     std::vector<Vpl> vpls;
@@ -74,7 +77,8 @@ struct RasterRenderer::Impl {
 
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s), camera(api),
-        vpl_shader(api, s, o.clamp) {
+        vpl_shader(api, s, o.clamp),
+        jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api) : nullptr) {
     context->check("raster set-up");
   }
 
@@ -89,10 +93,34 @@ struct RasterRenderer::Impl {
   std::size_t vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
                          const ShadowFor& shadow_for, float texel_angle, gl::PassTimer* timer,
                          const Progress& progress);
+  // Binds the VPL's framebuffer and viewport and returns the view-projection it is shaded with;
+  // with jitter, the depth there is redrawn for its offset when that differs from the last one.
+  glm::mat4 bind_pass(const View& view, const Vpl& vpl, std::vector<glm::vec2>& last_offsets);
   // The resolve (interleaved), the emitters and the readback.
   Image finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                      gl::PassTimer* timer, RasterTimings* timings);
 };
+
+glm::mat4 RasterRenderer::Impl::bind_pass(const View& view, const Vpl& vpl,
+                                          std::vector<glm::vec2>& last_offsets) {
+  const int set = interleaved ? set_of(vpl.path, interleaved->sets()) : 0;
+  if (interleaved)
+    interleaved->bind_tile(set);
+  else
+    target->bind();
+  glm::mat4 projection = view.projection;
+  if (jitter) {
+    const glm::vec2 offset = vpl_jitter(vpl);
+    projection = jittered_projection(projection, offset, view.width, view.height);
+    if (interleaved) projection = interleaved->tile_projection(set, projection);
+    glm::vec2& last = last_offsets.at(static_cast<std::size_t>(set));
+    if (offset != last) jitter->redraw_depth(camera, projection * view.view, gpu);
+    last = offset;
+  } else if (interleaved) {
+    projection = interleaved->tile_projection(set, projection);
+  }
+  return projection * view.view;
+}
 
 void RasterRenderer::Impl::prepare(const View& view) {
   if (!target || target->width() != view.width || target->height() != view.height) {
@@ -110,11 +138,8 @@ void RasterRenderer::Impl::prepare(const View& view) {
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
                                              const ShadowFor& shadow_for, float texel_angle,
                                              gl::PassTimer* timer, const Progress& progress) {
-  const glm::mat4 vp = view.projection * view.view;
-  std::vector<glm::mat4> tile_vp;
-  if (interleaved)
-    for (int s = 0; s < interleaved->sets(); ++s)
-      tile_vp.push_back(interleaved->tile_projection(s, view.projection) * view.view);
+  // The depth each framebuffer (or atlas tile) holds: the unjittered one (offset 0) at first.
+  std::vector<glm::vec2> last_offsets(interleaved ? interleaved->sets() : 1, glm::vec2(0.0f));
   std::size_t passes = 0;
   for (std::size_t k = 0; k < vpls.size(); ++k) {
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) break;
@@ -125,15 +150,8 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector
       const GLuint cube = shadow_for(k, frame);
       if (timer) timer->end();
       if (timer) timer->begin(gl::PassTimer::Shading);
-      if (interleaved) {
-        const int set = set_of(vpl.path, static_cast<int>(tile_vp.size()));
-        interleaved->bind_tile(set);
-        vpl_shader.draw(vpl, cube, texel_angle, frame, tile_vp[static_cast<std::size_t>(set)],
-                        false, gpu);
-      } else {
-        target->bind();
-        vpl_shader.draw(vpl, cube, texel_angle, frame, vp, true, gpu);
-      }
+      const glm::mat4 pass_vp = bind_pass(view, vpl, last_offsets);
+      vpl_shader.draw(vpl, cube, texel_angle, frame, pass_vp, !interleaved, gpu);
       if (timer) timer->end();
       ++passes;
     }
@@ -150,6 +168,7 @@ void RasterRenderer::Impl::begin_image(const View& view) {
     // The full-resolution G-buffer (its depth is the target's), then each set's depth in its tile.
     interleaved->bind_gbuffer();
     camera.gbuffer(vp, gpu);
+    if (jitter) jitter->average_albedo(camera, view, gpu);
     interleaved->bind_atlas();
     api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     api.ClearDepth(1.0);
@@ -173,7 +192,10 @@ Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0,
                                          gl::PassTimer* timer, RasterTimings* timings) {
   target->bind();
   if (interleaved) interleaved->resolve();
-  camera.emitters(view.projection * view.view, scene, gpu);
+  if (jitter)
+    jitter->emitters(camera, view, scene, gpu);
+  else
+    camera.emitters(view.projection * view.view, scene, gpu);
   context->check("raster passes");
   const auto t1 = Clock::now();
   Image image = target->read();

@@ -26,6 +26,9 @@ struct RasterOptions {
   // geometry-aware k x k resolve. 4 is the default: at equal time it wins on error against the
   // path tracer (docs/performance.md).
   int interleave = 4;
+  // Jittered low-discrepancy sampling (raster/pixel_jitter.h): every VPL pass, and the emitters,
+  // at a sub-pixel offset, so the accumulation antialiases geometric edges.
+  bool jitter = false;
   // When it becomes true (a signal handler), render() draws no further VPL passes and returns
   // what the passes so far accumulated.
   const std::atomic<bool>* cancel = nullptr;

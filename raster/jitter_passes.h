@@ -1,0 +1,41 @@
+#pragma once
+// The GL side of jittered sampling (raster/pixel_jitter.h): every pass that looks through a
+// jittered projection needs the depth of that very projection, and the passes drawn once per
+// image (visible emitters, the interleaved resolve's albedo) are averaged over a fixed set of
+// jittered passes, so the whole image is filtered with the same box over the pixel footprint.
+#include "core/scene.h"
+#include "core/view.h"
+#include "raster/camera_passes.h"
+#include "raster/gpu_scene.h"
+#include "raster/shader_program.h"
+
+#include <glm/glm.hpp>
+
+namespace irad::gl {
+
+// Jittered passes of the emitters and of the albedo: 16, the reference's 4 x 4 supersampling.
+inline constexpr int kCameraJitterPasses = 16;
+
+class JitterPasses {
+public:
+  explicit JitterPasses(const GladGLContext& api);
+  // Clears the depth inside the bound framebuffer's viewport (only there: a tile of the
+  // interleaved atlas) and writes the scene's depth seen through view_projection.
+  void redraw_depth(const CameraPasses& camera, const glm::mat4& view_projection,
+                    const GpuScene& gpu) const;
+  // Adds L_e of the visible emitters averaged over kCameraJitterPasses jittered projections into
+  // the bound target (its depth is redrawn for each, so it is left jittered).
+  void emitters(const CameraPasses& camera, const View& view, const Scene& scene,
+                const GpuScene& gpu) const;
+  // With the interleaved G-buffer bound (albedo at colour attachment 2): replaces the albedo by
+  // its average over kCameraJitterPasses jittered projections; position and normal stay the
+  // pixel centre's (the resolve's geometry test), the shared depth is left jittered.
+  void average_albedo(const CameraPasses& camera, const View& view, const GpuScene& gpu) const;
+
+private:
+  const GladGLContext* api_;
+  ShaderProgram gbuffer_;
+  GLint vp_, base_color_, has_texture_;
+};
+
+} // namespace irad::gl
