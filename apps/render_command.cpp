@@ -41,6 +41,7 @@ struct RenderArgs {
   std::uint32_t bias_samples = 16;
   std::string gl = "auto";
   std::string sequence = "halton";
+  std::string light_allocation = "power";
   int interleave = 4;
   int gl_device = -1;
   bool partial = false;
@@ -204,6 +205,7 @@ int run_render(const RenderArgs& args) {
   request.walk.paths = args.paths;
   request.walk.sequence = parse_sequence(args.sequence);
   request.walk.seed = args.seed;
+  request.walk.allocation = parse_light_allocation(args.light_allocation, "--light-allocation");
   request.raster.shadow_resolution = args.shadow_res;
   request.raster.clamp = args.clamp;
   request.raster.backend = parse_backend(args.gl);
@@ -295,6 +297,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Points of the walk: halton (the seed's), scrambled-halton or random (seeded)")
       ->check(CLI::IsMember({"halton", "scrambled-halton", "random"}))
       ->capture_default_str();
+  // Advanced (not in --help): the seed's one-light-after-the-other allocation, for measurements.
+  cmd->add_option("--light-allocation", args->light_allocation,
+                  "Share of the paths per light: power (design.md 6.2) or uniform")
+      ->check(CLI::IsMember({"power", "uniform"}))
+      ->group("");
   cmd->add_option("--spp", args->spp, "pt: samples per pixel")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed (pt, scrambled-halton, random)")
       ->capture_default_str();

@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "raster/camera_passes.h"
+#include "raster/directional_pass.h"
 #include "raster/gl_context.h"
 #include "raster/gpu_scene.h"
 #include "raster/interleaved.h"
@@ -62,6 +63,7 @@ struct RasterRenderer::Impl {
   gl::VplShader vpl_shader;
   std::unique_ptr<gl::Target> target;
   std::unique_ptr<gl::Interleaved> interleaved;
+  std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
 
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s), camera(api),
@@ -70,6 +72,9 @@ struct RasterRenderer::Impl {
   }
 
   void prepare(const View& view);
+  // One VPL's shadow map and shading pass into the bound framebuffer `bind` makes current.
+  void vpl_pass(const Vpl& vpl, const glm::mat4& vp, bool albedo, gl::PassTimer* timer,
+                const std::function<void()>& bind);
   // The VPL passes, each VPL shadow map then shading; returns the number drawn.
   std::size_t vpl_passes(const View& view, const VplSet& vpls, gl::PassTimer* timer,
                          const Progress& progress);
@@ -86,6 +91,28 @@ void RasterRenderer::Impl::prepare(const View& view) {
   if (options.interleave > 1 && !interleaved)
     interleaved = std::make_unique<gl::Interleaved>(api, view.width, view.height,
                                                     options.interleave, target->depth());
+  const int ortho = gl::ortho_resolution_for(options.shadow_resolution, view.width, view.height);
+  if (gl::has_directional_light(scene) && (!directional || directional->resolution() != ortho))
+    directional = std::make_unique<gl::DirectionalPass>(api, scene, ortho);
+  if (directional) directional->forget();
+}
+
+void RasterRenderer::Impl::vpl_pass(const Vpl& vpl, const glm::mat4& vp, bool albedo,
+                                    gl::PassTimer* timer, const std::function<void()>& bind) {
+  if (timer) timer->begin(gl::PassTimer::Shadow);
+  glm::mat3 frame(1.0f);
+  if (vpl.kind == VplKind::Directional)
+    directional->shadow(vpl, gpu);
+  else
+    frame = shadow->render(vpl, gpu);
+  if (timer) timer->end();
+  if (timer) timer->begin(gl::PassTimer::Shading);
+  bind();
+  if (vpl.kind == VplKind::Directional)
+    directional->draw(vpl, vp, albedo, gpu);
+  else
+    vpl_shader.draw(vpl, *shadow, frame, vp, albedo, gpu);
+  if (timer) timer->end();
 }
 
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const VplSet& vpls,
@@ -100,19 +127,13 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const VplSet& vpl
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) break;
     const Vpl& vpl = vpls.vpls[k];
     if (carries_light(vpl)) {
-      if (timer) timer->begin(gl::PassTimer::Shadow);
-      const glm::mat3 frame = shadow->render(vpl, gpu);
-      if (timer) timer->end();
-      if (timer) timer->begin(gl::PassTimer::Shading);
       if (interleaved) {
         const int set = set_of(vpl.path, static_cast<int>(tile_vp.size()));
-        interleaved->bind_tile(set);
-        vpl_shader.draw(vpl, *shadow, frame, tile_vp[static_cast<std::size_t>(set)], false, gpu);
+        vpl_pass(vpl, tile_vp[static_cast<std::size_t>(set)], false, timer,
+                 [&] { interleaved->bind_tile(set); });
       } else {
-        target->bind();
-        vpl_shader.draw(vpl, *shadow, frame, vp, true, gpu);
+        vpl_pass(vpl, vp, true, timer, [&] { target->bind(); });
       }
-      if (timer) timer->end();
       ++passes;
     }
     if (progress) progress(k + 1, vpls.vpls.size());
