@@ -4,12 +4,14 @@
 // light bounced by the wall into the shadow. The directional light is also checked against
 // Lambert's cosine law and its walk against the flux E A cos theta it delivers to a plane.
 //
-// With IRAD_TEST_IMAGES=DIR the tests write their images to DIR (docs/ext/punctual.md).
+// With IRAD_TEST_IMAGES=DIR the tests write their images and scenes to DIR (docs/ext/punctual.md).
+#include "core/gltf_writer.h"
 #include "core/image_io.h"
 #include "core/image_metrics.h"
 #include "core/scene_builder.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"
+#include "tests/side_by_side.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
@@ -76,26 +78,6 @@ Scene punctual_scene(const PunctualLight& light) {
   return s;
 }
 
-// Side by side, left to right, each pixel shown as z x z (a gap of 2 black pixels between them).
-Image side_by_side(const std::vector<const Image*>& images, int z = 3) {
-  int width = 0;
-  for (const Image* i : images) width += z * i->width() + 2;
-  Image out(width - 2, z * images.front()->height());
-  int x0 = 0;
-  for (const Image* i : images) {
-    for (int y = 0; y < z * i->height(); ++y)
-      for (int x = 0; x < z * i->width(); ++x) out.at(x0 + x, y) = i->at(x / z, y / z);
-    x0 += z * i->width() + 2;
-  }
-  return out;
-}
-
-void maybe_write(const std::string& name, const std::vector<const Image*>& images) {
-  const char* dir = std::getenv("IRAD_TEST_IMAGES");
-  if (dir == nullptr) return;
-  write_png(std::string(dir) + "/" + name + ".png", side_by_side(images));
-}
-
 struct Errors {
   ImageMetrics raster, rt_vpl, raster_vs_rt_vpl;
 };
@@ -116,7 +98,9 @@ Errors render_and_compare(const PunctualLight& light, const std::string& name) {
   EXPECT_EQ(raster.non_finite_count(), 0u);
   EXPECT_EQ(traced.non_finite_count(), 0u);
   const Image error = relative_error_image(raster, pt, {0.2, 1});
-  maybe_write("punctual_" + name, {&raster, &traced, &pt, &error});
+  maybe_write_side_by_side("punctual_" + name, {&raster, &traced, &pt, &error});
+  if (const char* dir = std::getenv("IRAD_TEST_IMAGES"))
+    write_gltf(s, std::string(dir) + "/punctual_" + name + ".gltf");
   Errors e{compare_images(raster, pt), compare_images(traced, pt), compare_images(raster, traced)};
   std::printf("%s vs pt: raster relMSE %.3g mean ratio %.4f | rt-vpl relMSE %.3g mean ratio %.4f"
               " | raster vs rt-vpl relMSE %.3g\n",
