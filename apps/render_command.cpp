@@ -135,6 +135,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"passes", r.passes},
           {"paths", r.vpls.paths},
           {"sequence", args.sequence},
+          {"light_allocation", args.light_allocation},
           {"rho_bar", r.vpls.rho_bar},
           {"l_max", r.vpls.l_max},
           {"depth_capped", r.vpls.depth_capped},
