@@ -72,9 +72,10 @@ struct RasterRenderer::Impl {
   }
 
   void prepare(const View& view);
-  // One VPL's shadow map and shading pass into the bound framebuffer `bind` makes current.
-  void vpl_pass(const Vpl& vpl, const glm::mat4& vp, bool albedo, gl::PassTimer* timer,
-                const std::function<void()>& bind);
+  // A VPL's shadow map (a cube, or the orthographic map of a directional VPL) and its shading pass
+  // into the bound framebuffer; shadow_map returns the cube's frame (identity for directional).
+  glm::mat3 shadow_map(const Vpl& vpl);
+  void shade(const Vpl& vpl, const glm::mat3& frame, const glm::mat4& vp, bool albedo);
   // The VPL passes, each VPL shadow map then shading; returns the number drawn.
   std::size_t vpl_passes(const View& view, const VplSet& vpls, gl::PassTimer* timer,
                          const Progress& progress);
@@ -97,22 +98,18 @@ void RasterRenderer::Impl::prepare(const View& view) {
   if (directional) directional->forget();
 }
 
-void RasterRenderer::Impl::vpl_pass(const Vpl& vpl, const glm::mat4& vp, bool albedo,
-                                    gl::PassTimer* timer, const std::function<void()>& bind) {
-  if (timer) timer->begin(gl::PassTimer::Shadow);
-  glm::mat3 frame(1.0f);
-  if (vpl.kind == VplKind::Directional)
-    directional->shadow(vpl, gpu);
-  else
-    frame = shadow->render(vpl, gpu);
-  if (timer) timer->end();
-  if (timer) timer->begin(gl::PassTimer::Shading);
-  bind();
+glm::mat3 RasterRenderer::Impl::shadow_map(const Vpl& vpl) {
+  if (vpl.kind != VplKind::Directional) return shadow->render(vpl, gpu);
+  directional->shadow(vpl, gpu);
+  return glm::mat3(1.0f);
+}
+
+void RasterRenderer::Impl::shade(const Vpl& vpl, const glm::mat3& frame, const glm::mat4& vp,
+                                 bool albedo) {
   if (vpl.kind == VplKind::Directional)
     directional->draw(vpl, vp, albedo, gpu);
   else
     vpl_shader.draw(vpl, *shadow, frame, vp, albedo, gpu);
-  if (timer) timer->end();
 }
 
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const VplSet& vpls,
@@ -127,13 +124,19 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const VplSet& vpl
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) break;
     const Vpl& vpl = vpls.vpls[k];
     if (carries_light(vpl)) {
+      if (timer) timer->begin(gl::PassTimer::Shadow);
+      const glm::mat3 frame = shadow_map(vpl);
+      if (timer) timer->end();
+      if (timer) timer->begin(gl::PassTimer::Shading);
       if (interleaved) {
         const int set = set_of(vpl.path, static_cast<int>(tile_vp.size()));
-        vpl_pass(vpl, tile_vp[static_cast<std::size_t>(set)], false, timer,
-                 [&] { interleaved->bind_tile(set); });
+        interleaved->bind_tile(set);
+        shade(vpl, frame, tile_vp[static_cast<std::size_t>(set)], false);
       } else {
-        vpl_pass(vpl, vp, true, timer, [&] { target->bind(); });
+        target->bind();
+        shade(vpl, frame, vp, true);
       }
+      if (timer) timer->end();
       ++passes;
     }
     if (progress) progress(k + 1, vpls.vpls.size());
