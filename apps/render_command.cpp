@@ -42,6 +42,7 @@ struct RenderArgs {
   std::uint32_t bias_samples = 16;
   std::string gl = "auto";
   std::string sequence = "halton";
+  std::string light_allocation = "power";
   int interleave = 4;
   std::string jitter = "off";
   int gl_device = -1;
@@ -136,6 +137,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"passes", r.passes},
           {"paths", r.vpls.paths},
           {"sequence", args.sequence},
+          {"light_allocation", args.light_allocation},
           {"rho_bar", r.vpls.rho_bar},
           {"l_max", r.vpls.l_max},
           {"depth_capped", r.vpls.depth_capped},
@@ -208,6 +210,7 @@ int run_render(const RenderArgs& args) {
   request.walk.paths = args.paths;
   request.walk.sequence = parse_sequence(args.sequence);
   request.walk.seed = args.seed;
+  request.walk.allocation = parse_light_allocation(args.light_allocation, "--light-allocation");
   request.raster.shadow_resolution = args.shadow_res;
   request.raster.clamp = args.clamp;
   request.raster.backend = parse_backend(args.gl);
@@ -301,6 +304,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Points of the walk: halton (the seed's), scrambled-halton or random (seeded)")
       ->check(CLI::IsMember({"halton", "scrambled-halton", "random"}))
       ->capture_default_str();
+  // Advanced (not in --help): the seed's one-light-after-the-other allocation, for measurements.
+  cmd->add_option("--light-allocation", args->light_allocation,
+                  "Share of the paths per light: power (design.md 6.2) or uniform")
+      ->check(CLI::IsMember({"power", "uniform"}))
+      ->group("");
   cmd->add_option("--spp", args->spp, "pt: samples per pixel")->capture_default_str();
   cmd->add_option("--seed", args->seed, "Random seed (pt, scrambled-halton, random)")
       ->capture_default_str();

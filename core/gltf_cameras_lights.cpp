@@ -55,7 +55,9 @@ glm::dvec3 light_color(const Context& ctx, const tinygltf::Light& l, const std::
 PunctualLight convert_light(const Context& ctx, const tinygltf::Light& l,
                             const std::string& where) {
   PunctualLight out;
-  out.kind = l.type == "spot" ? PunctualLight::Kind::Spot : PunctualLight::Kind::Point;
+  out.kind = l.type == "spot"          ? PunctualLight::Kind::Spot
+             : l.type == "directional" ? PunctualLight::Kind::Directional
+                                       : PunctualLight::Kind::Point;
   if (!(std::isfinite(l.intensity) && l.intensity >= 0.0)) {
     ctx.fail(where, fmt::format("intensity must be finite and >= 0, got {}", l.intensity));
   }
@@ -109,11 +111,7 @@ std::optional<PunctualLight> place_light(const Context& ctx, std::size_t light, 
                                          const glm::dmat4& world) {
   const tinygltf::Light& l = ctx.model.lights[light];
   const std::string where = "KHR_lights_punctual.lights[" + std::to_string(light) + "]";
-  if (l.type == "directional") {
-    ctx.warn("KHR_lights_punctual directional lights are not supported yet; skipped");
-    return std::nullopt;
-  }
-  if (l.type != "point" && l.type != "spot") {
+  if (l.type != "point" && l.type != "spot" && l.type != "directional") {
     ctx.fail(where, "unknown light type '" + l.type + "'");
   }
   PunctualLight out = convert_light(ctx, l, where);
@@ -123,8 +121,8 @@ std::optional<PunctualLight> place_light(const Context& ctx, std::size_t light, 
   const double len = glm::length(axis);
   if (len > 0.0 && std::isfinite(len)) {
     out.direction = glm::vec3(axis / len);
-  } else if (out.kind == PunctualLight::Kind::Spot) {
-    ctx.fail(element("nodes", node), "the spot light's node transform is singular");
+  } else if (out.kind != PunctualLight::Kind::Point) {
+    ctx.fail(element("nodes", node), "the light's node transform is singular (no direction)");
   }
   return out;
 }

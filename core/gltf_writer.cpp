@@ -125,9 +125,9 @@ void validate(const Scene& scene, const std::string& file) {
     const glm::vec3 i = l.intensity;
     if (!(i.x >= 0.0f && i.y >= 0.0f && i.z >= 0.0f && std::isfinite(i.x + i.y + i.z)))
       throw Error(file, where, "intensity must be finite and >= 0");
+    if (l.kind == PunctualLight::Kind::Point) continue;
+    if (!(glm::length(l.direction) > 0.0f)) throw Error(file, where, "the light has no direction");
     if (l.kind != PunctualLight::Kind::Spot) continue;
-    if (!(glm::length(l.direction) > 0.0f))
-      throw Error(file, where, "the spot light has no direction");
     if (!(l.inner_cone >= 0.0f && l.inner_cone < l.outer_cone &&
           l.outer_cone <= 0.5f * std::numbers::pi_v<float>))
       throw Error(file, where, "cone angles must satisfy 0 <= inner < outer <= pi/2");
@@ -225,7 +225,7 @@ json write_light(const PunctualLight& l) {
     out["spot"] = {{"innerConeAngle", double(l.inner_cone)},
                    {"outerConeAngle", double(l.outer_cone)}};
   } else {
-    out["type"] = "point";
+    out["type"] = l.kind == PunctualLight::Kind::Directional ? "directional" : "point";
   }
   return out;
 }

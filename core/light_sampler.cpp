@@ -1,5 +1,7 @@
 #include "core/light_sampler.h"
 
+#include "core/error.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -22,11 +24,17 @@ double triangle_power(const Scene& scene, std::size_t t) {
   return sides * pi * triangle_area(scene, t) * mean3(le);
 }
 
-double light_power(const PunctualLight& light) {
-  const double solid_angle = light.kind == PunctualLight::Kind::Point
-                                 ? 4.0 * pi
-                                 : 2.0 * pi * (1.0 - std::cos(light.outer_cone));
-  return solid_angle * mean3(light.intensity);
+// Phi of a punctual light; radius: the scene's bounding sphere (what a directional light covers).
+double light_power(const PunctualLight& light, double radius) {
+  switch (light.kind) {
+  case PunctualLight::Kind::Point:
+    return 4.0 * pi * mean3(light.intensity);
+  case PunctualLight::Kind::Spot:
+    return 2.0 * pi * (1.0 - std::cos(light.outer_cone)) * mean3(light.intensity);
+  case PunctualLight::Kind::Directional:
+    return pi * radius * radius * mean3(light.intensity);
+  }
+  return 0.0;
 }
 
 // Uniform point on a triangle from the unit square: b1 = v sqrt(u), b2 = ... (area-preserving).
@@ -69,23 +77,38 @@ glm::vec3 cosine_direction(const glm::vec3& n, double u, double v) {
                             static_cast<float>(sin_t * std::sin(phi)), static_cast<float>(cos_t)));
 }
 
-LightSampler::LightSampler(const Scene& scene) {
+LightAllocation parse_light_allocation(const std::string& name, const std::string& option) {
+  if (name == "power") return LightAllocation::Power;
+  if (name == "uniform") return LightAllocation::Uniform;
+  throw Error("", option, "must be power or uniform, got '" + name + "'");
+}
+
+LightSampler::LightSampler(const Scene& scene, LightAllocation allocation) {
+  if (!scene.bounds.empty()) {
+    centre_ = scene.bounds.center();
+    radius_ = 0.5f * scene.bounds.diagonal();
+  }
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
     if (!scene.material_of(t).emissive()) continue;
     const double p = triangle_power(scene, t);
-    if (p > 0.0) entries_.push_back({static_cast<std::int64_t>(t), p});
+    if (p > 0.0) entries_.push_back({static_cast<std::int64_t>(t), p, scene.triangle_material[t]});
   }
   triangle_entries_ = entries_.size();
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
-    const double p = light_power(scene.lights[l]);
-    if (p > 0.0) entries_.push_back({-static_cast<std::int64_t>(l) - 1, p});
+    const double p = light_power(scene.lights[l], radius_);
+    if (p > 0.0)
+      entries_.push_back({-static_cast<std::int64_t>(l) - 1, p, scene.materials.size() + l});
   }
+  // Selection weights: the power, or under uniform allocation the power within the light divided
+  // by the light's power (every light then weighs 1).
+  std::vector<double> group_power(scene.materials.size() + scene.lights.size(), 0.0);
+  for (const Entry& e : entries_) group_power[e.group] += e.power;
   double sum = 0.0;
   for (const Entry& e : entries_) {
-    sum += e.power;
+    total_power_ += e.power;
+    sum += allocation == LightAllocation::Power ? e.power : e.power / group_power[e.group];
     cdf_.push_back(sum);
   }
-  total_power_ = sum;
   for (double& c : cdf_) c /= sum;
   if (!cdf_.empty()) cdf_.back() = 1.0;
 }
@@ -113,15 +136,38 @@ LightStart LightSampler::sample(const Scene& scene, double u, double v) const {
     s.pdf = prob / triangle_area(scene, t);
     return s;
   }
-  const PunctualLight& light = scene.lights[static_cast<std::size_t>(-e.triangle - 1)];
+  return punctual(scene.lights[static_cast<std::size_t>(-e.triangle - 1)], prob, u_rest, v);
+}
+
+LightStart LightSampler::punctual(const PunctualLight& light, double prob, double u,
+                                  double v) const {
+  LightStart s;
   s.position = light.position;
   s.normal = light.direction;
   s.beta = light.intensity / static_cast<float>(prob);
   s.pdf = prob;
-  s.kind = light.kind == PunctualLight::Kind::Point ? VplKind::Point : VplKind::Spot;
-  if (s.kind == VplKind::Spot) {
+  switch (light.kind) {
+  case PunctualLight::Kind::Point:
+    s.kind = VplKind::Point;
+    break;
+  case PunctualLight::Kind::Spot:
+    s.kind = VplKind::Spot;
     s.cos_inner = std::cos(light.inner_cone);
     s.cos_outer = std::cos(light.outer_cone);
+    break;
+  case PunctualLight::Kind::Directional: {
+    // Uniform on the disk of radius R perpendicular to d whose rays along d cover the bounding
+    // sphere; the disk lies 1 % of R upstream of the sphere (area density 1 / (pi R^2)).
+    s.kind = VplKind::Directional;
+    glm::vec3 t, b;
+    orthonormal_basis(light.direction, t, b);
+    const double r = radius_ * std::sqrt(u), phi = 2.0 * pi * v;
+    s.position = centre_ - 1.01f * radius_ * light.direction +
+                 static_cast<float>(r * std::cos(phi)) * t +
+                 static_cast<float>(r * std::sin(phi)) * b;
+    s.disk_area = static_cast<float>(pi * radius_ * radius_);
+    break;
+  }
   }
   return s;
 }
@@ -163,6 +209,8 @@ LightDirection LightSampler::direction(const LightStart& start, double u, double
     const float falloff = spot_falloff(static_cast<float>(cos_t), start.cos_inner, start.cos_outer);
     return {d, static_cast<float>(solid_angle) * falloff};
   }
+  case VplKind::Directional:
+    return {start.normal, start.disk_area};
   }
   return {};
 }

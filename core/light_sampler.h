@@ -1,18 +1,31 @@
 #pragma once
-// Chooses where light paths start: emissive triangles and punctual lights, each with probability
-// proportional to its power
+// Chooses where light paths start: emissive triangles and punctual lights, with the power
 //   triangle k: Phi_k = pi * A_k * mean(L_e,k)  (x2 when double-sided),
-//   point:      Phi = 4 pi * mean(I),   spot: Phi = 2 pi (1 - cos outer) * mean(I).
+//   point:      Phi = 4 pi * mean(I),   spot: Phi = 2 pi (1 - cos outer) * mean(I),
+//   directional: Phi = pi R^2 * mean(E)  (R: radius of the scene's bounding sphere).
+// Allocation (design.md 6.2, "lights by power"): entry k is chosen with probability P(k):
+//   Power:   P(k) = Phi_k / Phi  (the default: every light's share of the paths follows its power),
+//   Uniform: P(k) = 1/G * Phi_k / Phi_g(k), G lights, a light being an emissive material (its
+//            triangles by power within it) or a punctual light (the seed's "one light after the
+//            other": each light gets N/G paths whatever its power).
+// Either way the estimate stays unbiased: the start divides by P(k).
 // A triangle point is uniform on the triangle, so p(y0) = P(k) / A_k and the path starts with
-// beta_0 = L_e(y0) / p(y0); a punctual light starts with beta_0 = I / P(k).
+// beta_0 = L_e(y0) / p(y0); a point or spot light starts with beta_0 = I / P(k); a directional
+// light starts uniformly on a disk of radius R perpendicular to d just outside the bounding sphere,
+// with beta_0 = E / P(k) (its depth-0 VPL is the light at infinity, C(x) of core/vpl.h).
 #include "core/scene.h"
 #include "core/vpl.h"
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 namespace irad {
+
+enum class LightAllocation { Power, Uniform };
+// "power" or "uniform"; throws irad::Error naming `option` otherwise.
+LightAllocation parse_light_allocation(const std::string& name, const std::string& option);
 
 struct LightStart {
   glm::vec3 position{0.0f};
@@ -21,6 +34,7 @@ struct LightStart {
   VplKind kind = VplKind::Surface;
   float cos_inner = 1.0f, cos_outer = 0.0f; // Spot only
   std::int64_t triangle = -1;               // the emissive triangle, -1 for punctual lights
+  float disk_area = 0.0f;                   // Directional only: pi R^2, the start disk's area
   double pdf = 0.0; // area density p(y0) = P(k) / A_k on a triangle; P(k) for a punctual light
 };
 
@@ -32,7 +46,7 @@ struct LightDirection {
 
 class LightSampler {
 public:
-  explicit LightSampler(const Scene& scene);
+  explicit LightSampler(const Scene& scene, LightAllocation allocation = LightAllocation::Power);
 
   bool empty() const { return cdf_.empty(); }
   double total_power() const { return total_power_; }
@@ -40,7 +54,8 @@ public:
   // the point on the chosen triangle.
   LightStart sample(const Scene& scene, double u, double v) const;
   // Direction leaving a start: cosine-distributed around the front normal (factor pi), either
-  // side of a two-sided emitter (factor 2 pi), uniform on the sphere (4 pi) or in the spot cone.
+  // side of a two-sided emitter (factor 2 pi), uniform on the sphere (4 pi), in the spot cone, or
+  // d itself for a directional light (factor pi R^2: beta_1 = Phi / P(k)).
   static LightDirection direction(const LightStart& start, double u, double v);
   // p(y) = P(k) / A_k for a point on emissive triangle t (0 when t is not sampled): what sample()
   // gives that point, for multiple importance sampling.
@@ -50,11 +65,16 @@ private:
   struct Entry {
     std::int64_t triangle; // >= 0: emissive triangle; else -(light index + 1)
     double power;
+    std::size_t group; // uniform allocation's light: the material, or materials + light index
   };
+  LightStart punctual(const PunctualLight& light, double prob, double u, double v) const;
+
   std::vector<Entry> entries_; // emissive triangles (increasing index), then punctual lights
   std::size_t triangle_entries_ = 0;
   std::vector<double> cdf_; // inclusive prefix sums / total
   double total_power_ = 0.0;
+  glm::vec3 centre_{0.0f}; // bounding sphere of the scene (directional lights)
+  float radius_ = 0.0f;
 };
 
 // Cosine-distributed unit direction around n: theta = asin(sqrt(u)), phi = 2 pi v (pdf cos/pi).

@@ -42,13 +42,15 @@ struct Camera {
 };
 
 // KHR_lights_punctual light, placed in the world. intensity = color * intensity of the file and is
-// a radiant intensity in the image's linear units per steradian (no photometric conversion).
+// a radiant intensity in the image's linear units per steradian (no photometric conversion); for
+// a directional light it is the irradiance E on a surface facing the light (units per m^2 of the
+// scene's length unit), and only `direction` (where the light travels) matters.
 struct PunctualLight {
-  enum class Kind { Point, Spot };
+  enum class Kind { Point, Spot, Directional };
   std::string name;
   Kind kind = Kind::Point;
   glm::vec3 position{0.0f};
-  glm::vec3 direction{0.0f, 0.0f, -1.0f}; // spot axis (unit)
+  glm::vec3 direction{0.0f, 0.0f, -1.0f}; // spot axis, or the directional light's travel (unit)
   glm::vec3 intensity{0.0f};
   float inner_cone = 0.0f; // radians, spot only
   float outer_cone = 0.7853982f;

@@ -8,6 +8,10 @@
 //   TwoSided:  |cos theta_y|        (a point on a double-sided emitter)
 //   Point:     1                    (a punctual light; no clamp, it is exact and not a sample)
 //   Spot:      glTF smooth cone falloff around `normal` (the spot axis); no clamp either.
+// A Directional VPL is a light at infinity travelling along `normal` (d): it has no position (the
+// field holds where its particle started) and
+//   C(x) = intensity * max(0, n_x . (-d)) * V(x, -d to infinity) * rho(x)/pi   (no 1/r^2, no
+//   clamp).
 // `intensity` already folds in the weight w = 1/n_j, the path throughput beta_j and, for depth >=
 // 1, rho(y_j)/pi, so an estimator adds C(x) of every VPL and nothing else.
 #include <cstdint>
@@ -16,11 +20,11 @@
 
 namespace irad {
 
-enum class VplKind : std::uint8_t { Surface, TwoSided, Point, Spot };
+enum class VplKind : std::uint8_t { Surface, TwoSided, Point, Spot, Directional };
 
 struct Vpl {
   glm::vec3 position{0.0f};
-  glm::vec3 normal{0.0f, 0.0f, 1.0f}; // unit; the spot axis for Spot
+  glm::vec3 normal{0.0f, 0.0f, 1.0f}; // unit; the spot axis for Spot, d for Directional
   glm::vec3 intensity{0.0f};
   VplKind kind = VplKind::Surface;
   std::uint16_t depth = 0; // reflections before this VPL (0: on a light)

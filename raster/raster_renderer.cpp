@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "raster/camera_passes.h"
+#include "raster/directional_pass.h"
 #include "raster/gl_context.h"
 #include "raster/gpu_scene.h"
 #include "raster/interleaved.h"
@@ -65,7 +66,8 @@ struct RasterRenderer::Impl {
   gl::VplShader vpl_shader;
   std::unique_ptr<gl::Target> target;
   std::unique_ptr<gl::Interleaved> interleaved;
-  std::unique_ptr<gl::JitterPasses> jitter; // with options.jitter
+  std::unique_ptr<gl::JitterPasses> jitter;         // with options.jitter
+  std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   // Shadow maps kept per path slot (render_cached): one cube per VPL that carries light.
   struct CachedPath {
     std::vector<Vpl> vpls;
@@ -96,6 +98,8 @@ struct RasterRenderer::Impl {
   // Binds the VPL's framebuffer and viewport and returns the view-projection it is shaded with;
   // with jitter, the depth there is redrawn for its offset when that differs from the last one.
   glm::mat4 bind_pass(const View& view, const Vpl& vpl, std::vector<glm::vec2>& last_offsets);
+  // The orthographic shadow map of a directional VPL (shared by the VPLs of one direction).
+  void directional_shadow(const Vpl& vpl) { directional->shadow(vpl, gpu); }
   // The resolve (interleaved), the emitters and the readback.
   Image finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                      gl::PassTimer* timer, RasterTimings* timings);
@@ -133,6 +137,10 @@ void RasterRenderer::Impl::prepare(const View& view) {
   if (options.interleave > 1 && !interleaved)
     interleaved = std::make_unique<gl::Interleaved>(api, view.width, view.height,
                                                     options.interleave, target->depth());
+  const int ortho = gl::ortho_resolution_for(options.shadow_resolution, view.width, view.height);
+  if (gl::has_directional_light(scene) && (!directional || directional->resolution() != ortho))
+    directional = std::make_unique<gl::DirectionalPass>(api, scene, ortho);
+  if (directional) directional->forget();
 }
 
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
@@ -151,7 +159,10 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector
       if (timer) timer->end();
       if (timer) timer->begin(gl::PassTimer::Shading);
       const glm::mat4 pass_vp = bind_pass(view, vpl, last_offsets);
-      vpl_shader.draw(vpl, cube, texel_angle, frame, pass_vp, !interleaved, gpu);
+      if (vpl.kind == VplKind::Directional)
+        directional->draw(vpl, pass_vp, !interleaved, gpu); // its map: drawn by shadow_for
+      else
+        vpl_shader.draw(vpl, cube, texel_angle, frame, pass_vp, !interleaved, gpu);
       if (timer) timer->end();
       ++passes;
     }
@@ -245,7 +256,11 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   std::vector<const Vpl*> list;
   list.reserve(vpls.vpls.size());
   for (const Vpl& v : vpls.vpls) list.push_back(&v);
-  const auto draw_now = [&](std::size_t k, glm::mat3& frame) {
+  const auto draw_now = [&](std::size_t k, glm::mat3& frame) -> GLuint {
+    if (list[k]->kind == VplKind::Directional) {
+      im.directional_shadow(*list[k]);
+      return 0;
+    }
     frame = im.shadow->render(*list[k], im.gpu);
     return im.shadow->texture();
   };
@@ -269,6 +284,11 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
   for (const Vpl& v : vpls) {
     if (!carries_light(v)) continue;
     path.vpls.push_back(v);
+    if (v.kind == VplKind::Directional) { // its orthographic map is drawn per image
+      path.cubes.emplace_back();
+      path.frames.emplace_back(1.0f);
+      continue;
+    }
     path.cubes.push_back(gl::ShadowCube::make_cube(im.api, resolution));
     path.frames.push_back(im.cache_shadow->render_into(v, im.gpu, path.cubes.back().get()));
   }
@@ -287,6 +307,7 @@ Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
       maps.emplace_back(p.cubes[i].get(), p.frames[i]);
     }
   const auto kept = [&](std::size_t k, glm::mat3& frame) {
+    if (list[k]->kind == VplKind::Directional) im.directional_shadow(*list[k]);
     frame = maps[k].second;
     return maps[k].first;
   };
@@ -297,7 +318,8 @@ Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
 
 std::size_t RasterRenderer::cache_bytes() const {
   std::size_t cubes = 0;
-  for (const Impl::CachedPath& p : impl_->cache) cubes += p.cubes.size();
+  for (const Impl::CachedPath& p : impl_->cache)
+    for (const gl::Texture& c : p.cubes) cubes += c.get() != 0 ? 1 : 0;
   const std::size_t r = impl_->cache_shadow ? std::size_t(impl_->cache_shadow->resolution()) : 0;
   return cubes * 6 * r * r * sizeof(float);
 }

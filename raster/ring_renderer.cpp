@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "raster/camera_passes.h"
+#include "raster/directional_pass.h"
 #include "raster/gl_context.h"
 #include "raster/gpu_scene.h"
 #include "raster/shaders.h"
@@ -46,6 +47,7 @@ struct RingRenderer::Impl {
   gl::Framebuffer slot_fbo, sum_fbo;
   gl::VertexArray empty_vao;
   gl::ShaderProgram copy;
+  std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   int frames_since_resum = 0;
   std::size_t passes = 0;
 
@@ -71,6 +73,9 @@ struct RingRenderer::Impl {
     clear_color();
     copy.use();
     api.Uniform1i(copy.uniform("u_source"), copy_unit);
+    if (gl::has_directional_light(s))
+      directional = std::make_unique<gl::DirectionalPass>(
+          api, s, gl::ortho_resolution_for(o.raster.shadow_resolution, o.width, o.height));
     context->check("ring set-up");
   }
 
@@ -147,11 +152,18 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
   im.api.DepthMask(GL_TRUE);
   im.api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   im.camera.depth(vp, im.gpu);
+  if (im.directional) im.directional->forget();
   for (const Vpl& vpl : vpls) {
     if (!(vpl.intensity.x > 0.0f || vpl.intensity.y > 0.0f || vpl.intensity.z > 0.0f)) continue;
-    const glm::mat3 frame = im.shadow.render(vpl, im.gpu);
-    bind_slot();
-    im.vpl_shader.draw(vpl, im.shadow, frame, vp, true, im.gpu);
+    if (vpl.kind == VplKind::Directional) {
+      im.directional->shadow(vpl, im.gpu);
+      bind_slot();
+      im.directional->draw(vpl, vp, true, im.gpu);
+    } else {
+      const glm::mat3 frame = im.shadow.render(vpl, im.gpu);
+      bind_slot();
+      im.vpl_shader.draw(vpl, im.shadow, frame, vp, true, im.gpu);
+    }
     ++im.passes;
   }
   im.bind_sum();

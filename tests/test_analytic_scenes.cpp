@@ -244,7 +244,8 @@ TEST(AnalyticScenes, GltfRoundTripOfTheAnalyticScenes) {
 }
 
 // Materials with emission above 1 (KHR_materials_emissive_strength), double-sided ones, several
-// cameras with and without aspect ratio, point and spot lights, a material without triangles.
+// cameras with and without aspect ratio, point, spot and directional lights, a material without
+// triangles.
 TEST(AnalyticScenes, GltfRoundTripOfEverythingTheWriterWrites) {
   const TempFolder dir;
   Scene s = closed_box(2.0f, 0.5f, 0.5f, 7.25f);
@@ -275,7 +276,12 @@ TEST(AnalyticScenes, GltfRoundTripOfEverythingTheWriterWrites) {
   down.name = "down";
   down.direction = {0.0f, -1.0f, 0.0f};
   down.intensity = {3.0f, 3.0f, 3.0f};
-  s.lights = {point, spot, down};
+  PunctualLight sun; // directional: irradiance along its direction, the position is unused
+  sun.name = "sun";
+  sun.kind = PunctualLight::Kind::Directional;
+  sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, 0.25f));
+  sun.intensity = {4.0f, 3.5f, 3.0f};
+  s.lights = {point, spot, down, sun};
   finish(s);
   const fs::path file = dir / "everything.gltf";
   expect_same_scene(s, round_trip(s, file));

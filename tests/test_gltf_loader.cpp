@@ -296,7 +296,7 @@ TEST_F(GltfLoader, SrgbTextureDecodesToLinearAndIsSampledBilinearly) {
   expect_near(irad::emission_at(s, 0, {0.3f, 0.3f}), glm::vec3(2 * grey));
 }
 
-TEST_F(GltfLoader, PointAndSpotLightsFromNodeExtensions) {
+TEST_F(GltfLoader, PointSpotAndDirectionalLightsFromNodeExtensions) {
   Gltf g = emissive_quad();
   g.doc["materials"][0] = json::object(); // lit only by the punctual lights
   g.doc["extensionsUsed"] = {"KHR_lights_punctual"};
@@ -309,16 +309,16 @@ TEST_F(GltfLoader, PointAndSpotLightsFromNodeExtensions) {
       {{"type", "spot"},
        {"intensity", 2.0},
        {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
-      {{"type", "directional"}}};
+      {{"type", "directional"}, {"intensity", 3.0}}};
   const float h = std::sqrt(0.5f); // 90 degrees about x: -z -> +y
   auto light = [](int i) { return json{{"KHR_lights_punctual", {{"light", i}}}}; };
   g.push("nodes", {{"translation", {1, 2, 3}}, {"extensions", light(0)}});
   g.push("nodes",
          {{"rotation", {h, 0, 0, h}}, {"translation", {0, 0, 4}}, {"extensions", light(1)}});
-  g.push("nodes", {{"extensions", light(2)}});
+  g.push("nodes", {{"rotation", {h, 0, 0, h}}, {"extensions", light(2)}});
   g.doc["scenes"][0]["nodes"] = {0, 1, 2, 3};
   const Scene s = load(g.write_gltf(dir / "lights.gltf"));
-  ASSERT_EQ(s.lights.size(), 2u);
+  ASSERT_EQ(s.lights.size(), 3u);
   const irad::PunctualLight& point = s.lights[0];
   EXPECT_EQ(point.name, "bulb");
   EXPECT_EQ(point.kind, irad::PunctualLight::Kind::Point);
@@ -332,7 +332,10 @@ TEST_F(GltfLoader, PointAndSpotLightsFromNodeExtensions) {
   expect_near(spot.intensity, {2, 2, 2});
   EXPECT_NEAR(spot.inner_cone, 0.2f, 1e-7f);
   EXPECT_NEAR(spot.outer_cone, 0.5f, 1e-7f);
-  EXPECT_EQ(warnings_containing("directional lights are not supported yet; skipped"), 1);
+  const irad::PunctualLight& sun = s.lights[2];
+  EXPECT_EQ(sun.kind, irad::PunctualLight::Kind::Directional);
+  expect_near(sun.direction, {0, 1, 0}); // the node's -z
+  expect_near(sun.intensity, {3, 3, 3}); // irradiance
   EXPECT_EQ(warnings_containing("range"), 1);
 }
 

@@ -58,6 +58,7 @@ double vpl_power(const Vpl& v) {
   case VplKind::Point:
     return 4.0 * pi * mean;
   case VplKind::Spot:
+  case VplKind::Directional:
     break;
   }
   return 0.0;
@@ -264,7 +265,7 @@ Scene scaled(const Scene& scene, float k) {
   }
   for (PunctualLight& l : s.lights) {
     l.position *= k;
-    l.intensity *= k * k;
+    if (l.kind != PunctualLight::Kind::Directional) l.intensity *= k * k; // E stays
   }
   finish(s);
   return s;

@@ -24,6 +24,7 @@ double vpl_power(const Vpl& v) {
   case VplKind::Point:
     return 4.0 * pi * mean;
   case VplKind::Spot:
+  case VplKind::Directional:
     break;
   }
   return 0.0;

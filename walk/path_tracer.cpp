@@ -6,6 +6,7 @@
 #include "walk/parallel_rows.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace irad {
@@ -60,6 +61,7 @@ public:
 
 private:
   glm::vec3 next_event(const Hit& x, Pcg32& rng) const;
+  glm::vec3 directional(const Hit& x, const LightStart& s) const;
   float emitter_weight(const Hit& y, const glm::vec3& from, double bsdf_pdf) const;
 
   const Scene& scene_;
@@ -69,9 +71,21 @@ private:
   float eps_;
 };
 
+// Light from a directional light (a delta in direction, never hit by scattering: no MIS):
+// f * E cos_x * V(x, toward the light) / P(k), with s.beta = E / P(k).
+glm::vec3 Tracer::directional(const Hit& x, const LightStart& s) const {
+  const glm::vec3 w = -s.normal;
+  const float cos_x = glm::dot(x.ns, w);
+  if (cos_x <= 0.0f || glm::dot(x.ng, w) <= 0.0f) return glm::vec3(0.0f);
+  if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, std::numeric_limits<float>::infinity()))
+    return glm::vec3(0.0f);
+  return s.beta * cos_x * x.albedo * inv_pi;
+}
+
 // Light from one sampled light to x: f * L * G / p, weighted against cosine sampling (MIS).
 glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng) const {
   const LightStart s = lights_.sample(scene_, rng.next_double(), rng.next_double());
+  if (s.kind == VplKind::Directional) return directional(x, s);
   const glm::vec3 d = s.position - x.position;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > eps_ * eps_)) return glm::vec3(0.0f);
@@ -89,6 +103,7 @@ glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng) const {
     profile = std::abs(cos_y);
     break;
   case VplKind::Point:
+  case VplKind::Directional: // handled above
     break;
   case VplKind::Spot:
     profile = spot_falloff(cos_y, s.cos_inner, s.cos_outer);

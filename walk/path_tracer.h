@@ -3,9 +3,10 @@
 // surfaces, Lambertian emitters, punctual lights), independent of the walk's estimator. Camera
 // rays go through pixel centres (the raster's sampling), so the two integrate the same function.
 // Next-event estimation toward emitters (chosen by power) and cosine-weighted scattering are
-// combined with multiple importance sampling (power heuristic); punctual lights are reached by
-// next-event estimation only. Russian roulette after three bounces. No clamp: unbiased.
-// Deterministic for a given seed whatever the thread count (one RNG stream per pixel and sample).
+// combined with multiple importance sampling (power heuristic); punctual lights (point, spot,
+// directional: delta lights) are reached by next-event estimation only, without MIS weight. Russian
+// roulette after three bounces. No clamp: unbiased. Deterministic for a given seed whatever the
+// thread count (one RNG stream per pixel and sample).
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/view.h"

@@ -60,7 +60,7 @@ void warn_capped(const ParticleCounts& counts, Log& log, int cap) {
 
 QuasiRandomWalk::QuasiRandomWalk(const Scene& scene, const RayScene& rays,
                                  const WalkOptions& options, Log& log)
-    : scene_(&scene), rays_(&rays), lights_(scene),
+    : scene_(&scene), rays_(&rays), lights_(scene, options.allocation),
       counts_(options.paths == 0 ? throw Error("", "--paths", "must be at least 1") : options.paths,
               mean_albedo(scene), options.depth_cap),
       halton_(options.sequence, 2 * static_cast<std::size_t>(counts_.l_max()) + 2, options.seed) {

@@ -31,6 +31,9 @@ struct WalkOptions {
   int depth_cap = 64;
   SequenceKind sequence = SequenceKind::Halton; // design.md: Halton
   std::uint64_t seed = 0;                       // scrambled-halton and random only
+  // How the N paths are shared among the lights (core/light_sampler.h): by power (design.md 6.2)
+  // or N/G per light; the light is chosen from the walk's first, best stratified dimension.
+  LightAllocation allocation = LightAllocation::Power;
 };
 
 // The walk for a fixed scene and N: particles can be traced one at a time (the real-time ring of

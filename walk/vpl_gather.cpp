@@ -1,6 +1,7 @@
 #include "walk/vpl_gather.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace irad {
@@ -30,14 +31,29 @@ float emission_profile(const Vpl& v, float cos_y) {
     return 1.0f;
   case VplKind::Spot:
     return spot_falloff(cos_y, v.cos_inner, v.cos_outer);
+  case VplKind::Directional:
+    return 1.0f;
   }
   return 0.0f;
+}
+
+// A light at infinity along v.normal: E cos_x V with the shadow ray going to infinity.
+glm::vec3 gather_directional(const RayScene& rays, const ShadingPoint& x, const Vpl& v, float eps) {
+  const float cos_x = -glm::dot(x.normal, v.normal);
+  if (cos_x <= 0.0f) return glm::vec3(0.0f);
+  if (rays.occluded(x.position, -v.normal, eps, std::numeric_limits<float>::infinity()))
+    return glm::vec3(0.0f);
+  return v.intensity * cos_x;
 }
 
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin2,
                       float eps) {
   glm::vec3 sum(0.0f);
   for (const Vpl& v : vpls.vpls) {
+    if (v.kind == VplKind::Directional) {
+      sum += gather_directional(rays, x, v, eps);
+      continue;
+    }
     const glm::vec3 d = x.position - v.position;
     const float dist2 = glm::dot(d, d);
     if (!(dist2 > eps * eps)) continue;

@@ -27,7 +27,11 @@ ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin2,
                       float eps);
 
-// E_k of core/vpl.h: the VPL's emission profile toward a direction with cosine cos_y.
+// E_k of core/vpl.h: the VPL's emission profile toward a direction with cosine cos_y (1 for a
+// directional VPL, which gather_directional() evaluates).
 float emission_profile(const Vpl& v, float cos_y);
+// A directional VPL's I max(0, n_x . -d) V(x, -d), V from a shadow ray to infinity (without
+// rho(x)/pi).
+glm::vec3 gather_directional(const RayScene& rays, const ShadingPoint& x, const Vpl& v, float eps);
 
 } // namespace irad
