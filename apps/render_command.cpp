@@ -44,6 +44,7 @@ struct RenderArgs {
   std::string sequence = "halton";
   std::string light_allocation = "power";
   int interleave = 4;
+  int batch = RasterOptions{}.batch;
   std::string jitter = "off";
   int gl_device = -1;
   bool partial = false;
@@ -145,6 +146,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"triangles", r.scene.triangle_count()},
           {"shadow_res", shadow_resolution_for(args.shadow_res, r.view.width, r.view.height)},
           {"interleave", args.interleave},
+          {"batch", args.batch},
           {"jitter", args.jitter == "on"},
           {"clamp", args.clamp},
           {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},
@@ -216,6 +218,7 @@ int run_render(const RenderArgs& args) {
   request.raster.backend = parse_backend(args.gl);
   request.raster.gl_device = args.gl_device;
   request.raster.interleave = args.interleave;
+  request.raster.batch = args.batch;
   request.raster.jitter = args.jitter == "on";
   request.progress = !args.quiet && isatty(STDERR_FILENO);
   request.estimator = parse_estimator(args.estimator);
@@ -323,6 +326,10 @@ void add_render_command(CLI::App& app, Commands& commands) {
          "--interleave", args->interleave,
          "Raster: k > 1 splits the VPLs into k x k sets, each pixel of a k x k tile lit by "
          "one set, then a geometry-aware filter (1: every VPL shades every pixel)")
+      ->capture_default_str();
+  cmd->add_option("--batch", args->batch,
+                  "Raster: VPLs per instanced draw of shadow maps and shading (1: one pass per "
+                  "VPL; jitter always draws one by one)")
       ->capture_default_str();
   cmd->add_option("--jitter", args->jitter,
                   "Raster: every VPL pass and the emitters at a sub-pixel offset from the path's "

@@ -109,9 +109,26 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
 }
 
-void GpuScene::draw_range(const Range& r) const {
-  api_->DrawElements(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(r.first * sizeof(std::uint32_t)));
+void GpuScene::draw_range(const Range& r, GLsizei instances) const {
+  const auto* first = reinterpret_cast<const void*>(r.first * sizeof(std::uint32_t));
+  if (instances == 1)
+    api_->DrawElements(GL_TRIANGLES, r.count, GL_UNSIGNED_INT, first);
+  else
+    api_->DrawElementsInstanced(GL_TRIANGLES, r.count, GL_UNSIGNED_INT, first, instances);
+}
+
+void GpuScene::draw_instanced(GLsizei instances,
+                              const std::function<void(const Material&)>& bind) const {
+  api_->BindVertexArray(vao_.get());
+  for (const Range& r : ranges_) {
+    bind(scene_->materials[r.material]);
+    draw_range(r, instances);
+  }
+}
+
+void GpuScene::draw_all_instanced(GLsizei instances) const {
+  api_->BindVertexArray(vao_.get());
+  api_->DrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, instances);
 }
 
 void GpuScene::draw(const std::function<void(const Material&)>& bind) const {

@@ -23,6 +23,9 @@ public:
   void draw(const std::function<void(const Material&)>& bind) const;
   // Draws every triangle with no per-material state (depth and shadow passes).
   void draw_all() const;
+  // draw and draw_all with every range drawn `instances` times (gl_InstanceID 0..instances-1).
+  void draw_instanced(GLsizei instances, const std::function<void(const Material&)>& bind) const;
+  void draw_all_instanced(GLsizei instances) const;
   // Draws only the ranges whose material satisfies `select`.
   void draw_if(const std::function<bool(const Material&)>& select,
                const std::function<void(const Material&)>& bind) const;
@@ -36,7 +39,7 @@ private:
     std::size_t first; // first index (not triangle)
     GLsizei count;     // indices
   };
-  void draw_range(const Range& r) const;
+  void draw_range(const Range& r, GLsizei instances = 1) const;
 
   const GladGLContext* api_;
   const Scene* scene_;

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "raster/batched_passes.h"
 #include "raster/camera_passes.h"
 #include "raster/directional_pass.h"
 #include "raster/gl_context.h"
@@ -68,6 +69,7 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::Interleaved> interleaved;
   std::unique_ptr<gl::JitterPasses> jitter;         // with options.jitter
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
+  std::unique_ptr<gl::BatchedPasses> batched;       // options.batch > 1, no jitter
   // Shadow maps kept per path slot (render_cached): one cube per VPL that carries light.
   struct CachedPath {
     std::vector<Vpl> vpls;
@@ -95,6 +97,9 @@ struct RasterRenderer::Impl {
   std::size_t vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
                          const ShadowFor& shadow_for, float texel_angle, gl::PassTimer* timer,
                          const Progress& progress);
+  // vpl_passes with the VPLs drawn in batches (raster/batched_passes.h), directional ones alone.
+  std::size_t batched_passes(const View& view, const std::vector<const Vpl*>& vpls,
+                             gl::PassTimer* timer, const Progress& progress);
   // Binds the VPL's framebuffer and viewport and returns the view-projection it is shaded with;
   // with jitter, the depth there is redrawn for its offset when that differs from the last one.
   glm::mat4 bind_pass(const View& view, const Vpl& vpl, std::vector<glm::vec2>& last_offsets);
@@ -141,6 +146,29 @@ void RasterRenderer::Impl::prepare(const View& view) {
   if (gl::has_directional_light(scene) && (!directional || directional->resolution() != ortho))
     directional = std::make_unique<gl::DirectionalPass>(api, scene, ortho);
   if (directional) directional->forget();
+  const int batch = jitter ? 1 : options.batch;
+  if (!batched || !batched->matches(batch, resolution))
+    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution);
+}
+
+std::size_t RasterRenderer::Impl::batched_passes(const View& view,
+                                                 const std::vector<const Vpl*>& vpls,
+                                                 gl::PassTimer* timer, const Progress& progress) {
+  std::vector<const Vpl*> many, alone;
+  for (const Vpl* v : vpls) (v->kind == VplKind::Directional ? alone : many).push_back(v);
+  const int sets = interleaved ? interleaved->sets() : 1;
+  const std::size_t drawn = batched->draw(
+      view, many, [&](const Vpl& v) { return set_of(v.path, sets); }, interleaved.get(), *target,
+      gpu, timer,
+      [&](std::size_t done) {
+        if (progress) progress(done, vpls.size());
+        return options.cancel == nullptr || !options.cancel->load(std::memory_order_relaxed);
+      });
+  const auto directional_shadow_for = [&](std::size_t k, glm::mat3&) -> GLuint {
+    directional_shadow(*alone[k]);
+    return 0;
+  };
+  return drawn + vpl_passes(view, alone, directional_shadow_for, 1.0f, timer, {});
 }
 
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
@@ -230,6 +258,8 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
   if (!(options.clamp >= 0.0f)) throw Error("", "--clamp", "must be >= 0");
   if (options.interleave < 1 || options.interleave > 16)
     throw Error("", "--interleave", "must be between 1 and 16");
+  if (options.batch < 1 || options.batch > 256)
+    throw Error("", "--batch", "must be between 1 and 256");
   auto context = gl::create_context(options.backend, options.gl_device);
   if (options.gl_messages) context->route_debug_messages(options.gl_messages);
   impl_ = std::make_unique<Impl>(scene, options, std::move(context));
@@ -264,8 +294,10 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
     frame = im.shadow->render(*list[k], im.gpu);
     return im.shadow->texture();
   };
-  const std::size_t passes = im.vpl_passes(view, list, draw_now, im.shadow->texel_angle(),
-                                           timer ? &*timer : nullptr, progress);
+  const std::size_t passes =
+      im.batched ? im.batched_passes(view, list, timer ? &*timer : nullptr, progress)
+                 : im.vpl_passes(view, list, draw_now, im.shadow->texel_angle(),
+                                 timer ? &*timer : nullptr, progress);
   return im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
 }
 

@@ -24,11 +24,19 @@ constexpr std::array<FaceAxes, 6> faces = {{{{1, 0, 0}, {0, -1, 0}},
                                             {{0, -1, 0}, {0, 0, -1}},
                                             {{0, 0, 1}, {0, -1, 0}},
                                             {{0, 0, -1}, {0, -1, 0}}}};
-constexpr int negative_z_face = 5;
 
-// The window rectangle (x, y, w, h) of side face f (+x, -x, +y, -y) that sees local z >= 0:
-// with the axes above, window x runs toward -z on +x and toward +z on -x, window y toward +z on
-// +y and toward -z on -y. One texel of margin covers lookups right at z = 0.
+// World -> cube frame. Surface VPLs: rows (t, b, n), so the normal maps to +z.
+glm::mat3 cube_frame(const Vpl& vpl) {
+  if (vpl.kind != VplKind::Surface) return glm::mat3(1.0f);
+  glm::vec3 t, b;
+  orthonormal_basis(vpl.normal, t, b);
+  return glm::transpose(glm::mat3(t, b, vpl.normal));
+}
+
+} // namespace
+
+// With the face axes above, window x runs toward -z on +x and toward +z on -x, window y toward +z
+// on +y and toward -z on -y. One texel of margin covers lookups right at z = 0.
 glm::ivec4 front_half(int f, int r) {
   const int h = r / 2 + 1;
   switch (f) {
@@ -43,15 +51,27 @@ glm::ivec4 front_half(int f, int r) {
   }
 }
 
-// World -> cube frame. Surface VPLs: rows (t, b, n), so the normal maps to +z.
-glm::mat3 cube_frame(const Vpl& vpl) {
-  if (vpl.kind != VplKind::Surface) return glm::mat3(1.0f);
-  glm::vec3 t, b;
-  orthonormal_basis(vpl.normal, t, b);
-  return glm::transpose(glm::mat3(t, b, vpl.normal));
+CubeFaces cube_faces(const Vpl& vpl, const Bounds& bounds) {
+  CubeFaces c;
+  c.frame = cube_frame(vpl);
+  c.hemisphere = vpl.kind == VplKind::Surface;
+  // Near and far fitted to this VPL: far reaches the farthest corner of the scene's bounds.
+  float far = 0.0f;
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec3 p((k & 1) ? bounds.hi.x : bounds.lo.x, (k & 2) ? bounds.hi.y : bounds.lo.y,
+                      (k & 4) ? bounds.hi.z : bounds.lo.z);
+    far = glm::max(far, glm::length(p - vpl.position));
+  }
+  far = glm::max(1.01f * far, 1e-30f);
+  const float near = 1e-4f * glm::max(bounds.diagonal(), far);
+  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, near, far);
+  const glm::mat4 to_frame = glm::mat4(c.frame) * glm::translate(glm::mat4(1.0f), -vpl.position);
+  for (int f = 0; f < 6; ++f) {
+    const glm::mat4 face_view = glm::lookAt(glm::vec3(0.0f), faces[f].forward, faces[f].up);
+    c.view_projection[f] = projection * face_view * to_frame;
+  }
+  return c;
 }
-
-} // namespace
 
 Texture ShadowCube::make_cube(const GladGLContext& api, int resolution) {
   Texture cube = make_texture(api);
@@ -96,19 +116,7 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
     }
     attached_ = cube;
   }
-  const glm::mat3 frame = cube_frame(vpl);
-  // Near and far fitted to this VPL: far reaches the farthest corner of the scene's bounds.
-  float far = 0.0f;
-  for (int c = 0; c < 8; ++c) {
-    const glm::vec3 p((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y,
-                      (c & 4) ? bounds_.hi.z : bounds_.lo.z);
-    far = glm::max(far, glm::length(p - vpl.position));
-  }
-  far = glm::max(1.01f * far, 1e-30f);
-  const float near = 1e-4f * glm::max(bounds_.diagonal(), far);
-  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, near, far);
-  const glm::mat4 to_frame = glm::mat4(frame) * glm::translate(glm::mat4(1.0f), -vpl.position);
-
+  const CubeFaces cf = cube_faces(vpl, bounds_);
   api_->Viewport(0, 0, resolution_, resolution_);
   api_->Enable(GL_DEPTH_TEST);
   api_->DepthFunc(GL_LESS);
@@ -117,9 +125,9 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
   api_->ClearColor(3.0e38f, 0.0f, 0.0f, 0.0f); // nothing there: never shadowed
   program_.use();
   api_->Uniform3fv(u_vpl_position_, 1, glm::value_ptr(vpl.position));
-  const bool hemisphere = vpl.kind == VplKind::Surface;
+  const bool hemisphere = cf.hemisphere;
   for (int f = 0; f < 6; ++f) {
-    if (f == negative_z_face && hemisphere) continue;
+    if (f == kNegativeZFace && hemisphere) continue;
     api_->BindFramebuffer(GL_FRAMEBUFFER, fbos_[f].get());
     // A side face of a hemisphere cube is needed only on its +z half (plus one texel).
     const bool half = hemisphere && f < 4;
@@ -129,13 +137,12 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
       api_->Scissor(r.x, r.y, r.z, r.w);
     }
     api_->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    const glm::mat4 face_view = glm::lookAt(glm::vec3(0.0f), faces[f].forward, faces[f].up);
-    const glm::mat4 vp = projection * face_view * to_frame;
-    api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE, glm::value_ptr(vp));
+    api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE,
+                           glm::value_ptr(cf.view_projection[f]));
     scene.draw_all();
     if (half) api_->Disable(GL_SCISSOR_TEST);
   }
-  return frame;
+  return cf.frame;
 }
 
 } // namespace irad::gl

@@ -12,6 +12,23 @@
 
 namespace irad::gl {
 
+// GL's cube face order: +x, -x, +y, -y, +z, -z.
+inline constexpr int kNegativeZFace = 5;
+
+// The six face view-projections of a VPL's cube (what ShadowCube renders, also used by the
+// batched shadow atlas, raster/shadow_atlas.h): frame is the rotation world -> cube frame;
+// hemisphere (surface VPLs) means the -z face is never looked up and the side faces only on the
+// half front_half() gives.
+struct CubeFaces {
+  glm::mat3 frame{1.0f};
+  std::array<glm::mat4, 6> view_projection;
+  bool hemisphere = false;
+};
+CubeFaces cube_faces(const Vpl& vpl, const Bounds& bounds);
+// The window rectangle (x, y, w, h) of side face f (+x, -x, +y, -y) of a resolution r face that
+// sees local z >= 0, with one texel of margin.
+glm::ivec4 front_half(int f, int r);
+
 class ShadowCube {
 public:
   ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds);
