@@ -177,6 +177,9 @@ void main() {
   vec3 sum = vec3(0.0);
   float weight = 0.0;
   int h = u_k / 2;
+  // q's set and tile coordinates (q % k, q / k) from p's without a division per tap (an integer
+  // division per tap and lane made this pass cost as much as 150 VPL passes on llvmpipe).
+  ivec2 pm = p % u_k, pd = p / u_k;
   bool even = (u_k % 2) == 0;
   for (int dy = -h; dy <= h; ++dy)
     for (int dx = -h; dx <= h; ++dx) {
@@ -189,7 +192,10 @@ void main() {
       if (abs(dot(np, d)) > 0.05 * length(d)) continue;
       if (dot(texelFetch(u_normal, q, 0).xyz, np) < 0.95) continue;
       float w = (even && abs(dx) == h ? 0.5 : 1.0) * (even && abs(dy) == h ? 0.5 : 1.0);
-      sum += w * texelFetch(u_atlas, (q % u_k) * u_tile + q / u_k, 0).rgb;
+      ivec2 m = pm + ivec2(dx, dy); // in (-k, 2k): one wrap at most
+      ivec2 below = ivec2(lessThan(m, ivec2(0))), above = ivec2(greaterThanEqual(m, ivec2(u_k)));
+      m += (below - above) * u_k;
+      sum += w * texelFetch(u_atlas, m * u_tile + pd - below + above, 0).rgb;
       weight += w;
     }
   vec3 albedo = texelFetch(u_albedo, p, 0).rgb;
