@@ -34,10 +34,10 @@ void BatchedPasses::flush(const View& view, std::vector<Entry>& batch,
   for (const Entry& e : batch) vpls_.push_back(e.vpl);
   const int n = static_cast<int>(batch.size());
   if (timer) timer->begin(PassTimer::Shadow);
-  atlas_.render(vpls_.data(), n, gpu, frames_, blocks_);
+  atlas_.render(vpls_.data(), n, gpu, frames_, fars_, blocks_);
   if (timer) timer->end();
   if (timer) timer->begin(PassTimer::Shading);
-  shader_.upload(vpls_.data(), n, frames_, blocks_);
+  shader_.upload(vpls_.data(), n, frames_, fars_, blocks_);
   for (int first = 0; first < n;) {
     const int set = batch[static_cast<std::size_t>(first)].set;
     int end = first + 1;

@@ -60,6 +60,7 @@ private:
   BatchedShader shader_;
   std::vector<const Vpl*> vpls_;
   std::vector<glm::mat3> frames_;
+  std::vector<float> fars_;
   std::vector<glm::ivec4> blocks_;
 };
 

@@ -16,8 +16,8 @@ constexpr GLuint kVplBlockBinding = 1;
 constexpr std::size_t kFloatsPerVpl = shaders::kShadingBytesPerVpl / sizeof(float);
 
 // The BatchVpl record of raster/batched_shaders.h (std140, 144 bytes).
-void write_vpl(float* out, const Vpl& vpl, const glm::mat3& frame, const glm::ivec4& blocks,
-               float dmin) {
+void write_vpl(float* out, const Vpl& vpl, const glm::mat3& frame, float far,
+               const glm::ivec4& blocks, float dmin) {
   std::memset(out, 0, kFloatsPerVpl * sizeof(float));
   std::memcpy(out + 0, &vpl.position[0], 3 * sizeof(float));
   std::memcpy(out + 4, &vpl.normal[0], 3 * sizeof(float));
@@ -25,6 +25,7 @@ void write_vpl(float* out, const Vpl& vpl, const glm::mat3& frame, const glm::iv
   out[12] = vpl.cos_inner;
   out[13] = vpl.cos_outer;
   out[14] = dmin * dmin;
+  out[15] = far;
   const std::int32_t ints[8] = {
       static_cast<std::int32_t>(vpl.kind), 0, 0, 0, blocks.x, blocks.y, blocks.z, blocks.w};
   std::memcpy(out + 16, ints, sizeof(ints));
@@ -44,8 +45,9 @@ BatchedShader::BatchedShader(const GladGLContext& api, const Scene& scene, float
       program_(api, "batched vpl", shaders::batched_source(shaders::batched_vpl_vertex, batch),
                shaders::batched_source(shaders::batched_vpl_fragment, batch)),
       view_projection_(program_.uniform("u_view_projection")), first_(program_.uniform("u_first")),
-      shadow_res_(program_.uniform("u_shadow_res")), bias_texel_(program_.uniform("u_bias_texel")),
-      base_color_(program_.uniform("u_base_color")),
+      shadow_res_(program_.uniform("u_shadow_res")),
+      shadow_half_(program_.uniform("u_shadow_half")),
+      bias_texel_(program_.uniform("u_bias_texel")), base_color_(program_.uniform("u_base_color")),
       has_base_texture_(program_.uniform("u_has_base_texture")),
       apply_albedo_(program_.uniform("u_apply_albedo")), vpl_block_(make_buffer(api)),
       vpl_data_(static_cast<std::size_t>(batch) * kFloatsPerVpl, 0.0f) {
@@ -61,12 +63,12 @@ BatchedShader::BatchedShader(const GladGLContext& api, const Scene& scene, float
 }
 
 void BatchedShader::upload(const Vpl* const* vpls, int n, const std::vector<glm::mat3>& frames,
-                           const std::vector<glm::ivec4>& blocks) {
+                           const std::vector<float>& fars, const std::vector<glm::ivec4>& blocks) {
   if (n > batch_) throw Error("", "batched vpl", "more VPLs than the batch holds");
   for (int s = 0; s < n; ++s) {
     const auto u = static_cast<std::size_t>(s);
     const float dmin = vpls[s]->clamped() ? clamp_ * diagonal_ : 0.0f;
-    write_vpl(vpl_data_.data() + kFloatsPerVpl * u, *vpls[s], frames[u], blocks[u], dmin);
+    write_vpl(vpl_data_.data() + kFloatsPerVpl * u, *vpls[s], frames[u], fars[u], blocks[u], dmin);
   }
   // A new store per batch (no wait for the draws that read the last one).
   api_->BindBuffer(GL_UNIFORM_BUFFER, vpl_block_.get());
@@ -83,6 +85,7 @@ void BatchedShader::draw(int first, int count, const glm::mat4& view_projection,
   api.UniformMatrix4fv(view_projection_, 1, GL_FALSE, glm::value_ptr(view_projection));
   api.Uniform1i(first_, first);
   api.Uniform1i(shadow_res_, shadow.resolution());
+  api.Uniform1i(shadow_half_, shadow.resolution() / 2 + 1);
   api.Uniform1f(bias_texel_, shadow.texel_angle());
   api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);

@@ -26,7 +26,7 @@ public:
 
   // The batch's VPLs vpls[0..n) with their cube frames and atlas blocks (ShadowAtlas::render).
   void upload(const Vpl* const* vpls, int n, const std::vector<glm::mat3>& frames,
-              const std::vector<glm::ivec4>& blocks);
+              const std::vector<float>& fars, const std::vector<glm::ivec4>& blocks);
   // Adds the uploaded VPLs first..first + count - 1 through view_projection into the bound
   // framebuffer and viewport (apply_albedo false: irradiance / pi without rho(x), as
   // VplShader).
@@ -38,8 +38,8 @@ private:
   float diagonal_, clamp_;
   int batch_;
   ShaderProgram program_;
-  GLint view_projection_, first_, shadow_res_, bias_texel_, base_color_, has_base_texture_,
-      apply_albedo_;
+  GLint view_projection_, first_, shadow_res_, shadow_half_, bias_texel_, base_color_,
+      has_base_texture_, apply_albedo_;
   Buffer vpl_block_;
   std::vector<float> vpl_data_;
 };

@@ -26,17 +26,17 @@ layout(std140) uniform ShadowBatch {
   mat4 u_face_vp[6 * MAX_BATCH];
   vec4 u_rect[6 * MAX_BATCH];    // x0, y0, x1, y1 in face pixels
   vec4 u_offset[6 * MAX_BATCH];  // xy: atlas pixel - face pixel
-  vec4 u_origin[MAX_BATCH];      // xyz: the VPL's position
+  vec4 u_origin[MAX_BATCH];      // xyz: the VPL's position, w: 1 / far
 };
 uniform float u_face_size;       // R
 uniform vec2 u_atlas_size;       // in pixels
 out vec3 v_position;
-flat out vec3 v_origin;
+flat out vec4 v_origin;
 out float gl_ClipDistance[4];
 void main() {
   int i = gl_InstanceID;
   v_position = a_position;
-  v_origin = u_origin[i / 6].xyz;
+  v_origin = u_origin[i / 6];
   vec4 c = u_face_vp[i] * vec4(a_position, 1.0);
   vec2 pw = (c.xy + c.w) * (0.5 * u_face_size); // face pixel times w
   vec4 r = u_rect[i];
@@ -53,11 +53,13 @@ void main() {
 }
 )";
 
+// The distance |p - y| / far as the depth (the depth test keeps the nearest surface: distance
+// grows with depth along a ray from y), so the atlas is one depth texture, cleared to 1 (far:
+// never shadowed).
 inline constexpr const char* batched_shadow_fragment = R"(
 in vec3 v_position;
-flat in vec3 v_origin;
-out float o_distance;
-void main() { o_distance = length(v_position - v_origin); }
+flat in vec4 v_origin;
+void main() { gl_FragDepth = length(v_position - v_origin.xyz) * v_origin.w; }
 )";
 
 // Shading: instance i is the batch's VPL u_first + i. The draw's view-projection is the one the
@@ -73,7 +75,7 @@ struct BatchVpl {
   vec4 position;   // xyz
   vec4 normal;     // xyz (spot axis for spots)
   vec4 intensity;  // rgb
-  vec4 cone;       // cos inner, cos outer, squared clamp distance
+  vec4 cone;       // cos inner, cos outer, squared clamp distance, far (the atlas's unit)
   ivec4 info;      // kind (0 surface, 1 two-sided, 2 point, 3 spot)
   ivec4 blocks;    // atlas texel of its first block (xy) and of its second (zw)
   vec4 frame[3];   // columns of world -> cube frame
@@ -89,7 +91,7 @@ flat out ivec4 v_blocks;
 flat out vec3 v_vpl_position;
 flat out vec3 v_vpl_normal;
 flat out vec3 v_vpl_intensity;
-flat out vec3 v_cone;
+flat out vec4 v_cone;
 flat out mat3 v_frame;
 invariant gl_Position;
 void main() {
@@ -102,7 +104,7 @@ void main() {
   v_vpl_position = vpl.position.xyz;
   v_vpl_normal = vpl.normal.xyz;
   v_vpl_intensity = vpl.intensity.rgb;
-  v_cone = vpl.cone.xyz;
+  v_cone = vpl.cone;
   v_frame = mat3(vpl.frame[0].xyz, vpl.frame[1].xyz, vpl.frame[2].xyz);
   gl_Position = u_view_projection * vec4(a_position, 1.0);
 }
@@ -123,10 +125,11 @@ flat in ivec4 v_blocks;
 flat in vec3 v_vpl_position;
 flat in vec3 v_vpl_normal;
 flat in vec3 v_vpl_intensity;
-flat in vec3 v_cone;
+flat in vec4 v_cone;
 flat in mat3 v_frame;
 uniform sampler2D u_shadow_atlas;
 uniform int u_shadow_res;        // R, texels per face edge
+uniform int u_shadow_half;       // h = R / 2 + 1 (no integer division per fragment)
 uniform float u_min_dist2;       // below this the receiver coincides with the VPL
 uniform float u_bias_constant;   // scale-relative
 uniform float u_bias_texel;      // angular size of a shadow texel
@@ -139,7 +142,7 @@ const float INV_PI = 0.31830988618379067;
 
 // Atlas texel minus face texel of face f (+x, -x, +y, -y, +z, -z).
 ivec2 face_offset(int f) {
-  int r = u_shadow_res, h = u_shadow_res / 2 + 1;
+  int r = u_shadow_res, h = u_shadow_half;
   if (v_kind == 0) {
     ivec2 o = ivec2(0);                        // +z (and -z, never looked up)
     if (f == 0) o = ivec2(r, 0);
@@ -152,7 +155,7 @@ ivec2 face_offset(int f) {
   return (f < 3 ? v_blocks.xy : v_blocks.zw) + ivec2(g * r, 0);
 }
 
-// The distance stored in the VPL's cube in direction q (cube frame).
+// The distance stored in the VPL's cube in direction q (cube frame): the atlas holds it / far.
 float stored_distance(vec3 q) {
   vec3 a = abs(q);
   int face;
@@ -169,7 +172,7 @@ float stored_distance(vec3 q) {
   }
   ivec2 texel = clamp(ivec2(floor((st * 0.5 + 0.5) * float(u_shadow_res))), ivec2(0),
                       ivec2(u_shadow_res - 1));
-  return texelFetch(u_shadow_atlas, texel + face_offset(face), 0).r;
+  return texelFetch(u_shadow_atlas, texel + face_offset(face), 0).r * v_cone.w;
 }
 
 void main() {

@@ -14,7 +14,7 @@ namespace irad::gl {
 namespace {
 
 constexpr GLuint kShadowBlockBinding = 0;
-// The atlas's side at most: 4096^2 texels of R32F (two atlases) and of depth are 192 MB.
+// The atlas's side at most: two 4096^2 depth textures are 128 MB.
 constexpr int kMaxAtlasSide = 4096;
 
 int max_atlas_side(const GladGLContext& api) {
@@ -88,8 +88,7 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
                shaders::batched_source(shaders::batched_shadow_fragment, batch)),
       atlas_{make_texture(api), make_texture(api)}, fbo_{make_framebuffer(api),
                                                          make_framebuffer(api)},
-      depth_(make_renderbuffer(api)), block_buffer_(make_buffer(api)),
-      block_data_(block_floats(batch), 0.0f) {
+      block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f) {
   const glm::ivec2 size = grid_ * block_;
   GLint uniform_block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
@@ -98,18 +97,19 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
     throw Error("", "shadow atlas",
                 "a batch of " + std::to_string(batch) + " VPLs with " + std::to_string(resolution) +
                     "^2 faces does not fit this OpenGL");
-  api.BindRenderbuffer(GL_RENDERBUFFER, depth_.get());
-  api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, size.x, size.y);
   for (int a = 0; a < 2; ++a) {
     api.BindTexture(GL_TEXTURE_2D, atlas_[a].get());
-    api.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, size.x, size.y, 0, GL_RED, GL_FLOAT, nullptr);
+    api.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size.x, size.y, 0, GL_DEPTH_COMPONENT,
+                   GL_FLOAT, nullptr);
     api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
     api.BindTexture(GL_TEXTURE_2D, 0);
     api.BindFramebuffer(GL_FRAMEBUFFER, fbo_[a].get());
-    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, atlas_[a].get(),
+    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, atlas_[a].get(),
                              0);
-    api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.get());
+    api.DrawBuffer(GL_NONE);
+    api.ReadBuffer(GL_NONE);
     check_framebuffer(api, "shadow atlas framebuffer");
   }
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "ShadowBatch");
@@ -122,9 +122,11 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
 }
 
 void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
-                         std::vector<glm::mat3>& frames, std::vector<glm::ivec4>& blocks) {
+                         std::vector<glm::mat3>& frames, std::vector<float>& fars,
+                         std::vector<glm::ivec4>& blocks) {
   const GladGLContext& api = *api_;
   frames.resize(static_cast<std::size_t>(n));
+  fars.resize(static_cast<std::size_t>(n));
   blocks.resize(static_cast<std::size_t>(n));
   // The block: face matrices, rectangles, offsets, positions (std140 offsets).
   float* matrices = block_data_.data();
@@ -139,8 +141,10 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
     next_block += cube.hemisphere ? 1 : 2;
     if (next_block > this->blocks()) throw Error("", "shadow atlas", "batch exceeds the blocks");
     frames[static_cast<std::size_t>(s)] = cube.frame;
+    fars[static_cast<std::size_t>(s)] = cube.far;
     blocks[static_cast<std::size_t>(s)] = glm::ivec4(b0, b1);
     std::memcpy(origins + 4 * s, &vpls[s]->position[0], 3 * sizeof(float));
+    origins[4 * s + 3] = 1.0f / cube.far;
     for (int f = 0; f < 6; ++f) {
       const int i = 6 * s + f;
       glm::vec4 rect;
@@ -166,9 +170,8 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   api.DepthFunc(GL_LESS);
   api.DepthMask(GL_TRUE);
   api.Disable(GL_BLEND);
-  api.ClearColor(3.0e38f, 0.0f, 0.0f, 0.0f); // nothing there: never shadowed
-  api.ClearDepth(1.0);
-  api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  api.ClearDepth(1.0); // far: nothing there, never shadowed
+  api.Clear(GL_DEPTH_BUFFER_BIT);
   program_.use();
   for (int k = 0; k < 4; ++k) api.Enable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
   scene.draw_all_instanced(6 * n);

@@ -1,16 +1,17 @@
 #pragma once
 // The shadow cubes of a batch of VPLs in one 2D atlas, drawn by one instanced draw call
-// (raster/batched_shaders.h): the same R32F distances |p - y| ShadowCube renders, through the same
-// face view-projections (cube_faces), only the framebuffer differs, so a lookup in the atlas reads
-// what the VPL's cube map would hold. On llvmpipe a VPL's cube costs mostly the fixed cost of its
-// five framebuffer binds, clears and draws and the wait of the next shading pass for them; here a
-// batch costs one bind, one clear and one draw.
+// (raster/batched_shaders.h): the distances |p - y| ShadowCube renders, through the same face
+// view-projections (cube_faces), stored as the depth |p - y| / far of a DEPTH_COMPONENT32F
+// texture (one buffer to clear and write instead of a colour and a depth buffer), so a lookup
+// reads what the VPL's cube map would hold up to float rounding. On llvmpipe a VPL's cube costs
+// mostly the fixed cost of its five framebuffer binds, clears and draws and the wait of the next
+// shading pass for them; here a batch costs one bind, one clear and one draw.
 //
 // The atlas is a grid of blocks of (2R + 2h) x 2h texels, h = R/2 + 1 (ShadowCube's front_half).
 // A surface VPL needs only its hemisphere: one block holds its +z face, then the front halves
 // (h texels deep, with the one texel of margin) of +x and -x side by side, then those of +y and
 // -y one over the other. Any other VPL (two-sided, point, spot) takes two blocks of three whole
-// faces each. Texels no face covers keep the clear value 3e38 (never shadowed).
+// faces each. Texels no face covers keep the clear value 1 (far: never shadowed).
 #include "core/bounds.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
@@ -39,7 +40,7 @@ public:
   // of VPL s, blocks[s] the atlas texels of its first block (xy) and second block (zw). Changes
   // the bound framebuffer, viewport and program.
   void render(const Vpl* const* vpls, int n, const GpuScene& scene, std::vector<glm::mat3>& frames,
-              std::vector<glm::ivec4>& blocks);
+              std::vector<float>& fars, std::vector<glm::ivec4>& blocks);
 
   // The atlas the last render() drew into.
   GLuint texture() const { return atlas_[current_].get(); }
@@ -62,7 +63,6 @@ private:
   // queued draw samples).
   Texture atlas_[2];
   Framebuffer fbo_[2];
-  Renderbuffer depth_; // shared: one batch's use ends before the next batch's starts
   int current_ = 0;
   Buffer block_buffer_;           // the ShadowBatch uniform block
   std::vector<float> block_data_; // its contents, filled per batch

@@ -63,6 +63,7 @@ CubeFaces cube_faces(const Vpl& vpl, const Bounds& bounds) {
     far = glm::max(far, glm::length(p - vpl.position));
   }
   far = glm::max(1.01f * far, 1e-30f);
+  c.far = far;
   const float near = 1e-4f * glm::max(bounds.diagonal(), far);
   const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, near, far);
   const glm::mat4 to_frame = glm::mat4(c.frame) * glm::translate(glm::mat4(1.0f), -vpl.position);

@@ -22,6 +22,7 @@ inline constexpr int kNegativeZFace = 5;
 struct CubeFaces {
   glm::mat3 frame{1.0f};
   std::array<glm::mat4, 6> view_projection;
+  float far = 1.0f; // the far plane: beyond every point of the scene's bounds
   bool hemisphere = false;
 };
 CubeFaces cube_faces(const Vpl& vpl, const Bounds& bounds);
