@@ -30,9 +30,10 @@ struct RasterOptions {
   // at a sub-pixel offset, so the accumulation antialiases geometric edges.
   bool jitter = false;
   // VPLs per batch (raster/batched_passes.h): their shadow cubes in one atlas by one instanced
-  // draw, their shading by another. 1: one shadow cube and one shading pass per VPL (the
-  // reference). Jitter, directional VPLs and render_cached always take the per-VPL passes.
-  int batch = 32;
+  // draw, their shading by one instanced draw per interleaved set. 1: one shadow cube and one
+  // shading pass per VPL (the reference, the same image). 16 was the fastest of 8..64 at 512x512
+  // (docs/performance.md). Jitter, directional VPLs and render_cached take the per-VPL passes.
+  int batch = 16;
   // When it becomes true (a signal handler), render() draws no further VPL passes and returns
   // what the passes so far accumulated.
   const std::atomic<bool>* cancel = nullptr;
