@@ -37,7 +37,7 @@ PY
 echo "estimator,setting,n,seconds,relmse"
 for n in 64 256 1024 4096 16384; do
   run "raster_$n" "k=4" "$n" --paths "$n"
-  # The compensation's gather costs ~40 ms per VPL here: 3 minutes at N = 4096, not run beyond.
+  # The compensation's gather costs ~20 ms per VPL here: 3 minutes at N = 4096, not run beyond.
   [ "$n" -le 4096 ] && run "raster_bc_$n" "k=4 bias-compensation" "$n" --paths "$n" --bias-compensation
   run "raster_batch1_$n" "k=4 batch=1" "$n" --paths "$n" --batch 1
 done
