@@ -129,11 +129,19 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
   auto context = gl::create_context(options.backend, options.gl_device);
   if (options.gl_messages) context->route_debug_messages(options.gl_messages);
   impl_ = std::make_unique<Impl>(scene, options, std::move(context));
+  impl_->context->release();
 }
 
-RasterRenderer::~RasterRenderer() = default;
+// The GL objects are deleted in their own context.
+RasterRenderer::~RasterRenderer() {
+  try {
+    if (impl_) impl_->context->make_current();
+  } catch (const std::exception&) { // then they are deleted with the context
+  }
+}
 
 std::string RasterRenderer::description() const {
+  const gl::CurrentScope current(*impl_->context);
   return impl_->context->backend() + ": " + impl_->context->renderer();
 }
 
@@ -141,7 +149,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
                              const Progress& progress) {
   Impl& im = *impl_;
   const auto t0 = Clock::now();
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   im.prepare(view);
   const glm::mat4 vp = view.projection * view.view;
   if (im.interleaved) {

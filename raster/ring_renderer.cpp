@@ -109,9 +109,16 @@ RingRenderer::RingRenderer(const Scene& scene, const RingOptions& options) {
   check_memory(options);
   impl_ = std::make_unique<Impl>(
       scene, options, gl::create_context(options.raster.backend, options.raster.gl_device));
+  impl_->context->release();
 }
 
-RingRenderer::~RingRenderer() = default;
+// The GL objects are deleted in their own context.
+RingRenderer::~RingRenderer() {
+  try {
+    if (impl_) impl_->context->make_current();
+  } catch (const std::exception&) { // then they are deleted with the context
+  }
+}
 
 std::uint32_t RingRenderer::slots() const {
   return impl_->options.paths;
@@ -122,7 +129,7 @@ std::size_t RingRenderer::passes() const {
 
 void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view) {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   const std::size_t s = path % im.options.paths;
   if (im.filled[s]) {
     im.bind_sum();
@@ -158,7 +165,7 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
 
 void RingRenderer::resum() {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   im.bind_sum();
   im.sum_ring_into_bound();
   im.frames_since_resum = 0;
@@ -166,7 +173,7 @@ void RingRenderer::resum() {
 
 Image RingRenderer::frame(const View& view) {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   im.target.bind();
   im.api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   im.api.ClearDepth(1.0);
@@ -182,7 +189,7 @@ Image RingRenderer::frame(const View& view) {
 
 Image RingRenderer::exact_sum() {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   im.target.bind();
   im.sum_ring_into_bound();
   return im.target.read();
