@@ -6,18 +6,21 @@
 #include "apps/commands.h"
 #include "apps/options.h"
 #include "apps/render_pipeline.h"
+#include "apps/window_viewer.h"
 #include "core/error.h"
 #include "core/gltf_loader.h"
 #include "core/image_io.h"
 #include "raster/ring_renderer.h"
 #include "walk/quasi_random_walk.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <tuple>
 #include <unistd.h>
 
 namespace irad::apps {
@@ -30,6 +33,9 @@ struct WalkthroughArgs {
   float fps = 30.0f, orbit = 0.0f;
   std::uint32_t paths = 64;
   bool no_warmup = false, quiet = false;
+  bool window = false; // interactive (apps/window_viewer.h) instead of frame files
+  std::string screenshot;
+  int window_frames = 0;
 };
 
 std::pair<int, int> parse_frames(const std::string& s) {
@@ -68,11 +74,24 @@ Camera orbit_camera(const Camera& c, const Bounds& b, float degrees) {
   return moved;
 }
 
+// Opened before any work, so that no display fails at once.
+std::unique_ptr<WindowViewer> open_window(const WalkthroughArgs& args) {
+  if (!args.window) return nullptr;
+  WindowOptions o;
+  std::tie(o.width, o.height) = parse_size_option(args.size);
+  o.title = "irad " + std::filesystem::path(args.scene).filename().string();
+  o.frames = args.window_frames;
+  o.screenshot = args.screenshot;
+  if (!o.screenshot.empty()) require_writable(o.screenshot, "--screenshot");
+  return std::make_unique<WindowViewer>(o);
+}
+
 int run_walkthrough(const WalkthroughArgs& args) {
   Log log;
   log.set_quiet(args.quiet);
   const auto [first, last] = parse_frames(args.frames);
-  check_pattern(args.output);
+  if (!args.window) check_pattern(args.output);
+  const std::unique_ptr<WindowViewer> viewer = open_window(args);
   if (!(args.fps > 0.0f)) throw Error("", "--fps", "must be positive");
   const Scene scene = load_gltf(args.scene, log);
   const Camera& camera = select_camera(scene, args.camera);
@@ -106,6 +125,27 @@ int run_walkthrough(const WalkthroughArgs& args) {
       walk.trace(next, paths[next]);
       if (ring) ring->replace(next, paths[next], v);
     }
+  }
+  if (viewer) { // each frame as below, from the camera the user flies
+    const WindowStats s = viewer->run(
+        camera, scene.bounds,
+        [&](const Camera& c, int) {
+          const View v = make_view(c, scene.bounds, width, height);
+          const std::uint32_t i = next++ % n;
+          paths[i].clear();
+          walk.trace(i, paths[i]);
+          if (ring) {
+            ring->replace(i, paths[i], v);
+            return ring->frame(v);
+          }
+          VplSet all = walk.header();
+          for (const auto& p : paths) all.vpls.insert(all.vpls.end(), p.begin(), p.end());
+          return raster->render(v, all);
+        },
+        [&] { return fmt::format("{} paths", std::min(next, n)); });
+    std::printf("walkthrough: window, %d frames %dx%d, mode %s, N %u: %.1f frames/s\n", s.frames,
+                width, height, args.mode.c_str(), n, s.fps());
+    return 0;
   }
   using Clock = std::chrono::steady_clock;
   double render_seconds = 0.0;
@@ -156,8 +196,7 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   auto args = std::make_shared<WalkthroughArgs>();
   CLI::App* cmd = app.add_subcommand("walkthrough", "Real-time frames (ring of path images)");
   cmd->add_option("scene", args->scene, "glTF 2.0 scene")->required();
-  cmd->add_option("-o,--output", args->output, "Frame pattern, e.g. frames/%04d.png or .exr")
-      ->required();
+  cmd->add_option("-o,--output", args->output, "Frame pattern, e.g. frames/%04d.png or .exr");
   cmd->add_option("--frames", args->frames, "Frames A:B (B exclusive)")->capture_default_str();
   cmd->add_option("--fps", args->fps, "Frames per second of animation time")->capture_default_str();
   cmd->add_option("--paths", args->paths, "N: the ring holds the N most recent paths")
@@ -175,8 +214,20 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--video", args->video, "Also encode OUT.mp4 with ffmpeg when it is installed");
   cmd->add_flag("--no-warmup", args->no_warmup, "Start with an empty ring");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress or warnings");
-  cmd->callback(
-      [args, &commands] { commands.selected = [args] { return run_walkthrough(*args); }; });
+  CLI::Option* window =
+      cmd->add_flag("--window", args->window,
+                    "Fly through in a window (WASD/arrows, Q/E, shift, mouse drag; Esc quits); "
+                    "mode reshade unless --mode is given");
+  cmd->add_option("--screenshot", args->screenshot, "--window: the last frame to FILE.png/.exr")
+      ->needs(window);
+  cmd->add_option("--window-frames", args->window_frames, "--window: stop after K frames (0: Esc)")
+      ->needs(window)
+      ->capture_default_str();
+  cmd->callback([args, cmd, &commands] {
+    if (!args->window && args->output.empty()) throw CLI::RequiredError("--output (or --window)");
+    if (args->window && cmd->get_option("--mode")->count() == 0) args->mode = "reshade";
+    commands.selected = [args] { return run_walkthrough(*args); };
+  });
 }
 
 } // namespace irad::apps
