@@ -87,8 +87,11 @@ TEST_P(WindowGl, ScreenshotMatchesTheOffscreenFrame) {
   const std::string gl = GetParam();
   const std::string common = "walkthrough " + cornell() + " --size 96x80 --paths 16 --gl " + gl;
   const fs::path shot = dir_ / "shot.exr";
-  const CliRun w = irad("xvfb-run -a", common + " --window --window-frames 3 --screenshot '" +
-                                           shot.string() + "'");
+  // ctest runs the two backends at once: each searches its own range of display numbers, so that
+  // two xvfb-run -a cannot race for the same free one.
+  const std::string xvfb = gl == "egl" ? "xvfb-run -a -n 160" : "xvfb-run -a -n 140";
+  const CliRun w =
+      irad(xvfb, common + " --window --window-frames 3 --screenshot '" + shot.string() + "'");
   ASSERT_EQ(w.code, 0) << w.err;
   EXPECT_NE(w.out.find("window, 3 frames 96x80, mode reshade"), std::string::npos) << w.out;
   const CliRun h = irad("", common + " --mode reshade --frames 0:3 -q -o '" +
