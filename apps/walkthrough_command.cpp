@@ -9,6 +9,7 @@
 #include "apps/options.h"
 #include "apps/render_pipeline.h"
 #include "apps/walkthrough_engine.h"
+#include "apps/window_viewer.h"
 #include "core/error.h"
 #include "core/gltf_loader.h"
 #include "core/image_io.h"
@@ -31,6 +32,9 @@ struct WalkthroughArgs {
   float fps = 30.0f, orbit = 0.0f;
   std::uint32_t paths = 64;
   bool no_warmup = false, quiet = false;
+  bool window = false; // interactive (apps/window_viewer.h) instead of frame files
+  std::string screenshot;
+  int window_frames = 0;
 };
 
 std::pair<int, int> parse_frames(const std::string& s) {
@@ -69,11 +73,37 @@ void encode_video(const WalkthroughArgs& args, int first) {
   if (std::system(cmd.c_str()) != 0) throw Error(args.video, "--video", "ffmpeg failed");
 }
 
+// Opened before any work, so that no display fails at once.
+std::unique_ptr<WindowViewer> open_window(const WalkthroughArgs& args) {
+  if (!args.window) return nullptr;
+  WindowOptions o;
+  std::tie(o.width, o.height) = parse_size_option(args.size);
+  o.title = "irad " + std::filesystem::path(args.scene).filename().string();
+  o.frames = args.window_frames;
+  o.screenshot = args.screenshot;
+  if (!o.screenshot.empty()) require_writable(o.screenshot, "--screenshot");
+  return std::make_unique<WindowViewer>(o);
+}
+
+// The user flies the camera; the scene's animation plays on, one frame per displayed frame.
+int run_window(WindowViewer& viewer, Walkthrough& walk, const Scene& scene, int first,
+               const std::string& mode) {
+  int frame = first;
+  const WindowStats s = viewer.run(
+      walk.camera_at(first), scene.bounds,
+      [&](const Camera& c, int) { return walk.frame(frame++, c); },
+      [&] { return fmt::format("{} paths, {}", walk.paths(), mode); });
+  std::printf("walkthrough: window, %d frames, mode %s, N %u, l_max %d: %.1f frames/s\n", s.frames,
+              mode.c_str(), walk.paths(), walk.l_max(), s.fps());
+  return 0;
+}
+
 int run_walkthrough(const WalkthroughArgs& args) {
   Log log;
   log.set_quiet(args.quiet);
   const auto [first, last] = parse_frames(args.frames);
-  check_pattern(args.output);
+  if (!args.window) check_pattern(args.output);
+  const std::unique_ptr<WindowViewer> viewer = open_window(args);
   Scene scene = load_gltf(args.scene, log);
   const Camera& chosen = select_camera(scene, args.camera);
   const std::size_t camera = static_cast<std::size_t>(&chosen - scene.cameras.data());
@@ -86,6 +116,7 @@ int run_walkthrough(const WalkthroughArgs& args) {
   settings.backend = parse_backend(args.gl);
   Walkthrough walk(scene, camera, settings, log);
   if (!args.no_warmup) walk.warm_up(first); // the first frame shows N paths
+  if (viewer) return run_window(*viewer, walk, scene, first, args.mode);
   using Clock = std::chrono::steady_clock;
   double render_seconds = 0.0;
   const auto t_all = Clock::now();
@@ -115,8 +146,7 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   auto args = std::make_shared<WalkthroughArgs>();
   CLI::App* cmd = app.add_subcommand("walkthrough", "Real-time frames (ring of path images)");
   cmd->add_option("scene", args->scene, "glTF 2.0 scene")->required();
-  cmd->add_option("-o,--output", args->output, "Frame pattern, e.g. frames/%04d.png or .exr")
-      ->required();
+  cmd->add_option("-o,--output", args->output, "Frame pattern, e.g. frames/%04d.png or .exr");
   cmd->add_option("--frames", args->frames, "Frames A:B (B exclusive)")->capture_default_str();
   cmd->add_option("--fps", args->fps, "Frames per second of animation time")->capture_default_str();
   cmd->add_option("--paths", args->paths, "N: the ring holds the N most recent paths")
@@ -136,8 +166,20 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--video", args->video, "Also encode OUT.mp4 with ffmpeg when it is installed");
   cmd->add_flag("--no-warmup", args->no_warmup, "Start with an empty ring");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress or warnings");
-  cmd->callback(
-      [args, &commands] { commands.selected = [args] { return run_walkthrough(*args); }; });
+  CLI::Option* window =
+      cmd->add_flag("--window", args->window,
+                    "Fly through in a window (WASD/arrows, Q/E, shift, mouse drag; Esc quits); "
+                    "mode cached unless --mode is given");
+  cmd->add_option("--screenshot", args->screenshot, "--window: the last frame to FILE.png/.exr")
+      ->needs(window);
+  cmd->add_option("--window-frames", args->window_frames, "--window: stop after K frames (0: Esc)")
+      ->needs(window)
+      ->capture_default_str();
+  cmd->callback([args, cmd, &commands] {
+    if (!args->window && args->output.empty()) throw CLI::RequiredError("--output (or --window)");
+    if (args->window && cmd->get_option("--mode")->count() == 0) args->mode = "cached";
+    commands.selected = [args] { return run_walkthrough(*args); };
+  });
 }
 
 } // namespace irad::apps

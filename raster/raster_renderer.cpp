@@ -172,7 +172,6 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector
 }
 
 void RasterRenderer::Impl::begin_image(const View& view) {
-  context->make_current();
   prepare(view);
   const glm::mat4 vp = view.projection * view.view;
   if (interleaved) {
@@ -233,16 +232,24 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
   auto context = gl::create_context(options.backend, options.gl_device);
   if (options.gl_messages) context->route_debug_messages(options.gl_messages);
   impl_ = std::make_unique<Impl>(scene, options, std::move(context));
+  impl_->context->release();
 }
 
-RasterRenderer::~RasterRenderer() = default;
+// The GL objects are deleted in their own context.
+RasterRenderer::~RasterRenderer() {
+  try {
+    if (impl_) impl_->context->make_current();
+  } catch (const std::exception&) { // then they are deleted with the context
+  }
+}
 
 void RasterRenderer::scene_changed() {
-  impl_->context->make_current();
+  const gl::CurrentScope current(*impl_->context);
   impl_->gpu.update_vertices();
 }
 
 std::string RasterRenderer::description() const {
+  const gl::CurrentScope current(*impl_->context);
   return impl_->context->backend() + ": " + impl_->context->renderer();
 }
 
@@ -250,6 +257,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
                              const Progress& progress) {
   Impl& im = *impl_;
   const auto t0 = Clock::now();
+  const gl::CurrentScope current(*im.context);
   im.begin_image(view);
   std::optional<gl::PassTimer> timer;
   if (im.options.gpu_timers) timer.emplace(im.api);
@@ -272,7 +280,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
 void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width,
                                 int height) {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   const int resolution = shadow_resolution_for(im.options.shadow_resolution, width, height);
   if (!im.cache_shadow || im.cache_shadow->resolution() != resolution) {
     im.cache.clear(); // cubes of another resolution
@@ -298,6 +306,7 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
 Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
   Impl& im = *impl_;
   const auto t0 = Clock::now();
+  const gl::CurrentScope current(*im.context);
   im.begin_image(view);
   std::vector<const Vpl*> list;
   std::vector<std::pair<GLuint, glm::mat3>> maps;
