@@ -78,8 +78,10 @@ Camera Walkthrough::camera_at(int frame) {
 }
 
 void Walkthrough::trace(std::uint32_t slot, const View& view) {
+  // Particle i < N of the walk (only those have the design's depth counts n_j): slot i is traced
+  // anew with the current geometry; a still scene gives the same VPLs again.
   vpls_[slot].clear();
-  walk_.trace(next_, vpls_[slot]); // particle next_ fills slot next_ mod N
+  walk_.trace(slot, vpls_[slot]);
   if (ring_) ring_->replace(slot, vpls_[slot], view);
   if (settings_.mode == WalkMode::Cached)
     raster_->cache_path(slot, vpls_[slot], settings_.width, settings_.height);

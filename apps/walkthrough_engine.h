@@ -68,7 +68,7 @@ private:
   std::unique_ptr<RingRenderer> ring_;
   std::unique_ptr<RasterRenderer> raster_;
   std::vector<std::vector<Vpl>> vpls_; // per slot: the path's VPLs
-  std::uint32_t next_ = 0;             // the particle the next frame traces
+  std::uint32_t next_ = 0;             // frames traced; the next replaces slot next_ mod N
   int posed_frame_ = -1;
 };
 
