@@ -27,7 +27,7 @@ namespace irad::apps {
 namespace {
 
 struct WalkthroughArgs {
-  std::string scene, output, frames = "0:60", size = "256x256", mode = "ring", video, camera;
+  std::string scene, output, frames = "0:60", size = "256x256", mode = "auto", video, camera;
   std::string gl = "auto";
   float fps = 30.0f, orbit = 0.0f;
   std::uint32_t paths = 64;
@@ -108,7 +108,8 @@ int run_walkthrough(const WalkthroughArgs& args) {
   const Camera& chosen = select_camera(scene, args.camera);
   const std::size_t camera = static_cast<std::size_t>(&chosen - scene.cameras.data());
   WalkthroughSettings settings;
-  settings.mode = parse_walk_mode(args.mode);
+  settings.mode = args.mode == "auto" ? default_walk_mode(scene, camera, args.orbit)
+                                      : parse_walk_mode(args.mode);
   settings.paths = args.paths;
   std::tie(settings.width, settings.height) = parse_size_option(args.size);
   settings.fps = args.fps;
@@ -116,7 +117,8 @@ int run_walkthrough(const WalkthroughArgs& args) {
   settings.backend = parse_backend(args.gl);
   Walkthrough walk(scene, camera, settings, log);
   if (!args.no_warmup) walk.warm_up(first); // the first frame shows N paths
-  if (viewer) return run_window(*viewer, walk, scene, first, args.mode);
+  const std::string mode = walk_mode_name(settings.mode);
+  if (viewer) return run_window(*viewer, walk, scene, first, mode);
   using Clock = std::chrono::steady_clock;
   double render_seconds = 0.0;
   const auto t_all = Clock::now();
@@ -133,9 +135,8 @@ int run_walkthrough(const WalkthroughArgs& args) {
   const double total = std::chrono::duration<double>(Clock::now() - t_all).count();
   std::printf("walkthrough: %d frames %dx%d, mode %s, N %u, l_max %d%s: %.1f frames/s rendering "
               "(%.1f with image writing)\n",
-              frames, settings.width, settings.height, args.mode.c_str(), walk.paths(),
-              walk.l_max(), scene.animation ? ", animated" : "", frames / render_seconds,
-              frames / total);
+              frames, settings.width, settings.height, mode.c_str(), walk.paths(), walk.l_max(),
+              scene.animation ? ", animated" : "", frames / render_seconds, frames / total);
   if (!args.video.empty()) encode_video(args, first);
   return 0;
 }
@@ -151,10 +152,12 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--fps", args->fps, "Frames per second of animation time")->capture_default_str();
   cmd->add_option("--paths", args->paths, "N: the ring holds the N most recent paths")
       ->capture_default_str();
-  cmd->add_option("--mode", args->mode,
-                  "ring (seed 5.1.3: one image per path), cached (shadow maps kept, every path "
-                  "re-shaded from the current camera) or reshade (everything redrawn)")
-      ->check(CLI::IsMember({"ring", "cached", "reshade"}))
+  cmd->add_option(
+         "--mode", args->mode,
+         "ring (seed 5.1.3: one image per path), cached (shadow maps kept, every path "
+         "re-shaded from the current camera), reshade (everything redrawn), or auto: ring for a "
+         "still camera, cached for a moving one")
+      ->check(CLI::IsMember({"auto", "ring", "cached", "reshade"}))
       ->capture_default_str();
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index");

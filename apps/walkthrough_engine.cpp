@@ -46,6 +46,24 @@ WalkMode parse_walk_mode(const std::string& name) {
   throw Error("", "--mode", "'" + name + "' is not ring, cached or reshade");
 }
 
+const char* walk_mode_name(WalkMode mode) {
+  switch (mode) {
+  case WalkMode::Ring:
+    return "ring";
+  case WalkMode::Cached:
+    return "cached";
+  case WalkMode::Reshade:
+    break;
+  }
+  return "reshade";
+}
+
+WalkMode default_walk_mode(const Scene& scene, std::size_t camera, float orbit) {
+  const bool animated = scene.animation && camera < scene.animation->camera_node.size() &&
+                        scene.animation->camera_node[camera] >= 0;
+  return animated || orbit != 0.0f ? WalkMode::Cached : WalkMode::Ring;
+}
+
 Walkthrough::Walkthrough(Scene& scene, std::size_t camera, const WalkthroughSettings& settings,
                          Log& log)
     : scene_(scene), camera_(camera), settings_(settings), rays_(scene),

@@ -26,6 +26,12 @@ namespace irad::apps {
 
 enum class WalkMode { Ring, Cached, Reshade };
 WalkMode parse_walk_mode(const std::string& name);
+const char* walk_mode_name(WalkMode mode);
+// The default ("auto"): ring while the camera stands still (then it draws what cached draws, 7x
+// faster), cached when the camera moves (glTF camera animation or an orbit): on the animated
+// Cornell box's fly-through cached halves the ring's error against converged frames
+// (docs/walkthrough.md).
+WalkMode default_walk_mode(const Scene& scene, std::size_t camera, float orbit);
 
 struct WalkthroughSettings {
   WalkMode mode = WalkMode::Ring;
