@@ -10,7 +10,7 @@
 //   per primitive the vertices it uses: POSITION (float VEC3, with min/max), NORMAL (float
 //   VEC3), TEXCOORD_0 (float VEC2) when the scene has uvs, and unsigned 32-bit indices;
 // - every material: name, pbrMetallicRoughness.baseColorFactor = (albedo, 1) with
-//   metallicFactor 0 and roughnessFactor 1, doubleSided, and the emission as emissiveFactor;
+//   metallicFactor 0 and roughnessFactor 1 (a mirror, Material::specular: 1 and 0), doubleSided, and the emission as emissiveFactor;
 //   when a component exceeds 1 the factor is divided by the largest component, which becomes
 //   KHR_materials_emissive_strength.emissiveStrength (listed in extensionsUsed);
 // - every camera: perspective, yfov, aspectRatio when set, zfar when set, and znear = the
