@@ -10,6 +10,7 @@
 #include "core/gltf_loader.h"
 #include "core/image_io.h"
 #include "raster/ring_renderer.h"
+#include "walk/mirror_pass.h"
 #include "walk/quasi_random_walk.h"
 
 #include <chrono>
@@ -125,6 +126,11 @@ int run_walkthrough(const WalkthroughArgs& args) {
       VplSet all = walk.header();
       for (const auto& p : paths) all.vpls.insert(all.vpls.end(), p.begin(), p.end());
       image = raster->render(v, all);
+    }
+    if (scene.has_specular()) { // visible mirrors: the ray-traced pass (walk/mirror_pass.h)
+      VplSet all = walk.header();
+      for (const auto& p : paths) all.vpls.insert(all.vpls.end(), p.begin(), p.end());
+      add_mirror_pass(scene, rays, v, all, {raster_options.clamp, 0}, image);
     }
     render_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     write_image(frame_path(args.output, f), image);

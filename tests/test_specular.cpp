@@ -14,8 +14,11 @@
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
 
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <numbers>
 
 namespace irad {
@@ -363,6 +366,29 @@ TEST(Specular, DiffuseSceneUnchanged) {
             trace_vpls(with_mirror_material, rays_b, view, b, {0.05f, 0}).pixels());
   EXPECT_EQ(path_trace(plain, rays_a, view, {4, 1, 0, 1000}).pixels(),
             path_trace(with_mirror_material, rays_b, view, {4, 1, 0, 1000}).pixels());
+}
+
+// The command line: a mirror scene renders with the mirror pass timed; the clamp's residual,
+// which does not handle mirrors, is refused with one line, exit 1.
+TEST(Specular, CommandLine) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "irad_specular_cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path panel = fs::path(IRAD_SOURCE_DIR) / "data/cornell_mirror_panel.gltf";
+  const std::string render = std::string(IRAD_BINARY) + " render " + panel.string() + " -o " +
+                             (dir / "p.exr").string() + " --size 32x32 --paths 16 --quiet";
+  ASSERT_EQ(std::system((render + " --stats " + (dir / "s.json").string()).c_str()), 0);
+  std::ifstream in(dir / "s.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_TRUE(stats["seconds"].contains("mirrors"));
+  EXPECT_GT(stats["vpls"].get<int>(), stats["vpls_planned"].get<int>()); // the mirrored copies
+  const int status =
+      std::system((render + " --bias-compensation 2> " + (dir / "err.txt").string()).c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  std::ifstream err(dir / "err.txt");
+  const std::string message((std::istreambuf_iterator<char>(err)), {});
+  EXPECT_NE(message.find("does not handle mirrors"), std::string::npos) << message;
+  fs::remove_all(dir);
 }
 
 } // namespace
