@@ -12,14 +12,11 @@ glm::vec3 mirror_radiance(const Scene& scene, const RayScene& rays, const VplSet
   glm::vec3 n = geometric_normal(scene, triangle);
   if (glm::dot(n, dir) > 0.0f) n = -n; // the side the ray arrived from
   glm::vec3 throughput = scene.material_of(triangle).base_color;
+  glm::vec3 origin = position + eps * n;
   glm::vec3 reflected = reflect_direction(n, dir);
-  const auto hit =
-      trace_through_mirrors(scene, rays, position + eps * n, reflected, throughput, eps);
+  const auto hit = trace_through_mirrors(scene, rays, origin, reflected, throughput, eps);
   if (!hit) return glm::vec3(0.0f);
-  // The origin of the last reflected segment is not kept: recover the hit point from the
-  // triangle (shading_point needs origin + t dir only for the position).
-  const SurfacePoint sp = surface_at(scene, hit->triangle, hit->bary);
-  const ShadingPoint x = shading_point(scene, *hit, sp.position - hit->t * reflected, reflected);
+  const ShadingPoint x = shading_point(scene, *hit, origin, reflected);
   return throughput * (x.emission + gather_vpls(rays, x, vpls, dmin2, eps));
 }
 

@@ -5,8 +5,8 @@
 namespace irad {
 
 std::optional<RayHit> trace_through_mirrors(const Scene& scene, const RayScene& rays,
-                                            glm::vec3 origin, glm::vec3& dir, glm::vec3& throughput,
-                                            float eps) {
+                                            glm::vec3& origin, glm::vec3& dir,
+                                            glm::vec3& throughput, float eps) {
   const float far = std::numeric_limits<float>::infinity();
   for (int bounce = 0; bounce <= max_mirror_bounces; ++bounce) {
     const auto hit = rays.intersect(origin, dir, 0.0f, far);

@@ -15,12 +15,13 @@ namespace irad {
 inline constexpr int max_mirror_bounces = 16;
 
 // The first non-mirror surface along origin + t dir (t > 0), reflecting in every mirror on the way:
-// `dir` becomes the direction that reaches it and `throughput` is multiplied by each mirror's
-// reflectance R. Nothing when the ray leaves the scene or exceeds max_mirror_bounces. eps: the
-// scene's ray offset (a reflected ray starts eps off the mirror, on the side it came from).
+// `origin` and `dir` become the ray that reaches it (origin + hit.t dir is the hit point) and
+// `throughput` is multiplied by each mirror's reflectance R. Nothing when the ray leaves the scene
+// or exceeds max_mirror_bounces. eps: the scene's ray offset (a reflected ray starts eps off the
+// mirror, on the side it came from).
 std::optional<RayHit> trace_through_mirrors(const Scene& scene, const RayScene& rays,
-                                            glm::vec3 origin, glm::vec3& dir, glm::vec3& throughput,
-                                            float eps);
+                                            glm::vec3& origin, glm::vec3& dir,
+                                            glm::vec3& throughput, float eps);
 
 // Appends the mirrored copy of `vpl` in every polygon it can reach (core/mirrors.h). By value:
 // `vpl` may be an element of `out`.

@@ -94,10 +94,9 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
   for (int j = 1; j <= depth && positive(beta); ++j) {
     // Mirrors (core/mirrors.h) reflect the particle on to the next diffuse surface (beta *= R);
     // a specular bounce is not a reflection j (it takes no Halton dimensions).
-    const auto hit =
-        mirrors_.empty()
-            ? rays_->intersect(origin + eps * offset_normal, dir, 0.0f, far)
-            : trace_through_mirrors(scene, *rays_, origin + eps * offset_normal, dir, beta, eps);
+    glm::vec3 from = origin + eps * offset_normal;
+    const auto hit = mirrors_.empty() ? rays_->intersect(from, dir, 0.0f, far)
+                                      : trace_through_mirrors(scene, *rays_, from, dir, beta, eps);
     if (!hit) return; // the particle leaves the scene
     const PathVertex y = vertex_at(scene, *hit, dir);
     const glm::vec3 radiant = beta * y.albedo * inv_pi; // beta_j rho(y_j) / pi
