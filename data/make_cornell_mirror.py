@@ -5,10 +5,10 @@
 data/cornell_mirror.gltf: the left (red) wall turned into a perfect mirror.
 data/cornell_mirror_panel.gltf: the box unchanged plus a mirror panel of the light's size lying on
 the floor (1 mm above it, facing up, in front of the tall block), which throws the light's image
-onto the ceiling: the pyramid of the mirrored VPLs made visible. The panel reuses the light's
-vertex data, placed by a node that turns it 180 degrees about x (a rotation: the winding and the
-normals stay consistent) and moves it to x in [0.300, 0.430], z in [0.130, 0.235], between the
-blocks; its image of the light falls on the ceiling near the front and on the left wall.
+onto the ceiling and the tall block: the pyramid of the mirrored VPLs made visible. The panel
+reuses the light's vertex data, placed by a node that turns it 180 degrees about x (a rotation:
+the winding and the normals stay consistent) and moves it to x in [0.300, 0.430], z in [0.130,
+0.235], between the blocks.
 
 The red material becomes "mirror": baseColorFactor (0.9, 0.9, 0.9) = the mirror's reflectance,
 metallicFactor 1 and roughnessFactor 0, which irad reads as a perfect mirror (metallicFactor >= 0.9
