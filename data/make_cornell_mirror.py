@@ -14,7 +14,7 @@ The red material becomes "mirror": baseColorFactor (0.9, 0.9, 0.9) = the mirror'
 metallicFactor 1 and roughnessFactor 0, which irad reads as a perfect mirror (metallicFactor >= 0.9
 and roughnessFactor <= 0.1, core/gltf_materials.h). Everything else is unchanged. The measured
 left wall is slightly non-planar, so its two triangles are two mirror planes that meet at a
-0.3-degree kink.
+0.47-degree kink.
 
 Usage: python3 data/make_cornell_mirror.py
 Writes both files next to this script. Standard library only; deterministic.
