@@ -21,11 +21,19 @@ for scene in wall panel; do
   for e in pt raster rtvpl; do
     "$irad" convert "$tmp/$scene-$e.exr" -o "$tmp/$scene-$e.png" --exposure 1
   done
+# What the panel changes: the panel scene against the box without it (0 to 30 %).
+"$irad" render data/cornell_box.gltf --paths 1024 --size 256x256 -o "$tmp/box-raster.exr" --quiet
+"$irad" compare "$tmp/panel-raster.exr" "$tmp/box-raster.exr" --diff-max 0.3 \
+  --diff "$img/ext_specular_panel_vs_box.png" >/dev/null
   for e in raster rtvpl; do
     echo "== $scene: $e against pt (pixels, then 8x8 blocks)"
     "$irad" compare "$tmp/$scene-$e.exr" "$tmp/$scene-pt.exr" --diff "$tmp/$scene-$e-error.png"
     "$irad" compare "$tmp/$scene-$e.exr" "$tmp/$scene-pt.exr" --block 8
   done
+# What the panel changes: the panel scene against the box without it (0 to 30 %).
+"$irad" render data/cornell_box.gltf --paths 1024 --size 256x256 -o "$tmp/box-raster.exr" --quiet
+"$irad" compare "$tmp/panel-raster.exr" "$tmp/box-raster.exr" --diff-max 0.3 \
+  --diff "$img/ext_specular_panel_vs_box.png" >/dev/null
   python3 scripts/side_by_side.py "${out}_raster_pt.png" 1 "$tmp/$scene-raster.png" \
     "$tmp/$scene-pt.png"
   python3 scripts/side_by_side.py "${out}_rtvpl_pt.png" 1 "$tmp/$scene-rtvpl.png" \
@@ -33,3 +41,7 @@ for scene in wall panel; do
   python3 scripts/side_by_side.py "${out}_error.png" 1 "$tmp/$scene-raster-error.png" \
     "$tmp/$scene-rtvpl-error.png"
 done
+# What the panel changes: the panel scene against the box without it (0 to 30 %).
+"$irad" render data/cornell_box.gltf --paths 1024 --size 256x256 -o "$tmp/box-raster.exr" --quiet
+"$irad" compare "$tmp/panel-raster.exr" "$tmp/box-raster.exr" --diff-max 0.3 \
+  --diff "$img/ext_specular_panel_vs_box.png" >/dev/null
