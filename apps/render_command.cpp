@@ -127,6 +127,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
   if (args.estimator == "raster") {
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
+    if (r.scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h
   } else {
     seconds["trace"] = r.seconds.trace;
   }
@@ -192,11 +193,14 @@ void print_summary(const RenderArgs& args, const RenderResult& r) {
   const double stage = args.estimator == "raster" ? r.seconds.raster : r.seconds.trace;
   std::fprintf(stderr,
                "irad: %s: %dx%d, %s, %u paths, %zu VPLs (l_max %d, rho_bar %.4f) in %.2f s "
-               "(load %.2f, walk %.2f, %s %.2f)\n",
+               "(load %.2f, walk %.2f, %s %.2f%s)\n",
                args.scene.c_str(), r.view.width, r.view.height, args.estimator.c_str(),
                r.vpls.paths, r.vpls.vpls.size(), r.vpls.l_max, r.vpls.rho_bar, r.seconds.total,
                r.seconds.load, r.seconds.walk, args.estimator == "raster" ? "raster" : "trace",
-               stage);
+               stage,
+               args.estimator == "raster" && r.scene.has_specular()
+                   ? fmt::format(", mirrors {:.2f}", r.seconds.trace).c_str()
+                   : "");
 }
 
 int run_render(const RenderArgs& args) {

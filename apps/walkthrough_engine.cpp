@@ -3,6 +3,7 @@
 #include "core/animation.h"
 #include "core/error.h"
 #include "core/view.h"
+#include "walk/mirror_pass.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -119,17 +120,27 @@ Image Walkthrough::frame(int frame, const Camera& camera) {
   pose(frame);
   const View view = make_view(camera, scene_.bounds, settings_.width, settings_.height);
   trace(next_ % n_, view); // one new path per frame, with the current geometry
+  Image image;
   switch (settings_.mode) {
   case WalkMode::Ring:
-    return ring_->frame(view);
+    image = ring_->frame(view);
+    break;
   case WalkMode::Cached:
-    return raster_->render_cached(view);
+    image = raster_->render_cached(view);
+    break;
   case WalkMode::Reshade:
+    image = raster_->render(view, all_vpls());
     break;
   }
+  if (scene_.has_specular()) // visible mirrors: the ray-traced pass (walk/mirror_pass.h)
+    add_mirror_pass(scene_, rays_, view, all_vpls(), {RasterOptions{}.clamp, 0, nullptr}, image);
+  return image;
+}
+
+VplSet Walkthrough::all_vpls() const {
   VplSet all = walk_.header();
   for (const auto& p : vpls_) all.vpls.insert(all.vpls.end(), p.begin(), p.end());
-  return raster_->render(view, all);
+  return all;
 }
 
 } // namespace irad::apps

@@ -64,6 +64,7 @@ public:
 private:
   void pose(int frame);
   void trace(std::uint32_t slot, const View& view);
+  VplSet all_vpls() const; // the N paths' VPLs
 
   Scene& scene_;
   std::size_t camera_;

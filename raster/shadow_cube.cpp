@@ -2,6 +2,8 @@
 
 #include "core/error.h"
 #include "core/light_sampler.h"
+#include "core/mirrors.h"
+#include "raster/mirror_shaders.h"
 #include "raster/shaders.h"
 
 #include <array>
@@ -87,6 +89,17 @@ ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& b
   attached_ = cube_.get();
 }
 
+float ShadowCube::far_from(const glm::vec3& position) const {
+  // Far reaches the farthest corner of the scene's bounds.
+  float far = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 p((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y,
+                      (c & 4) ? bounds_.hi.z : bounds_.lo.z);
+    far = glm::max(far, glm::length(p - position));
+  }
+  return far;
+}
+
 glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint cube) {
   if (cube != attached_) {
     for (int f = 0; f < 6; ++f) {
@@ -96,14 +109,54 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
     }
     attached_ = cube;
   }
+  if (vpl.mirror >= 0) return render_mirrored(vpl, scene);
+  program_.use();
+  api_->Uniform3fv(u_vpl_position_, 1, glm::value_ptr(vpl.position));
+  return render_faces(vpl, far_from(vpl.position), [&](const glm::mat4& vp) {
+    api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE, glm::value_ptr(vp));
+    scene.draw_all();
+  });
+}
+
+// The mirrored VPL's cube (raster/mirror_shaders.h): the real scene and its reflection, both
+// clipped to the lit side of the plane. The reflected scene is as far from y' as the real one
+// is from y.
+glm::mat3 ShadowCube::render_mirrored(const Vpl& vpl, const GpuScene& scene) {
+  if (!mirror_) mirror_ = std::make_unique<MirrorProgram>(*api_);
+  const MirrorProgram& m = *mirror_;
+  const glm::vec3 n(vpl.mirror_plane);
+  // Reflection x -> x - 2 (n . x + w) n as a matrix; the clip plane moved 1e-5 of the diagonal
+  // to the lit side, so the mirror's own plane never shadows.
+  glm::mat4 reflect(glm::mat3(1.0f) - 2.0f * glm::outerProduct(n, n));
+  reflect[3] = glm::vec4(-2.0f * vpl.mirror_plane.w * n, 1.0f);
+  const glm::vec4 clip = vpl.mirror_plane - glm::vec4(0.0f, 0.0f, 0.0f, 1e-5f * bounds_.diagonal());
+  const float far =
+      glm::max(far_from(vpl.position), far_from(reflect_point(vpl.mirror_plane, vpl.position)));
+  m.program.use();
+  api_->Uniform3fv(m.vpl_position, 1, glm::value_ptr(vpl.position));
+  api_->Uniform4fv(m.clip_plane, 1, glm::value_ptr(clip));
+  api_->Enable(GL_CLIP_DISTANCE0);
+  const glm::mat3 frame = render_faces(vpl, far, [&](const glm::mat4& vp) {
+    api_->UniformMatrix4fv(m.face_view_projection, 1, GL_FALSE, glm::value_ptr(vp));
+    for (const glm::mat4& r : {glm::mat4(1.0f), reflect}) {
+      api_->UniformMatrix4fv(m.reflect, 1, GL_FALSE, glm::value_ptr(r));
+      scene.draw_all();
+    }
+  });
+  api_->Disable(GL_CLIP_DISTANCE0);
+  return frame;
+}
+
+ShadowCube::MirrorProgram::MirrorProgram(const GladGLContext& api)
+    : program(api, "mirror shadow", shaders::mirror_shadow_vertex, shaders::shadow_fragment),
+      face_view_projection(program.uniform("u_face_view_projection")),
+      vpl_position(program.uniform("u_vpl_position")), reflect(program.uniform("u_reflect")),
+      clip_plane(program.uniform("u_clip_plane")) {}
+
+glm::mat3 ShadowCube::render_faces(const Vpl& vpl, float far,
+                                   const std::function<void(const glm::mat4&)>& draw) {
   const glm::mat3 frame = cube_frame(vpl);
-  // Near and far fitted to this VPL: far reaches the farthest corner of the scene's bounds.
-  float far = 0.0f;
-  for (int c = 0; c < 8; ++c) {
-    const glm::vec3 p((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y,
-                      (c & 4) ? bounds_.hi.z : bounds_.lo.z);
-    far = glm::max(far, glm::length(p - vpl.position));
-  }
+  // Near and far fitted to this VPL.
   far = glm::max(1.01f * far, 1e-30f);
   const float near = 1e-4f * glm::max(bounds_.diagonal(), far);
   const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, near, far);
@@ -115,8 +168,6 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
   api_->DepthMask(GL_TRUE);
   api_->Disable(GL_BLEND);
   api_->ClearColor(3.0e38f, 0.0f, 0.0f, 0.0f); // nothing there: never shadowed
-  program_.use();
-  api_->Uniform3fv(u_vpl_position_, 1, glm::value_ptr(vpl.position));
   const bool hemisphere = vpl.kind == VplKind::Surface;
   for (int f = 0; f < 6; ++f) {
     if (f == negative_z_face && hemisphere) continue;
@@ -130,9 +181,7 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
     }
     api_->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::mat4 face_view = glm::lookAt(glm::vec3(0.0f), faces[f].forward, faces[f].up);
-    const glm::mat4 vp = projection * face_view * to_frame;
-    api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE, glm::value_ptr(vp));
-    scene.draw_all();
+    draw(projection * face_view * to_frame);
     if (half) api_->Disable(GL_SCISSOR_TEST);
   }
   return frame;

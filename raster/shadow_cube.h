@@ -2,13 +2,16 @@
 // Omnidirectional shadow map of one VPL: a cube of R32F distances |p - y| to the nearest surface,
 // rendered face by face into one framebuffer. A surface VPL lights only its hemisphere, so its
 // cube is turned to put the normal at the centre of the +z face and the -z face is skipped.
+// A mirrored VPL (core/mirrors.h) gets the cube of its unfolded paths (raster/mirror_shaders.h).
 #include "core/bounds.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
 #include "raster/shader_program.h"
 
 #include <array>
+#include <functional>
 #include <glm/glm.hpp>
+#include <memory>
 
 namespace irad::gl {
 
@@ -32,6 +35,19 @@ public:
   float texel_angle() const { return 2.0f / static_cast<float>(resolution_); }
 
 private:
+  // The program of mirrored VPLs' cubes (raster/mirror_shaders.h), made on first use.
+  struct MirrorProgram {
+    explicit MirrorProgram(const GladGLContext& api);
+    ShaderProgram program;
+    GLint face_view_projection, vpl_position, reflect, clip_plane;
+  };
+  float far_from(const glm::vec3& position) const;
+  glm::mat3 render_mirrored(const Vpl& vpl, const GpuScene& scene);
+  // Clears and draws the faces the VPL needs (draw(face view-projection) for each).
+  glm::mat3 render_faces(const Vpl& vpl, float far,
+                         const std::function<void(const glm::mat4&)>& draw);
+
+  std::unique_ptr<MirrorProgram> mirror_;
   const GladGLContext* api_;
   int resolution_;
   Bounds bounds_;
