@@ -221,6 +221,7 @@ int run_render(const RenderArgs& args) {
   request.raster.gl_device = args.gl_device;
   request.raster.interleave = args.interleave;
   request.raster.jitter = args.jitter == "on";
+  request.pt.pixel_footprint = args.jitter == "on"; // pt: each sample at a uniform pixel point
   request.progress = !args.quiet && isatty(STDERR_FILENO);
   request.estimator = parse_estimator(args.estimator);
   request.pt.spp = args.spp;
@@ -330,7 +331,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   cmd->add_option("--jitter", args->jitter,
                   "Raster: every VPL pass and the emitters at a sub-pixel offset from the path's "
-                  "low-discrepancy point (antialiased edges without multisampling)")
+                  "low-discrepancy point (antialiased edges without multisampling); pt: each "
+                  "sample through a uniform point of its pixel (the antialiased reference)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--gl", args->gl,

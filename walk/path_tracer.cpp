@@ -193,7 +193,13 @@ Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
       glm::dvec3 sum(0.0);
       for (std::uint32_t s = 0; s < options.spp; ++s) {
         Pcg32 rng(mix64(seed ^ pixel), s); // one stream per pixel and sample
-        const glm::vec3 l = tracer.radiance(view.eye, dir, view.znear, rng);
+        glm::vec3 d = dir;
+        if (options.pixel_footprint) {
+          const auto u = static_cast<float>(rng.next_double());
+          const auto v = static_cast<float>(rng.next_double());
+          d = image_point_direction(view, static_cast<float>(x) + u, static_cast<float>(y) + v);
+        }
+        const glm::vec3 l = tracer.radiance(view.eye, d, view.znear, rng);
         if (std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z)) sum += glm::dvec3(l);
       }
       image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), 1.0f);

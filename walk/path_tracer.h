@@ -28,6 +28,10 @@ struct PathTracerOptions {
   std::uint64_t seed = 0;
   unsigned threads = 0; // 0: hardware concurrency
   int max_depth = 1000; // bounces (Russian roulette ends paths long before)
+  // false: every camera ray through the pixel centre (the raster's sampling without jitter);
+  // true: each sample through a uniform point of the pixel (box filter: the antialiased image
+  // the raster's --jitter converges to).
+  bool pixel_footprint = false;
   // When it becomes true (a signal handler), no further pixel is started: those left are 0,
   // alpha included.
   const std::atomic<bool>* cancel = nullptr;
