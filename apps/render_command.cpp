@@ -128,6 +128,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
   if (args.estimator == "raster") {
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
+    if (r.scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h
   } else {
     seconds["trace"] = r.seconds.trace;
   }
@@ -194,11 +195,14 @@ void print_summary(const RenderArgs& args, const RenderResult& r) {
   const double stage = args.estimator == "raster" ? r.seconds.raster : r.seconds.trace;
   std::fprintf(stderr,
                "irad: %s: %dx%d, %s, %u paths, %zu VPLs (l_max %d, rho_bar %.4f) in %.2f s "
-               "(load %.2f, walk %.2f, %s %.2f)\n",
+               "(load %.2f, walk %.2f, %s %.2f%s)\n",
                args.scene.c_str(), r.view.width, r.view.height, args.estimator.c_str(),
                r.vpls.paths, r.vpls.vpls.size(), r.vpls.l_max, r.vpls.rho_bar, r.seconds.total,
                r.seconds.load, r.seconds.walk, args.estimator == "raster" ? "raster" : "trace",
-               stage);
+               stage,
+               args.estimator == "raster" && r.scene.has_specular()
+                   ? fmt::format(", mirrors {:.2f}", r.seconds.trace).c_str()
+                   : "");
 }
 
 int run_render(const RenderArgs& args) {
@@ -220,6 +224,7 @@ int run_render(const RenderArgs& args) {
   request.raster.interleave = args.interleave;
   request.raster.batch = args.batch;
   request.raster.jitter = args.jitter == "on";
+  request.pt.pixel_footprint = args.jitter == "on"; // pt: each sample at a uniform pixel point
   request.progress = !args.quiet && isatty(STDERR_FILENO);
   request.estimator = parse_estimator(args.estimator);
   request.pt.spp = args.spp;
@@ -333,7 +338,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   cmd->add_option("--jitter", args->jitter,
                   "Raster: every VPL pass and the emitters at a sub-pixel offset from the path's "
-                  "low-discrepancy point (antialiased edges without multisampling)")
+                  "low-discrepancy point (antialiased edges without multisampling); pt: each "
+                  "sample through a uniform point of its pixel (the antialiased reference)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--gl", args->gl,

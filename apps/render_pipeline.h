@@ -40,6 +40,7 @@ struct RenderRequest {
 };
 
 struct StageSeconds {
+  // trace: pt and rt-vpl, or the raster's ray-traced pass over visible mirrors
   double load = 0, walk = 0, raster = 0, readback = 0, trace = 0, compensation = 0, total = 0;
 };
 

@@ -9,6 +9,7 @@
 #include "apps/options.h"
 #include "apps/render_pipeline.h"
 #include "apps/walkthrough_engine.h"
+#include "apps/window_viewer.h"
 #include "core/error.h"
 #include "core/gltf_loader.h"
 #include "core/image_io.h"
@@ -26,11 +27,14 @@ namespace irad::apps {
 namespace {
 
 struct WalkthroughArgs {
-  std::string scene, output, frames = "0:60", size = "256x256", mode = "ring", video, camera;
+  std::string scene, output, frames = "0:60", size = "256x256", mode = "auto", video, camera;
   std::string gl = "auto";
   float fps = 30.0f, orbit = 0.0f;
   std::uint32_t paths = 64;
   bool no_warmup = false, quiet = false;
+  bool window = false; // interactive (apps/window_viewer.h) instead of frame files
+  std::string screenshot;
+  int window_frames = 0;
 };
 
 std::pair<int, int> parse_frames(const std::string& s) {
@@ -69,16 +73,43 @@ void encode_video(const WalkthroughArgs& args, int first) {
   if (std::system(cmd.c_str()) != 0) throw Error(args.video, "--video", "ffmpeg failed");
 }
 
+// Opened before any work, so that no display fails at once.
+std::unique_ptr<WindowViewer> open_window(const WalkthroughArgs& args) {
+  if (!args.window) return nullptr;
+  WindowOptions o;
+  std::tie(o.width, o.height) = parse_size_option(args.size);
+  o.title = "irad " + std::filesystem::path(args.scene).filename().string();
+  o.frames = args.window_frames;
+  o.screenshot = args.screenshot;
+  if (!o.screenshot.empty()) require_writable(o.screenshot, "--screenshot");
+  return std::make_unique<WindowViewer>(o);
+}
+
+// The user flies the camera; the scene's animation plays on, one frame per displayed frame.
+int run_window(WindowViewer& viewer, Walkthrough& walk, const Scene& scene, int first,
+               const std::string& mode) {
+  int frame = first;
+  const WindowStats s = viewer.run(
+      walk.camera_at(first), scene.bounds,
+      [&](const Camera& c, int) { return walk.frame(frame++, c); },
+      [&] { return fmt::format("{} paths, {}", walk.paths(), mode); });
+  std::printf("walkthrough: window, %d frames, mode %s, N %u, l_max %d: %.1f frames/s\n", s.frames,
+              mode.c_str(), walk.paths(), walk.l_max(), s.fps());
+  return 0;
+}
+
 int run_walkthrough(const WalkthroughArgs& args) {
   Log log;
   log.set_quiet(args.quiet);
   const auto [first, last] = parse_frames(args.frames);
-  check_pattern(args.output);
+  if (!args.window) check_pattern(args.output);
+  const std::unique_ptr<WindowViewer> viewer = open_window(args);
   Scene scene = load_gltf(args.scene, log);
   const Camera& chosen = select_camera(scene, args.camera);
   const std::size_t camera = static_cast<std::size_t>(&chosen - scene.cameras.data());
   WalkthroughSettings settings;
-  settings.mode = parse_walk_mode(args.mode);
+  settings.mode = args.mode == "auto" ? default_walk_mode(scene, camera, args.orbit)
+                                      : parse_walk_mode(args.mode);
   settings.paths = args.paths;
   std::tie(settings.width, settings.height) = parse_size_option(args.size);
   settings.fps = args.fps;
@@ -86,6 +117,8 @@ int run_walkthrough(const WalkthroughArgs& args) {
   settings.backend = parse_backend(args.gl);
   Walkthrough walk(scene, camera, settings, log);
   if (!args.no_warmup) walk.warm_up(first); // the first frame shows N paths
+  const std::string mode = walk_mode_name(settings.mode);
+  if (viewer) return run_window(*viewer, walk, scene, first, mode);
   using Clock = std::chrono::steady_clock;
   double render_seconds = 0.0;
   const auto t_all = Clock::now();
@@ -102,9 +135,8 @@ int run_walkthrough(const WalkthroughArgs& args) {
   const double total = std::chrono::duration<double>(Clock::now() - t_all).count();
   std::printf("walkthrough: %d frames %dx%d, mode %s, N %u, l_max %d%s: %.1f frames/s rendering "
               "(%.1f with image writing)\n",
-              frames, settings.width, settings.height, args.mode.c_str(), walk.paths(),
-              walk.l_max(), scene.animation ? ", animated" : "", frames / render_seconds,
-              frames / total);
+              frames, settings.width, settings.height, mode.c_str(), walk.paths(), walk.l_max(),
+              scene.animation ? ", animated" : "", frames / render_seconds, frames / total);
   if (!args.video.empty()) encode_video(args, first);
   return 0;
 }
@@ -115,16 +147,17 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   auto args = std::make_shared<WalkthroughArgs>();
   CLI::App* cmd = app.add_subcommand("walkthrough", "Real-time frames (ring of path images)");
   cmd->add_option("scene", args->scene, "glTF 2.0 scene")->required();
-  cmd->add_option("-o,--output", args->output, "Frame pattern, e.g. frames/%04d.png or .exr")
-      ->required();
+  cmd->add_option("-o,--output", args->output, "Frame pattern, e.g. frames/%04d.png or .exr");
   cmd->add_option("--frames", args->frames, "Frames A:B (B exclusive)")->capture_default_str();
   cmd->add_option("--fps", args->fps, "Frames per second of animation time")->capture_default_str();
   cmd->add_option("--paths", args->paths, "N: the ring holds the N most recent paths")
       ->capture_default_str();
-  cmd->add_option("--mode", args->mode,
-                  "ring (seed 5.1.3: one image per path), cached (shadow maps kept, every path "
-                  "re-shaded from the current camera) or reshade (everything redrawn)")
-      ->check(CLI::IsMember({"ring", "cached", "reshade"}))
+  cmd->add_option(
+         "--mode", args->mode,
+         "ring (seed 5.1.3: one image per path), cached (shadow maps kept, every path "
+         "re-shaded from the current camera), reshade (everything redrawn), or auto: ring for a "
+         "still camera, cached for a moving one")
+      ->check(CLI::IsMember({"auto", "ring", "cached", "reshade"}))
       ->capture_default_str();
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index");
@@ -136,8 +169,20 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--video", args->video, "Also encode OUT.mp4 with ffmpeg when it is installed");
   cmd->add_flag("--no-warmup", args->no_warmup, "Start with an empty ring");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress or warnings");
-  cmd->callback(
-      [args, &commands] { commands.selected = [args] { return run_walkthrough(*args); }; });
+  CLI::Option* window =
+      cmd->add_flag("--window", args->window,
+                    "Fly through in a window (WASD/arrows, Q/E, shift, mouse drag; Esc quits); "
+                    "mode cached unless --mode is given");
+  cmd->add_option("--screenshot", args->screenshot, "--window: the last frame to FILE.png/.exr")
+      ->needs(window);
+  cmd->add_option("--window-frames", args->window_frames, "--window: stop after K frames (0: Esc)")
+      ->needs(window)
+      ->capture_default_str();
+  cmd->callback([args, cmd, &commands] {
+    if (!args->window && args->output.empty()) throw CLI::RequiredError("--output (or --window)");
+    if (args->window && cmd->get_option("--mode")->count() == 0) args->mode = "cached";
+    commands.selected = [args] { return run_walkthrough(*args); };
+  });
 }
 
 } // namespace irad::apps

@@ -3,6 +3,7 @@
 #include "core/animation.h"
 #include "core/error.h"
 #include "core/view.h"
+#include "walk/mirror_pass.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -46,6 +47,24 @@ WalkMode parse_walk_mode(const std::string& name) {
   throw Error("", "--mode", "'" + name + "' is not ring, cached or reshade");
 }
 
+const char* walk_mode_name(WalkMode mode) {
+  switch (mode) {
+  case WalkMode::Ring:
+    return "ring";
+  case WalkMode::Cached:
+    return "cached";
+  case WalkMode::Reshade:
+    break;
+  }
+  return "reshade";
+}
+
+WalkMode default_walk_mode(const Scene& scene, std::size_t camera, float orbit) {
+  const bool animated = scene.animation && camera < scene.animation->camera_node.size() &&
+                        scene.animation->camera_node[camera] >= 0;
+  return animated || orbit != 0.0f ? WalkMode::Cached : WalkMode::Ring;
+}
+
 Walkthrough::Walkthrough(Scene& scene, std::size_t camera, const WalkthroughSettings& settings,
                          Log& log)
     : scene_(scene), camera_(camera), settings_(settings), rays_(scene),
@@ -78,8 +97,10 @@ Camera Walkthrough::camera_at(int frame) {
 }
 
 void Walkthrough::trace(std::uint32_t slot, const View& view) {
+  // Particle i < N of the walk (only those have the design's depth counts n_j): slot i is traced
+  // anew with the current geometry; a still scene gives the same VPLs again.
   vpls_[slot].clear();
-  walk_.trace(next_, vpls_[slot]); // particle next_ fills slot next_ mod N
+  walk_.trace(slot, vpls_[slot]);
   if (ring_) ring_->replace(slot, vpls_[slot], view);
   if (settings_.mode == WalkMode::Cached)
     raster_->cache_path(slot, vpls_[slot], settings_.width, settings_.height);
@@ -99,17 +120,27 @@ Image Walkthrough::frame(int frame, const Camera& camera) {
   pose(frame);
   const View view = make_view(camera, scene_.bounds, settings_.width, settings_.height);
   trace(next_ % n_, view); // one new path per frame, with the current geometry
+  Image image;
   switch (settings_.mode) {
   case WalkMode::Ring:
-    return ring_->frame(view);
+    image = ring_->frame(view);
+    break;
   case WalkMode::Cached:
-    return raster_->render_cached(view);
+    image = raster_->render_cached(view);
+    break;
   case WalkMode::Reshade:
+    image = raster_->render(view, all_vpls());
     break;
   }
+  if (scene_.has_specular()) // visible mirrors: the ray-traced pass (walk/mirror_pass.h)
+    add_mirror_pass(scene_, rays_, view, all_vpls(), {RasterOptions{}.clamp, 0, nullptr}, image);
+  return image;
+}
+
+VplSet Walkthrough::all_vpls() const {
   VplSet all = walk_.header();
   for (const auto& p : vpls_) all.vpls.insert(all.vpls.end(), p.begin(), p.end());
-  return raster_->render(view, all);
+  return all;
 }
 
 } // namespace irad::apps

@@ -26,6 +26,12 @@ namespace irad::apps {
 
 enum class WalkMode { Ring, Cached, Reshade };
 WalkMode parse_walk_mode(const std::string& name);
+const char* walk_mode_name(WalkMode mode);
+// The default ("auto"): ring while the camera stands still (then it draws what cached draws, 7x
+// faster), cached when the camera moves (glTF camera animation or an orbit): on the animated
+// Cornell box's fly-through cached halves the ring's error against converged frames
+// (docs/walkthrough.md).
+WalkMode default_walk_mode(const Scene& scene, std::size_t camera, float orbit);
 
 struct WalkthroughSettings {
   WalkMode mode = WalkMode::Ring;
@@ -58,6 +64,7 @@ public:
 private:
   void pose(int frame);
   void trace(std::uint32_t slot, const View& view);
+  VplSet all_vpls() const; // the N paths' VPLs
 
   Scene& scene_;
   std::size_t camera_;
@@ -68,7 +75,7 @@ private:
   std::unique_ptr<RingRenderer> ring_;
   std::unique_ptr<RasterRenderer> raster_;
   std::vector<std::vector<Vpl>> vpls_; // per slot: the path's VPLs
-  std::uint32_t next_ = 0;             // the particle the next frame traces
+  std::uint32_t next_ = 0;             // frames traced; the next replaces slot next_ mod N
   int posed_frame_ = -1;
 };
 

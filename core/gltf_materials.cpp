@@ -5,6 +5,7 @@
 #include <cstring>
 #include <map>
 #include <tuple>
+#include <utility>
 
 namespace irad::gltf {
 
@@ -196,6 +197,12 @@ Material convert(const Context& ctx, std::size_t index, TextureTable& textures) 
     out.emissive_texture = textures.get(m.emissiveTexture, where + ".emissiveTexture", true);
   }
   out.double_sided = m.doubleSided;
+  for (const auto& [value, field] : {std::pair{pbr.metallicFactor, "metallicFactor"},
+                                     std::pair{pbr.roughnessFactor, "roughnessFactor"}})
+    if (!std::isfinite(value) || value < 0.0 || value > 1.0)
+      ctx.fail(where + ".pbrMetallicRoughness", std::string(field) + " must be in [0, 1]");
+  out.specular =
+      pbr.metallicFactor >= mirror_min_metallic && pbr.roughnessFactor <= mirror_max_roughness;
   return out;
 }
 

@@ -10,6 +10,12 @@ namespace irad::gltf {
 // function). Per material: base_color = baseColorFactor.rgb (each in [0, 1]; alpha ignored),
 // emission = emissiveFactor (>= 0) x KHR_materials_emissive_strength.emissiveStrength (>= 0,
 // default 1), doubleSided. Colour textures are sRGB-encoded in glTF and decoded here.
+// Mirrors (seed section 5.1.2): a material is specular, a perfect mirror of reflectance
+// base_color (x baseColorTexture), when metallicFactor >= mirror_min_metallic and roughnessFactor
+// <= mirror_max_roughness; every other material is diffuse (metallic and roughness ignored).
+// metallicRoughnessTexture is ignored either way.
+inline constexpr double mirror_min_metallic = 0.9;
+inline constexpr double mirror_max_roughness = 0.1;
 void convert_materials(const Context& ctx, Scene& scene);
 
 } // namespace irad::gltf

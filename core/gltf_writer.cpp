@@ -179,8 +179,8 @@ json write_material(const Material& m, bool& strength_used) {
   json out = {{"name", m.name},
               {"pbrMetallicRoughness",
                {{"baseColorFactor", {double(c.x), double(c.y), double(c.z), 1.0}},
-                {"metallicFactor", 0.0},
-                {"roughnessFactor", 1.0}}},
+                {"metallicFactor", m.specular ? 1.0 : 0.0},
+                {"roughnessFactor", m.specular ? 0.0 : 1.0}}},
               {"doubleSided", m.double_sided}};
   const double peak = std::max({m.emission.x, m.emission.y, m.emission.z});
   if (peak > 1.0) {

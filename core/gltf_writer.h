@@ -10,9 +10,10 @@
 //   per primitive the vertices it uses: POSITION (float VEC3, with min/max), NORMAL (float
 //   VEC3), TEXCOORD_0 (float VEC2) when the scene has uvs, and unsigned 32-bit indices;
 // - every material: name, pbrMetallicRoughness.baseColorFactor = (albedo, 1) with
-//   metallicFactor 0 and roughnessFactor 1, doubleSided, and the emission as emissiveFactor;
-//   when a component exceeds 1 the factor is divided by the largest component, which becomes
-//   KHR_materials_emissive_strength.emissiveStrength (listed in extensionsUsed);
+//   metallicFactor 0 and roughnessFactor 1 (a mirror, Material::specular: 1 and 0), doubleSided,
+//   and the emission as emissiveFactor; when a component exceeds 1 the factor is divided by the
+//   largest component, which becomes KHR_materials_emissive_strength.emissiveStrength (listed in
+//   extensionsUsed);
 // - every camera: perspective, yfov, aspectRatio when set, zfar when set, and znear = the
 //   camera's znear when positive, else the near plane make_view (core/view.h) fits for this scene
 //   (glTF requires znear > 0; loaded back, make_view then gives the same near plane); placed by a

@@ -45,6 +45,12 @@ bool Scene::has_emitters() const {
   return false;
 }
 
+bool Scene::has_specular() const {
+  for (const Material& m : materials)
+    if (m.specular) return true;
+  return false;
+}
+
 glm::vec3 albedo_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
   const Material& m = scene.material_of(t);
   return textured(scene, t, bary, m.base_color, m.base_color_texture);

@@ -18,6 +18,8 @@ class Animation;
 // Diffuse material: albedo rho(x) = base_color * texture(uv) (linear), emitted radiance
 // L_e(x) = emission * emissive_texture(uv), Lambertian, from the front face only unless
 // double_sided. The front face is the one whose vertices run counter-clockwise (glTF).
+// specular: a perfect mirror (seed section 5.1.2; core/mirrors.h) on both faces, whose
+// reflectance is base_color * texture(uv); it reflects no light diffusely.
 struct Material {
   std::string name;
   glm::vec3 base_color{1.0f};
@@ -25,6 +27,7 @@ struct Material {
   glm::vec3 emission{0.0f};    // emissiveFactor * KHR_materials_emissive_strength
   int emissive_texture = -1;
   bool double_sided = false;
+  bool specular = false;
 
   bool emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
@@ -83,6 +86,7 @@ struct Scene {
   }
   bool has_emitters() const;
   bool has_textures() const { return !textures.empty(); }
+  bool has_specular() const; // any material is a mirror
 };
 
 // A point of triangle t at barycentrics (b1, b2) (the weights of vertices 1 and 2).

@@ -27,9 +27,13 @@ View make_view(const Camera& camera, const Bounds& bounds, int width, int height
 }
 
 glm::vec3 pixel_direction(const View& view, int px, int py) {
+  return image_point_direction(view, static_cast<float>(px) + 0.5f, static_cast<float>(py) + 0.5f);
+}
+
+glm::vec3 image_point_direction(const View& view, float x, float y) {
   const glm::mat4 inv = glm::inverse(view.projection * view.view);
-  const float nx = (static_cast<float>(px) + 0.5f) / static_cast<float>(view.width) * 2.0f - 1.0f;
-  const float ny = 1.0f - (static_cast<float>(py) + 0.5f) / static_cast<float>(view.height) * 2.0f;
+  const float nx = x / static_cast<float>(view.width) * 2.0f - 1.0f;
+  const float ny = 1.0f - y / static_cast<float>(view.height) * 2.0f;
   const glm::vec4 far = inv * glm::vec4(nx, ny, 1.0f, 1.0f);
   return glm::normalize(glm::vec3(far) / far.w - view.eye);
 }

@@ -26,5 +26,8 @@ View make_view(const Camera& camera, const Bounds& bounds, int width, int height
 // Unit direction of the ray from the eye through the centre of pixel (px, py), row 0 at the top:
 // the points the raster shades, so ray-traced estimators integrate the same function.
 glm::vec3 pixel_direction(const View& view, int px, int py);
+// The direction through image point (x, y) in pixels (y down; pixel (i, j) spans [i, i+1) x
+// [j, j+1), its centre at (i + 0.5, j + 0.5)).
+glm::vec3 image_point_direction(const View& view, float x, float y);
 
 } // namespace irad

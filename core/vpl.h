@@ -14,6 +14,11 @@
 //   clamp).
 // `intensity` already folds in the weight w = 1/n_j, the path throughput beta_j and, for depth >=
 // 1, rho(y_j)/pi, so an estimator adds C(x) of every VPL and nothing else.
+// A mirrored VPL (mirror >= 0, core/mirrors.h) is the image of a VPL in a planar mirror: it lights
+// only the x on the positive side of mirror_plane whose segment from it crosses the plane inside
+// the polygon VplSet::mirrors[mirror], with V = free segments y -> m and m -> x.
+#include "core/mirror_polygon.h"
+
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
@@ -31,6 +36,8 @@ struct Vpl {
   std::uint32_t path = 0;  // particle index i
   float cos_inner = 1.0f;  // Spot only: cosines of the inner and outer cone angles
   float cos_outer = 0.0f;
+  std::int32_t mirror = -1;     // mirrored VPL: index in VplSet::mirrors; -1: ordinary
+  glm::vec4 mirror_plane{0.0f}; // mirrored VPL: (n, w), n toward the side it lights
 
   bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
 };
@@ -49,6 +56,9 @@ struct VplSet {
   int l_max = 0;
   bool depth_capped = false; // rho_bar near or above 1 hit the depth cap
   std::uint64_t planned = 0; // M = sum n_j: VPLs before misses and absorption
+  // The mirror polygons of the scene (core/mirrors.h), which mirrored VPLs index; empty without
+  // mirrors. Mirrored copies are not counted in `planned`.
+  std::vector<MirrorPolygon> mirrors;
 };
 
 } // namespace irad

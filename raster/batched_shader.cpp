@@ -95,7 +95,8 @@ void BatchedShader::draw(int first, int count, const glm::mat4& view_projection,
     return;
   }
   gpu.draw_instanced(count, [&](const Material& m) {
-    api.Uniform3fv(base_color_, 1, glm::value_ptr(m.base_color));
+    const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
+    api.Uniform3fv(base_color_, 1, glm::value_ptr(rho));
     bind_material_texture(api, gpu, m.base_color_texture, has_base_texture_);
   });
 }

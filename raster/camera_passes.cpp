@@ -50,7 +50,8 @@ void CameraPasses::gbuffer(const glm::mat4& view_projection, const GpuScene& gpu
   gbuffer_.use();
   api.UniformMatrix4fv(gbuffer_vp_, 1, GL_FALSE, glm::value_ptr(view_projection));
   gpu.draw([&](const Material& m) {
-    api.Uniform3fv(gbuffer_base_color_, 1, glm::value_ptr(m.base_color));
+    const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
+    api.Uniform3fv(gbuffer_base_color_, 1, glm::value_ptr(rho));
     bind_material_texture(api, gpu, m.base_color_texture, gbuffer_has_texture_);
   });
 }

@@ -73,6 +73,9 @@ public:
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
       throw Error("", "egl " + platform_, "cannot make the context current");
   }
+  void release() noexcept override {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  }
 
 private:
   void open_display(int device_index) {

@@ -24,6 +24,8 @@ public:
   // Makes this context current on the calling thread (another context may have been made
   // current since this one was created).
   virtual void make_current() = 0;
+  // Makes no context current on the calling thread.
+  virtual void release() noexcept = 0;
   std::string renderer() const; // GL_RENDERER and GL_VERSION
 
   // Throws irad::Error naming `where` when glGetError reports an error.
@@ -39,7 +41,30 @@ protected:
   GladGLContext api_{};
 
 private:
+  friend class CurrentScope;
   std::function<void(const std::string&)> debug_sink_;
+  int scopes_ = 0; // CurrentScope nesting depth
+};
+
+// The context current for a scope, then none. The renderers' public calls hold one, so they
+// leave no context current: another API's context can then be made current on the same thread
+// between calls (the walkthrough window's GLX context, apps/window_viewer.cpp; libglvnd refuses a
+// GLX context while an EGL one is current: X error BadAccess). Nested scopes of one context keep
+// it current until the outermost ends.
+class CurrentScope {
+public:
+  explicit CurrentScope(Context& context) : context_(context) {
+    if (context_.scopes_ == 0) context_.make_current();
+    ++context_.scopes_;
+  }
+  ~CurrentScope() {
+    if (--context_.scopes_ == 0) context_.release();
+  }
+  CurrentScope(const CurrentScope&) = delete;
+  CurrentScope& operator=(const CurrentScope&) = delete;
+
+private:
+  Context& context_;
 };
 
 // Auto: an EGL hardware device when there is one (or `device` >= 0 asks for one), else OSMesa,

@@ -51,6 +51,7 @@ public:
     if (!OSMesaMakeCurrent(context_, dummy_.data(), GL_UNSIGNED_BYTE, 1, 1))
       throw Error("", "osmesa", "cannot make the OSMesa context current");
   }
+  void release() noexcept override { OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0); }
 
 private:
   OSMesaContext context_ = nullptr;

@@ -154,8 +154,10 @@ void RasterRenderer::Impl::prepare(const View& view) {
 std::size_t RasterRenderer::Impl::batched_passes(const View& view,
                                                  const std::vector<const Vpl*>& vpls,
                                                  gl::PassTimer* timer, const Progress& progress) {
+  // Directional and mirrored VPLs keep their own passes (orthographic maps, the pyramid clip).
   std::vector<const Vpl*> many, alone;
-  for (const Vpl* v : vpls) (v->kind == VplKind::Directional ? alone : many).push_back(v);
+  for (const Vpl* v : vpls)
+    (v->kind == VplKind::Directional || v->mirror >= 0 ? alone : many).push_back(v);
   const int sets = interleaved ? interleaved->sets() : 1;
   const std::size_t drawn = batched->draw(
       view, many, [&](const Vpl& v) { return set_of(v.path, sets); }, interleaved.get(), *target,
@@ -164,11 +166,15 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
         if (progress) progress(done, vpls.size());
         return options.cancel == nullptr || !options.cancel->load(std::memory_order_relaxed);
       });
-  const auto directional_shadow_for = [&](std::size_t k, glm::mat3&) -> GLuint {
-    directional_shadow(*alone[k]);
-    return 0;
+  const auto draw_now = [&](std::size_t k, glm::mat3& frame) -> GLuint {
+    if (alone[k]->kind == VplKind::Directional) {
+      directional_shadow(*alone[k]);
+      return 0;
+    }
+    frame = shadow->render(*alone[k], gpu);
+    return shadow->texture();
   };
-  return drawn + vpl_passes(view, alone, directional_shadow_for, 1.0f, timer, {});
+  return drawn + vpl_passes(view, alone, draw_now, shadow->texel_angle(), timer, {});
 }
 
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
@@ -200,7 +206,6 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector
 }
 
 void RasterRenderer::Impl::begin_image(const View& view) {
-  context->make_current();
   prepare(view);
   const glm::mat4 vp = view.projection * view.view;
   if (interleaved) {
@@ -263,16 +268,24 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
   auto context = gl::create_context(options.backend, options.gl_device);
   if (options.gl_messages) context->route_debug_messages(options.gl_messages);
   impl_ = std::make_unique<Impl>(scene, options, std::move(context));
+  impl_->context->release();
 }
 
-RasterRenderer::~RasterRenderer() = default;
+// The GL objects are deleted in their own context.
+RasterRenderer::~RasterRenderer() {
+  try {
+    if (impl_) impl_->context->make_current();
+  } catch (const std::exception&) { // then they are deleted with the context
+  }
+}
 
 void RasterRenderer::scene_changed() {
-  impl_->context->make_current();
+  const gl::CurrentScope current(*impl_->context);
   impl_->gpu.update_vertices();
 }
 
 std::string RasterRenderer::description() const {
+  const gl::CurrentScope current(*impl_->context);
   return impl_->context->backend() + ": " + impl_->context->renderer();
 }
 
@@ -280,6 +293,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
                              const Progress& progress) {
   Impl& im = *impl_;
   const auto t0 = Clock::now();
+  const gl::CurrentScope current(*im.context);
   im.begin_image(view);
   std::optional<gl::PassTimer> timer;
   if (im.options.gpu_timers) timer.emplace(im.api);
@@ -304,7 +318,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
 void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width,
                                 int height) {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   const int resolution = shadow_resolution_for(im.options.shadow_resolution, width, height);
   if (!im.cache_shadow || im.cache_shadow->resolution() != resolution) {
     im.cache.clear(); // cubes of another resolution
@@ -330,6 +344,7 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
 Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
   Impl& im = *impl_;
   const auto t0 = Clock::now();
+  const gl::CurrentScope current(*im.context);
   im.begin_image(view);
   std::vector<const Vpl*> list;
   std::vector<std::pair<GLuint, glm::mat3>> maps;

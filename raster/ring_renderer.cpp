@@ -114,12 +114,19 @@ RingRenderer::RingRenderer(const Scene& scene, const RingOptions& options) {
   check_memory(options);
   impl_ = std::make_unique<Impl>(
       scene, options, gl::create_context(options.raster.backend, options.raster.gl_device));
+  impl_->context->release();
 }
 
-RingRenderer::~RingRenderer() = default;
+// The GL objects are deleted in their own context.
+RingRenderer::~RingRenderer() {
+  try {
+    if (impl_) impl_->context->make_current();
+  } catch (const std::exception&) { // then they are deleted with the context
+  }
+}
 
 void RingRenderer::scene_changed() {
-  impl_->context->make_current();
+  const gl::CurrentScope current(*impl_->context);
   impl_->gpu.update_vertices();
 }
 
@@ -132,7 +139,7 @@ std::size_t RingRenderer::passes() const {
 
 void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view) {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   const std::size_t s = path % im.options.paths;
   if (im.filled[s]) {
     im.bind_sum();
@@ -175,7 +182,7 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
 
 void RingRenderer::resum() {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   im.bind_sum();
   im.sum_ring_into_bound();
   im.frames_since_resum = 0;
@@ -183,7 +190,7 @@ void RingRenderer::resum() {
 
 Image RingRenderer::frame(const View& view) {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   im.target.bind();
   im.api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   im.api.ClearDepth(1.0);
@@ -199,7 +206,7 @@ Image RingRenderer::frame(const View& view) {
 
 Image RingRenderer::exact_sum() {
   Impl& im = *impl_;
-  im.context->make_current();
+  const gl::CurrentScope current(*im.context);
   im.target.bind();
   im.sum_ring_into_bound();
   return im.target.read();

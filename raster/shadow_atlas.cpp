@@ -135,7 +135,7 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   float* origins = offsets + 6 * 4 * batch_;
   int next_block = 0;
   for (int s = 0; s < n; ++s) {
-    const CubeFaces cube = cube_faces(*vpls[s], bounds_);
+    const CubeFaces cube = cube_faces(*vpls[s], bounds_, far_from(bounds_, vpls[s]->position));
     const glm::ivec2 b0 = block_origin(next_block);
     const glm::ivec2 b1 = cube.hemisphere ? b0 : block_origin(next_block + 1);
     next_block += cube.hemisphere ? 1 : 2;

@@ -2,6 +2,8 @@
 
 #include "core/error.h"
 #include "core/light_sampler.h"
+#include "core/mirrors.h"
+#include "raster/mirror_shaders.h"
 #include "raster/shaders.h"
 
 #include <array>
@@ -24,7 +26,6 @@ constexpr std::array<FaceAxes, 6> faces = {{{{1, 0, 0}, {0, -1, 0}},
                                             {{0, -1, 0}, {0, 0, -1}},
                                             {{0, 0, 1}, {0, -1, 0}},
                                             {{0, 0, -1}, {0, -1, 0}}}};
-
 // World -> cube frame. Surface VPLs: rows (t, b, n), so the normal maps to +z.
 glm::mat3 cube_frame(const Vpl& vpl) {
   if (vpl.kind != VplKind::Surface) return glm::mat3(1.0f);
@@ -51,21 +52,25 @@ glm::ivec4 front_half(int f, int r) {
   }
 }
 
-CubeFaces cube_faces(const Vpl& vpl, const Bounds& bounds) {
+float far_from(const Bounds& bounds, const glm::vec3& position) {
+  // Far reaches the farthest corner of the scene's bounds.
+  float far = 0.0f;
+  for (int c = 0; c < 8; ++c) {
+    const glm::vec3 p((c & 1) ? bounds.hi.x : bounds.lo.x, (c & 2) ? bounds.hi.y : bounds.lo.y,
+                      (c & 4) ? bounds.hi.z : bounds.lo.z);
+    far = glm::max(far, glm::length(p - position));
+  }
+  return far;
+}
+
+CubeFaces cube_faces(const Vpl& vpl, const Bounds& bounds, float far) {
   CubeFaces c;
   c.frame = cube_frame(vpl);
   c.hemisphere = vpl.kind == VplKind::Surface;
-  // Near and far fitted to this VPL: far reaches the farthest corner of the scene's bounds.
-  float far = 0.0f;
-  for (int k = 0; k < 8; ++k) {
-    const glm::vec3 p((k & 1) ? bounds.hi.x : bounds.lo.x, (k & 2) ? bounds.hi.y : bounds.lo.y,
-                      (k & 4) ? bounds.hi.z : bounds.lo.z);
-    far = glm::max(far, glm::length(p - vpl.position));
-  }
-  far = glm::max(1.01f * far, 1e-30f);
-  c.far = far;
-  const float near = 1e-4f * glm::max(bounds.diagonal(), far);
-  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, near, far);
+  // Near and far fitted to this VPL.
+  c.far = glm::max(1.01f * far, 1e-30f);
+  const float near = 1e-4f * glm::max(bounds.diagonal(), c.far);
+  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, near, c.far);
   const glm::mat4 to_frame = glm::mat4(c.frame) * glm::translate(glm::mat4(1.0f), -vpl.position);
   for (int f = 0; f < 6; ++f) {
     const glm::mat4 face_view = glm::lookAt(glm::vec3(0.0f), faces[f].forward, faces[f].up);
@@ -108,6 +113,10 @@ ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& b
   attached_ = cube_.get();
 }
 
+float ShadowCube::far_from(const glm::vec3& position) const {
+  return gl::far_from(bounds_, position);
+}
+
 glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint cube) {
   if (cube != attached_) {
     for (int f = 0; f < 6; ++f) {
@@ -117,33 +126,74 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
     }
     attached_ = cube;
   }
-  const CubeFaces cf = cube_faces(vpl, bounds_);
+  if (vpl.mirror >= 0) return render_mirrored(vpl, scene);
+  program_.use();
+  api_->Uniform3fv(u_vpl_position_, 1, glm::value_ptr(vpl.position));
+  return render_faces(vpl, far_from(vpl.position), [&](const glm::mat4& vp) {
+    api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE, glm::value_ptr(vp));
+    scene.draw_all();
+  });
+}
+
+// The mirrored VPL's cube (raster/mirror_shaders.h): the real scene and its reflection, both
+// clipped to the lit side of the plane. The reflected scene is as far from y' as the real one
+// is from y.
+glm::mat3 ShadowCube::render_mirrored(const Vpl& vpl, const GpuScene& scene) {
+  if (!mirror_) mirror_ = std::make_unique<MirrorProgram>(*api_);
+  const MirrorProgram& m = *mirror_;
+  const glm::vec3 n(vpl.mirror_plane);
+  // Reflection x -> x - 2 (n . x + w) n as a matrix; the clip plane moved 1e-5 of the diagonal
+  // to the lit side, so the mirror's own plane never shadows.
+  glm::mat4 reflect(glm::mat3(1.0f) - 2.0f * glm::outerProduct(n, n));
+  reflect[3] = glm::vec4(-2.0f * vpl.mirror_plane.w * n, 1.0f);
+  const glm::vec4 clip = vpl.mirror_plane - glm::vec4(0.0f, 0.0f, 0.0f, 1e-5f * bounds_.diagonal());
+  const float far =
+      glm::max(far_from(vpl.position), far_from(reflect_point(vpl.mirror_plane, vpl.position)));
+  m.program.use();
+  api_->Uniform3fv(m.vpl_position, 1, glm::value_ptr(vpl.position));
+  api_->Uniform4fv(m.clip_plane, 1, glm::value_ptr(clip));
+  api_->Enable(GL_CLIP_DISTANCE0);
+  const glm::mat3 frame = render_faces(vpl, far, [&](const glm::mat4& vp) {
+    api_->UniformMatrix4fv(m.face_view_projection, 1, GL_FALSE, glm::value_ptr(vp));
+    for (const glm::mat4& r : {glm::mat4(1.0f), reflect}) {
+      api_->UniformMatrix4fv(m.reflect, 1, GL_FALSE, glm::value_ptr(r));
+      scene.draw_all();
+    }
+  });
+  api_->Disable(GL_CLIP_DISTANCE0);
+  return frame;
+}
+
+ShadowCube::MirrorProgram::MirrorProgram(const GladGLContext& api)
+    : program(api, "mirror shadow", shaders::mirror_shadow_vertex, shaders::shadow_fragment),
+      face_view_projection(program.uniform("u_face_view_projection")),
+      vpl_position(program.uniform("u_vpl_position")), reflect(program.uniform("u_reflect")),
+      clip_plane(program.uniform("u_clip_plane")) {}
+
+glm::mat3 ShadowCube::render_faces(const Vpl& vpl, float far,
+                                   const std::function<void(const glm::mat4&)>& draw) {
+  const CubeFaces cube = cube_faces(vpl, bounds_, far);
   api_->Viewport(0, 0, resolution_, resolution_);
   api_->Enable(GL_DEPTH_TEST);
   api_->DepthFunc(GL_LESS);
   api_->DepthMask(GL_TRUE);
   api_->Disable(GL_BLEND);
   api_->ClearColor(3.0e38f, 0.0f, 0.0f, 0.0f); // nothing there: never shadowed
-  program_.use();
-  api_->Uniform3fv(u_vpl_position_, 1, glm::value_ptr(vpl.position));
-  const bool hemisphere = cf.hemisphere;
   for (int f = 0; f < 6; ++f) {
-    if (f == kNegativeZFace && hemisphere) continue;
+    if (f == kNegativeZFace && cube.hemisphere) continue;
     api_->BindFramebuffer(GL_FRAMEBUFFER, fbos_[f].get());
     // A side face of a hemisphere cube is needed only on its +z half (plus one texel).
-    const bool half = hemisphere && f < 4;
+    const bool half = cube.hemisphere && f < 4;
     if (half) {
       const glm::ivec4 r = front_half(f, resolution_);
       api_->Enable(GL_SCISSOR_TEST);
       api_->Scissor(r.x, r.y, r.z, r.w);
     }
     api_->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE,
-                           glm::value_ptr(cf.view_projection[f]));
-    scene.draw_all();
+    draw(cube.view_projection[f]);
     if (half) api_->Disable(GL_SCISSOR_TEST);
   }
-  return cf.frame;
+  return cube.frame;
 }
 
 } // namespace irad::gl

@@ -2,13 +2,16 @@
 // Omnidirectional shadow map of one VPL: a cube of R32F distances |p - y| to the nearest surface,
 // rendered face by face into one framebuffer. A surface VPL lights only its hemisphere, so its
 // cube is turned to put the normal at the centre of the +z face and the -z face is skipped.
+// A mirrored VPL (core/mirrors.h) gets the cube of its unfolded paths (raster/mirror_shaders.h).
 #include "core/bounds.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
 #include "raster/shader_program.h"
 
 #include <array>
+#include <functional>
 #include <glm/glm.hpp>
+#include <memory>
 
 namespace irad::gl {
 
@@ -22,10 +25,13 @@ inline constexpr int kNegativeZFace = 5;
 struct CubeFaces {
   glm::mat3 frame{1.0f};
   std::array<glm::mat4, 6> view_projection;
-  float far = 1.0f; // the far plane: beyond every point of the scene's bounds
+  float far = 1.0f; // the far plane
   bool hemisphere = false;
 };
-CubeFaces cube_faces(const Vpl& vpl, const Bounds& bounds);
+// far: the largest distance to be stored (far_from for an ordinary VPL), widened by 1 %.
+CubeFaces cube_faces(const Vpl& vpl, const Bounds& bounds, float far);
+// The distance from `position` to the farthest corner of `bounds`.
+float far_from(const Bounds& bounds, const glm::vec3& position);
 // The window rectangle (x, y, w, h) of side face f (+x, -x, +y, -y) of a resolution r face that
 // sees local z >= 0, with one texel of margin.
 glm::ivec4 front_half(int f, int r);
@@ -50,6 +56,19 @@ public:
   float texel_angle() const { return 2.0f / static_cast<float>(resolution_); }
 
 private:
+  // The program of mirrored VPLs' cubes (raster/mirror_shaders.h), made on first use.
+  struct MirrorProgram {
+    explicit MirrorProgram(const GladGLContext& api);
+    ShaderProgram program;
+    GLint face_view_projection, vpl_position, reflect, clip_plane;
+  };
+  float far_from(const glm::vec3& position) const;
+  glm::mat3 render_mirrored(const Vpl& vpl, const GpuScene& scene);
+  // Clears and draws the faces the VPL needs (draw(face view-projection) for each).
+  glm::mat3 render_faces(const Vpl& vpl, float far,
+                         const std::function<void(const glm::mat4&)>& draw);
+
+  std::unique_ptr<MirrorProgram> mirror_;
   const GladGLContext* api_;
   int resolution_;
   Bounds bounds_;

@@ -1,6 +1,9 @@
 #include "raster/vpl_shader.h"
 
+#include "raster/mirror_shaders.h"
 #include "raster/shaders.h"
+
+#include <algorithm>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -24,8 +27,32 @@ void bind_material_texture(const GladGLContext& api, const GpuScene& gpu, int te
 }
 
 VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp)
+    : VplShader(api, scene, clamp, shaders::vpl_fragment) {
+  if (!scene.has_specular()) return;
+  mirrors_ = find_mirrors(scene);
+  mirrored_.reset(
+      new VplShader(api, scene, clamp, shaders::mirror_vpl_fragment(shaders::vpl_fragment)));
+  const ShaderProgram& p = mirrored_->program_;
+  mirrored_->mirror_plane_ = p.uniform("u_mirror_plane");
+  mirrored_->mirror_triangles_ = p.uniform("u_mirror_triangles");
+  mirrored_->mirror_corners_ = p.uniform("u_mirror_corners");
+}
+
+VplShader::~VplShader() = default;
+
+void VplShader::set_mirror(const MirrorPolygon& mirror, const glm::vec4& plane) const {
+  program_.use();
+  api_->Uniform4fv(mirror_plane_, 1, glm::value_ptr(plane));
+  const std::size_t triangles = std::min(mirror.triangles.size() / 3, MirrorPolygon::max_triangles);
+  api_->Uniform1i(mirror_triangles_, static_cast<GLint>(triangles));
+  api_->Uniform3fv(mirror_corners_, static_cast<GLsizei>(3 * triangles),
+                   glm::value_ptr(mirror.triangles.front()));
+}
+
+VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp,
+                     const std::string& fragment)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp),
-      program_(api, "vpl", shaders::camera_vertex, shaders::vpl_fragment),
+      program_(api, "vpl", shaders::camera_vertex, fragment),
       view_projection_(program_.uniform("u_view_projection")),
       position_(program_.uniform("u_vpl_position")), normal_(program_.uniform("u_vpl_normal")),
       intensity_(program_.uniform("u_vpl_intensity")), kind_(program_.uniform("u_vpl_kind")),
@@ -47,6 +74,19 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp)
 void VplShader::draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,
                      const glm::mat4& view_projection, bool apply_albedo,
                      const GpuScene& gpu) const {
+  if (vpl.mirror >= 0) { // a mirrored VPL: the pyramid program (nothing if the scene has none)
+    const auto k = static_cast<std::size_t>(vpl.mirror);
+    if (!mirrored_ || k >= mirrors_.size()) return;
+    mirrored_->set_mirror(mirrors_[k], vpl.mirror_plane);
+    mirrored_->draw_pass(vpl, shadow_cube, texel_angle, frame, view_projection, apply_albedo, gpu);
+    return;
+  }
+  draw_pass(vpl, shadow_cube, texel_angle, frame, view_projection, apply_albedo, gpu);
+}
+
+void VplShader::draw_pass(const Vpl& vpl, GLuint shadow_cube, float texel_angle,
+                          const glm::mat3& frame, const glm::mat4& view_projection,
+                          bool apply_albedo, const GpuScene& gpu) const {
   const GladGLContext& api = *api_;
   set_additive_state(api);
   program_.use();
@@ -68,7 +108,8 @@ void VplShader::draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, cons
     return;
   }
   gpu.draw([&](const Material& m) {
-    api.Uniform3fv(base_color_, 1, glm::value_ptr(m.base_color));
+    const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
+    api.Uniform3fv(base_color_, 1, glm::value_ptr(rho));
     bind_material_texture(api, gpu, m.base_color_texture, has_base_texture_);
   });
 }

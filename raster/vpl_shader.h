@@ -2,6 +2,7 @@
 // The shading pass of one VPL: draws the scene with w * C(x) (core/vpl.h) into whatever
 // framebuffer and viewport are bound, added by blending over a depth buffer that already holds
 // the visible surface (GL_LEQUAL, no depth writes).
+#include "core/mirrors.h"
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
@@ -9,13 +10,20 @@
 #include "raster/shadow_cube.h"
 
 #include <glm/glm.hpp>
+#include <memory>
+#include <string>
+#include <vector>
 
 namespace irad::gl {
 
 class VplShader {
 public:
   VplShader(const GladGLContext& api, const Scene& scene, float clamp);
+  ~VplShader();
   // apply_albedo false: irradiance / pi without rho(x) (interleaved mode applies rho later).
+  // Mirrors receive no light (their rho is 0 here). A mirrored VPL (core/mirrors.h) is drawn by a
+  // second program that lights only its pyramid (raster/mirror_shaders.h); that program exists
+  // only for scenes with mirrors.
   void draw(const Vpl& vpl, const ShadowCube& shadow, const glm::mat3& frame,
             const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const {
     draw(vpl, shadow.texture(), shadow.texel_angle(), frame, view_projection, apply_albedo, gpu);
@@ -25,6 +33,14 @@ public:
             const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const;
 
 private:
+  VplShader(const GladGLContext& api, const Scene& scene, float clamp, const std::string& fragment);
+  void set_mirror(const MirrorPolygon& mirror, const glm::vec4& plane) const;
+  void draw_pass(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,
+                 const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const;
+
+  std::unique_ptr<VplShader> mirrored_; // the program for mirrored VPLs, with mirrors only
+  std::vector<MirrorPolygon> mirrors_;
+  GLint mirror_plane_ = -1, mirror_triangles_ = -1, mirror_corners_ = -1;
   const GladGLContext* api_;
   float diagonal_, clamp_;
   ShaderProgram program_;

@@ -505,6 +505,13 @@ std::vector<Case> cases() {
                  });
                },
                "materials[0]: emissiveFactor components must be finite and >= 0, got -1.000000"});
+  c.push_back({"metallic_out_of_range",
+               [](const fs::path& d) {
+                 return quad(d, "metallic.gltf", [](Gltf& g) {
+                   g.doc["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 2.0;
+                 });
+               },
+               "materials[0].pbrMetallicRoughness: metallicFactor must be in [0, 1]"});
   c.push_back({"no_triangles",
                [](const fs::path& d) {
                  return quad(d, "nomesh.gltf", [](Gltf& g) { g.doc["nodes"][0].erase("mesh"); });

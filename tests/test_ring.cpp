@@ -137,6 +137,34 @@ TEST(Walkthrough, AnimatedFramesThroughOsMesaAndEgl) {
   fs::remove_all(dir);
 }
 
+// Many more frames than paths in a still scene: every mode's frame is the instant radiosity
+// image of the N paths (what irad render draws with the same N; the ring never interleaves).
+TEST(Walkthrough, AfterManyFramesAStillSceneShowsTheFullImage) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "irad_walkthrough_still";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf";
+  for (const char* k : {"1", "4"}) {
+    const std::string cmd = std::string(IRAD_BINARY) + " render " + scene +
+                            " --size 32x32 --paths 8 --quiet --interleave " + k + " -o " +
+                            (dir / fmt::format("full_k{}.exr", k)).string();
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  }
+  for (const char* mode : {"ring", "cached", "reshade"}) {
+    const std::string cmd =
+        walkthrough("cornell_box.gltf", fmt::format("--frames 0:20 --mode {} -o {}_%02d.exr", mode,
+                                                    (dir / mode).string()));
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    const Image full =
+        read_exr(dir / (std::string(mode) == "ring" ? "full_k1.exr" : "full_k4.exr"));
+    const ImageMetrics m = compare_images(frame(dir, mode, 19), full);
+    std::printf("%s, frame 19 of 8 paths, against the full image: relMSE %.3g, mean ratio %.6f\n",
+                mode, m.relmse, m.mean_ratio[0]);
+    EXPECT_LT(m.relmse, 1e-8) << mode; // measured 0 to 1e-14: the same VPLs summed in another order
+  }
+  fs::remove_all(dir);
+}
+
 // Camera motion in a still scene: the cached mode (shadow maps kept) shades the same VPLs from
 // the same camera as the reshade mode (everything redrawn), so their frames agree; the ring's
 // frames keep old viewpoints and do not.

@@ -134,14 +134,27 @@ glm::vec3 Tracer::radiance(const glm::vec3& eye, const glm::vec3& dir0, float tm
                            Pcg32& rng) const {
   glm::vec3 sum(0.0f), throughput(1.0f), origin = eye, dir = dir0;
   double bsdf_pdf = 0.0; // solid-angle pdf of the direction that led here (0: camera ray)
+  bool specular = false; // the direction that led here was a mirror reflection (a delta)
   for (int depth = 0; depth <= options_.max_depth; ++depth) {
     const auto h = rays_.intersect(origin, dir, depth == 0 ? tmin : 0.0f,
                                    std::numeric_limits<float>::infinity());
     if (!h) break;
     const Hit x = make_hit(scene_, *h, origin, dir);
     const glm::vec3 le = emitted(scene_, x);
+    // After a camera ray or a mirror no light sample could have found this emitter: weight 1.
     if (le != glm::vec3(0.0f))
-      sum += throughput * le * (depth == 0 ? 1.0f : emitter_weight(x, origin, bsdf_pdf));
+      sum +=
+          throughput * le * (depth == 0 || specular ? 1.0f : emitter_weight(x, origin, bsdf_pdf));
+    const Material& material = scene_.material_of(x.triangle);
+    if (material.specular) { // perfect mirror (core/mirrors.h): no next event, f/pdf = R
+      throughput *= material.base_color;
+      if (max3(throughput) <= 0.0f) break;
+      origin = x.position + eps_ * x.ng;
+      dir = dir - 2.0f * glm::dot(x.ng, dir) * x.ng;
+      specular = true;
+      continue;
+    }
+    specular = false;
     if (max3(x.albedo) <= 0.0f) break;
     sum += throughput * next_event(x, rng);
     // Cosine-weighted scattering: f cos / pdf = rho.
@@ -180,7 +193,13 @@ Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
       glm::dvec3 sum(0.0);
       for (std::uint32_t s = 0; s < options.spp; ++s) {
         Pcg32 rng(mix64(seed ^ pixel), s); // one stream per pixel and sample
-        const glm::vec3 l = tracer.radiance(view.eye, dir, view.znear, rng);
+        glm::vec3 d = dir;
+        if (options.pixel_footprint) {
+          const auto u = static_cast<float>(rng.next_double());
+          const auto v = static_cast<float>(rng.next_double());
+          d = image_point_direction(view, static_cast<float>(x) + u, static_cast<float>(y) + v);
+        }
+        const glm::vec3 l = tracer.radiance(view.eye, d, view.znear, rng);
         if (std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z)) sum += glm::dvec3(l);
       }
       image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), 1.0f);

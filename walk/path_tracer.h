@@ -5,8 +5,13 @@
 // Next-event estimation toward emitters (chosen by power) and cosine-weighted scattering are
 // combined with multiple importance sampling (power heuristic); punctual lights (point, spot,
 // directional: delta lights) are reached by next-event estimation only, without MIS weight. Russian
-// roulette after three bounces. No clamp: unbiased. Deterministic for a given seed whatever the
-// thread count (one RNG stream per pixel and sample).
+// roulette after three bounces. No clamp: unbiased.
+// Mirrors (Material::specular) reflect perfectly: no next-event estimation there, and an emitter
+// found right after a mirror counts with weight 1 (light samples cannot reach it through the
+// mirror). So light that reaches a diffuse point by way of a mirror is found by scattering only
+// (noisier), and a punctual light seen through a mirror is never found (delta light and delta
+// mirror): compare mirror scenes with area lights only.
+// Deterministic for a given seed whatever the thread count (one RNG stream per pixel and sample).
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/view.h"
@@ -23,6 +28,10 @@ struct PathTracerOptions {
   std::uint64_t seed = 0;
   unsigned threads = 0; // 0: hardware concurrency
   int max_depth = 1000; // bounces (Russian roulette ends paths long before)
+  // false: every camera ray through the pixel centre (the raster's sampling without jitter);
+  // true: each sample through a uniform point of the pixel (box filter: the antialiased image
+  // the raster's --jitter converges to).
+  bool pixel_footprint = false;
   // When it becomes true (a signal handler), no further pixel is started: those left are 0,
   // alpha included.
   const std::atomic<bool>* cancel = nullptr;

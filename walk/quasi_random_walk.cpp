@@ -4,6 +4,7 @@
 #include "core/light_sampler.h"
 #include "core/particle_counts.h"
 #include "core/radical_inverse.h"
+#include "walk/mirror_walk.h"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -63,7 +64,8 @@ QuasiRandomWalk::QuasiRandomWalk(const Scene& scene, const RayScene& rays,
     : scene_(&scene), rays_(&rays), lights_(scene, options.allocation),
       counts_(options.paths == 0 ? throw Error("", "--paths", "must be at least 1") : options.paths,
               mean_albedo(scene), options.depth_cap),
-      halton_(options.sequence, 2 * static_cast<std::size_t>(counts_.l_max()) + 2, options.seed) {
+      halton_(options.sequence, 2 * static_cast<std::size_t>(counts_.l_max()) + 2, options.seed),
+      mirrors_(find_mirrors(scene)) {
   if (lights_.empty())
     throw Error(scene.source, "", "no light: no emissive surface and no punctual light");
   warn_capped(counts_, log, options.depth_cap);
@@ -78,6 +80,7 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
   const LightStart start = lights_.sample(scene, halton_.sample(0, h), halton_.sample(1, h));
   if (!positive(start.beta)) return;
   out.push_back(light_vpl(start, 1.0f / static_cast<float>(counts_.reaching(0)), i));
+  if (!mirrors_.empty()) append_mirrored(out.back(), mirrors_, out);
   if (depth == 0) return;
 
   // Leave the light: beta_1 = beta_0 * profile / pdf.
@@ -89,7 +92,11 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
   glm::vec3 offset_normal = start.triangle >= 0 ? start.normal : glm::vec3(0.0f);
   if (glm::dot(offset_normal, dir) < 0.0f) offset_normal = -offset_normal;
   for (int j = 1; j <= depth && positive(beta); ++j) {
-    const auto hit = rays_->intersect(origin + eps * offset_normal, dir, 0.0f, far);
+    // Mirrors (core/mirrors.h) reflect the particle on to the next diffuse surface (beta *= R);
+    // a specular bounce is not a reflection j (it takes no Halton dimensions).
+    glm::vec3 from = origin + eps * offset_normal;
+    const auto hit = mirrors_.empty() ? rays_->intersect(from, dir, 0.0f, far)
+                                      : trace_through_mirrors(scene, *rays_, from, dir, beta, eps);
     if (!hit) return; // the particle leaves the scene
     const PathVertex y = vertex_at(scene, *hit, dir);
     const glm::vec3 radiant = beta * y.albedo * inv_pi; // beta_j rho(y_j) / pi
@@ -102,6 +109,7 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
     v.depth = static_cast<std::uint16_t>(j);
     v.path = i;
     out.push_back(v);
+    if (!mirrors_.empty()) append_mirrored(v, mirrors_, out);
     if (j == depth) return;
     // Scatter: cosine-distributed from (Phi_{b_{2j+2}}(i), Phi_{b_{2j+3}}(i)); beta_{j+1} =
     // rho(y_j) beta_j.
@@ -119,6 +127,7 @@ VplSet QuasiRandomWalk::header() const {
   set.l_max = counts_.l_max();
   set.depth_capped = counts_.capped();
   set.planned = counts_.vpl_count();
+  set.mirrors = mirrors_;
   return set;
 }
 

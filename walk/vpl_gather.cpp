@@ -1,5 +1,7 @@
 #include "walk/vpl_gather.h"
 
+#include "walk/mirror_walk.h"
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -63,8 +65,12 @@ glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet&
     if (cos_x <= 0.0f) continue;
     const float e = emission_profile(v, glm::dot(v.normal, w));
     if (e <= 0.0f) continue;
-    // Shadow ray from the receiver toward the VPL, stopping short of both ends.
-    if (rays.occluded(x.position, -w, eps, dist - eps)) continue;
+    // Shadow ray from the receiver toward the VPL, stopping short of both ends; a mirrored VPL
+    // (core/mirrors.h) by way of its mirror polygon.
+    if (v.mirror >= 0 ? !mirrored_visible(rays, v, vpls.mirrors[static_cast<std::size_t>(v.mirror)],
+                                          x.position, eps)
+                      : rays.occluded(x.position, -w, eps, dist - eps))
+      continue;
     const float g = e * cos_x / glm::max(dist2, v.clamped() ? dmin2 : 0.0f);
     sum += v.intensity * g;
   }

@@ -1,5 +1,6 @@
 #include "walk/vpl_tracer.h"
 
+#include "walk/mirror_pass.h"
 #include "walk/parallel_rows.h"
 #include "walk/vpl_gather.h"
 
@@ -17,7 +18,10 @@ Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, con
       glm::vec3 c(0.0f);
       if (const auto hit = rays.intersect(view.eye, dir, view.znear, 2.0f * view.zfar)) {
         const ShadingPoint p = shading_point(scene, *hit, view.eye, dir);
-        c = p.emission + gather_vpls(rays, p, vpls, dmin * dmin, eps);
+        c = p.emission + (scene.material_of(hit->triangle).specular
+                              ? mirror_radiance(scene, rays, vpls, hit->triangle, p.position, dir,
+                                                dmin * dmin, eps)
+                              : gather_vpls(rays, p, vpls, dmin * dmin, eps));
       }
       image.at(x, y) = glm::vec4(c, 1.0f);
     }

@@ -2,7 +2,8 @@
 // The exact-visibility VPL estimator ("rt-vpl"): the very same VPL list and clamp as the raster,
 // but visibility V(y, x) from Embree shadow rays instead of a shadow map, and the visible point
 // from a primary ray through the pixel centre. Raster and rt-vpl may differ only by shadow-map
-// error (and the raster's interpolation of positions).
+// error (and the raster's interpolation of positions). Where the primary ray meets a mirror, the
+// surface seen in it is shaded (walk/mirror_pass.h), as the raster's second pass does.
 #include "core/image.h"
 #include "core/scene.h"
 #include "core/view.h"

@@ -1,0 +1,41 @@
+#include "walk/mirror_pass.h"
+
+#include "walk/mirror_walk.h"
+#include "walk/parallel_rows.h"
+#include "walk/vpl_gather.h"
+
+namespace irad {
+
+glm::vec3 mirror_radiance(const Scene& scene, const RayScene& rays, const VplSet& vpls,
+                          std::size_t triangle, const glm::vec3& position, const glm::vec3& dir,
+                          float dmin2, float eps) {
+  glm::vec3 n = geometric_normal(scene, triangle);
+  if (glm::dot(n, dir) > 0.0f) n = -n; // the side the ray arrived from
+  glm::vec3 throughput = scene.material_of(triangle).base_color;
+  glm::vec3 origin = position + eps * n;
+  glm::vec3 reflected = reflect_direction(n, dir);
+  const auto hit = trace_through_mirrors(scene, rays, origin, reflected, throughput, eps);
+  if (!hit) return glm::vec3(0.0f);
+  const ShadingPoint x = shading_point(scene, *hit, origin, reflected);
+  return throughput * (x.emission + gather_vpls(rays, x, vpls, dmin2, eps));
+}
+
+void add_mirror_pass(const Scene& scene, const RayScene& rays, const View& view, const VplSet& vpls,
+                     const MirrorPassOptions& options, Image& image) {
+  if (!scene.has_specular()) return;
+  const float dmin = options.clamp * scene.bounds.diagonal();
+  const float eps = rays.epsilon();
+  parallel_rows(view.height, options.threads, [&](int y) {
+    for (int x = 0; x < view.width; ++x) {
+      if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
+      const glm::vec3 dir = pixel_direction(view, x, y);
+      const auto hit = rays.intersect(view.eye, dir, view.znear, 2.0f * view.zfar);
+      if (!hit || !scene.material_of(hit->triangle).specular) continue;
+      const glm::vec3 c = mirror_radiance(scene, rays, vpls, hit->triangle, view.eye + hit->t * dir,
+                                          dir, dmin * dmin, eps);
+      image.at(x, y) += glm::vec4(c, 0.0f);
+    }
+  });
+}
+
+} // namespace irad
