@@ -120,20 +120,14 @@ Image Walkthrough::frame(int frame, const Camera& camera) {
   pose(frame);
   const View view = make_view(camera, scene_.bounds, settings_.width, settings_.height);
   trace(next_ % n_, view); // one new path per frame, with the current geometry
-  Image image;
-  switch (settings_.mode) {
-  case WalkMode::Ring:
-    image = ring_->frame(view);
-    break;
-  case WalkMode::Cached:
-    image = raster_->render_cached(view);
-    break;
-  case WalkMode::Reshade:
-    image = raster_->render(view, all_vpls());
-    break;
-  }
+  const WalkMode mode = settings_.mode;
+  // Every path's VPLs, gathered once, for the modes and passes that need them all.
+  const VplSet all = mode == WalkMode::Reshade || scene_.has_specular() ? all_vpls() : VplSet{};
+  Image image = mode == WalkMode::Ring     ? ring_->frame(view)
+                : mode == WalkMode::Cached ? raster_->render_cached(view)
+                                           : raster_->render(view, all);
   if (scene_.has_specular()) // visible mirrors: the ray-traced pass (walk/mirror_pass.h)
-    add_mirror_pass(scene_, rays_, view, all_vpls(), {RasterOptions{}.clamp, 0, nullptr}, image);
+    add_mirror_pass(scene_, rays_, view, all, {RasterOptions{}.clamp, 0, nullptr}, image);
   return image;
 }
 

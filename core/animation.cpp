@@ -22,22 +22,6 @@ glm::dmat3 normal_matrix(const glm::dmat4& world) {
   return det < 0.0 ? -cofactor : cofactor;
 }
 
-// Camera frame of a node's world matrix: the rotation with the matrix's z axis, y made
-// orthogonal to it (as the loader places cameras); the previous frame when degenerate.
-glm::mat4 camera_frame(const glm::dmat4& world, const glm::mat4& previous) {
-  const glm::dvec3 c1(world[1]), c2(world[2]);
-  const double l2 = glm::length(c2);
-  if (!(l2 > 0.0) || !std::isfinite(l2)) return previous;
-  const glm::dvec3 z = c2 / l2;
-  const glm::dvec3 y_perp = c1 - glm::dot(c1, z) * z;
-  const double ly = glm::length(y_perp);
-  if (!(ly > 1e-12 * glm::length(c1)) || !std::isfinite(ly)) return previous;
-  const glm::dvec3 y = y_perp / ly;
-  glm::dmat4 m(glm::dmat3(glm::cross(y, z), y, z));
-  m[3] = world[3];
-  return glm::mat4(m);
-}
-
 glm::dmat4 local_matrix(const Animation::Node& n) {
   if (n.has_matrix) return n.matrix;
   return glm::translate(glm::dmat4(1.0), n.translation) * glm::mat4_cast(n.rotation) *
@@ -107,8 +91,9 @@ void Animation::pose(float t, Scene& scene) const {
   for (std::size_t c = 0; c < camera_node.size() && c < scene.cameras.size(); ++c) {
     if (camera_node[c] < 0) continue;
     Camera& camera = scene.cameras[c];
+    // A degenerate pose (a zero scale) keeps the previous frame.
     camera.camera_to_world =
-        camera_frame(world[std::size_t(camera_node[c])], camera.camera_to_world);
+        camera_frame_of(world[std::size_t(camera_node[c])]).value_or(camera.camera_to_world);
   }
   for (std::size_t l = 0; l < light_node.size() && l < scene.lights.size(); ++l) {
     if (light_node[l] < 0) continue;

@@ -10,21 +10,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Rotation part of `world` as a right-handed orthonormal frame whose z axis is world's z axis
-// direction; nullopt when the axes are degenerate.
-std::optional<glm::dmat3> orthonormal_frame(const glm::dmat4& world) {
-  const glm::dvec3 c1(world[1]);
-  const glm::dvec3 c2(world[2]);
-  const double l2 = glm::length(c2);
-  if (!(l2 > 0.0) || !std::isfinite(l2)) return std::nullopt;
-  const glm::dvec3 z = c2 / l2;
-  const glm::dvec3 y_perp = c1 - glm::dot(c1, z) * z;
-  const double ly = glm::length(y_perp);
-  if (!(ly > 1e-12 * glm::length(c1)) || !std::isfinite(ly)) return std::nullopt;
-  const glm::dvec3 y = y_perp / ly;
-  return glm::dmat3(glm::cross(y, z), y, z);
-}
-
 void validate_perspective(const Context& ctx, const tinygltf::PerspectiveCamera& p,
                           const std::string& where) {
   if (!(std::isfinite(p.yfov) && p.yfov > 0.0 && p.yfov < kPi)) {
@@ -93,13 +78,11 @@ std::optional<Camera> place_camera(const Context& ctx, std::size_t camera, std::
   }
   const tinygltf::PerspectiveCamera& p = c.perspective;
   validate_perspective(ctx, p, where);
-  const std::optional<glm::dmat3> frame = orthonormal_frame(world);
+  const std::optional<glm::mat4> frame = camera_frame_of(world);
   if (!frame) ctx.fail(element("nodes", node), "the camera's node transform is singular");
   Camera out;
   out.name = !c.name.empty() ? c.name : "camera" + std::to_string(camera);
-  glm::dmat4 m(*frame);
-  m[3] = world[3];
-  out.camera_to_world = glm::mat4(m);
+  out.camera_to_world = *frame;
   out.yfov = float(p.yfov);
   if (p.aspectRatio != 0.0) out.aspect = float(p.aspectRatio);
   out.znear = float(p.znear);

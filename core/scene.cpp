@@ -1,5 +1,7 @@
 #include "core/scene.h"
 
+#include <cmath>
+
 namespace irad {
 
 namespace {
@@ -96,6 +98,21 @@ SurfacePoint surface_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
   const float length = glm::length(n);
   p.shading_normal = length > 0.0f ? n / length : p.geometric_normal;
   return p;
+}
+
+std::optional<glm::mat4> camera_frame_of(const glm::dmat4& world) {
+  const glm::dvec3 c1(world[1]);
+  const glm::dvec3 c2(world[2]);
+  const double l2 = glm::length(c2);
+  if (!(l2 > 0.0) || !std::isfinite(l2)) return std::nullopt;
+  const glm::dvec3 z = c2 / l2;
+  const glm::dvec3 y_perp = c1 - glm::dot(c1, z) * z;
+  const double ly = glm::length(y_perp);
+  if (!(ly > 1e-12 * glm::length(c1)) || !std::isfinite(ly)) return std::nullopt;
+  const glm::dvec3 y = y_perp / ly;
+  glm::dmat4 m(glm::dmat3(glm::cross(y, z), y, z));
+  m[3] = world[3];
+  return glm::mat4(m);
 }
 
 } // namespace irad

@@ -89,6 +89,11 @@ struct Scene {
   bool has_specular() const; // any material is a mirror
 };
 
+// The camera_to_world of a camera on a node with world matrix `world`: the right-handed rotation
+// whose z axis is world's z direction and whose y axis is world's y made orthogonal to it (scale
+// and shear dropped), at world's translation; nullopt when those axes are degenerate.
+std::optional<glm::mat4> camera_frame_of(const glm::dmat4& world);
+
 // A point of triangle t at barycentrics (b1, b2) (the weights of vertices 1 and 2).
 struct SurfacePoint {
   glm::vec3 position;

@@ -23,6 +23,7 @@ View make_view(const Camera& camera, const Bounds& bounds, int width, int height
   v.zfar = far;
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   v.projection = glm::perspective(camera.yfov, aspect, near, far);
+  v.inverse_view_projection = glm::inverse(v.projection * v.view);
   return v;
 }
 
@@ -31,7 +32,7 @@ glm::vec3 pixel_direction(const View& view, int px, int py) {
 }
 
 glm::vec3 image_point_direction(const View& view, float x, float y) {
-  const glm::mat4 inv = glm::inverse(view.projection * view.view);
+  const glm::mat4& inv = view.inverse_view_projection;
   const float nx = x / static_cast<float>(view.width) * 2.0f - 1.0f;
   const float ny = 1.0f - y / static_cast<float>(view.height) * 2.0f;
   const glm::vec4 far = inv * glm::vec4(nx, ny, 1.0f, 1.0f);

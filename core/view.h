@@ -11,6 +11,8 @@ namespace irad {
 struct View {
   glm::mat4 view{1.0f};       // world -> camera (OpenGL convention: looking down -z)
   glm::mat4 projection{1.0f}; // camera -> clip, depth range [-1, 1]
+  // (projection * view)^-1, set once by make_view: ray directions need no inverse per pixel.
+  glm::mat4 inverse_view_projection{1.0f};
   glm::vec3 eye{0.0f};
   int width = 0;
   int height = 0;

@@ -6,6 +6,7 @@
 // Internal to raster/: the GL types stay out of the public headers.
 #include "raster/gl_backend.h"
 
+#include <exception>
 #include <functional>
 #include <glad/gl.h>
 #include <memory>
@@ -66,6 +67,15 @@ public:
 private:
   Context& context_;
 };
+
+// For a renderer's destructor: makes `context` current so that the GL objects destroyed next are
+// deleted in their own context; if that fails they go with the context itself. Never throws.
+inline void make_current_for_teardown(Context& context) noexcept {
+  try {
+    context.make_current();
+  } catch (const std::exception&) {
+  }
+}
 
 // Auto: an EGL hardware device when there is one (or `device` >= 0 asks for one), else OSMesa,
 // else EGL surfaceless. Throws irad::Error naming the backend when it cannot be had.

@@ -273,10 +273,7 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
 
 // The GL objects are deleted in their own context.
 RasterRenderer::~RasterRenderer() {
-  try {
-    if (impl_) impl_->context->make_current();
-  } catch (const std::exception&) { // then they are deleted with the context
-  }
+  if (impl_) gl::make_current_for_teardown(*impl_->context);
 }
 
 void RasterRenderer::scene_changed() {
@@ -326,6 +323,10 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
   }
   if (slot >= im.cache.size()) im.cache.resize(std::size_t(slot) + 1);
   Impl::CachedPath& path = im.cache[slot];
+  // The slot's cubes are drawn over again: no texture allocation per frame once the ring is full.
+  std::vector<gl::Texture> spare;
+  for (gl::Texture& c : path.cubes)
+    if (c.get() != 0) spare.push_back(std::move(c));
   path = {};
   for (const Vpl& v : vpls) {
     if (!carries_light(v)) continue;
@@ -335,7 +336,12 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
       path.frames.emplace_back(1.0f);
       continue;
     }
-    path.cubes.push_back(gl::ShadowCube::make_cube(im.api, resolution));
+    if (spare.empty()) {
+      path.cubes.push_back(gl::ShadowCube::make_cube(im.api, resolution));
+    } else {
+      path.cubes.push_back(std::move(spare.back()));
+      spare.pop_back();
+    }
     path.frames.push_back(im.cache_shadow->render_into(v, im.gpu, path.cubes.back().get()));
   }
   im.context->check("cached shadow maps");

@@ -119,10 +119,7 @@ RingRenderer::RingRenderer(const Scene& scene, const RingOptions& options) {
 
 // The GL objects are deleted in their own context.
 RingRenderer::~RingRenderer() {
-  try {
-    if (impl_) impl_->context->make_current();
-  } catch (const std::exception&) { // then they are deleted with the context
-  }
+  if (impl_) gl::make_current_for_teardown(*impl_->context);
 }
 
 void RingRenderer::scene_changed() {

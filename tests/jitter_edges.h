@@ -23,11 +23,7 @@ struct PlaneId {
 
 inline PlaneId plane_at(const Scene& scene, const RayScene& rays, const View& view, float x,
                         float y) {
-  const glm::mat4 inv = glm::inverse(view.projection * view.view);
-  const float nx = x / static_cast<float>(view.width) * 2.0f - 1.0f;
-  const float ny = 1.0f - y / static_cast<float>(view.height) * 2.0f;
-  const glm::vec4 far = inv * glm::vec4(nx, ny, 1.0f, 1.0f);
-  const glm::vec3 dir = glm::normalize(glm::vec3(far) / far.w - view.eye);
+  const glm::vec3 dir = image_point_direction(view, x, y);
   const auto hit = rays.intersect(view.eye, dir, 0.0f, std::numeric_limits<float>::infinity());
   PlaneId id;
   if (!hit) return id;
