@@ -2,7 +2,7 @@
 
 #include "core/analytic_scenes.h"
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_io.h"
 #include "core/image_metrics.h"
 #include "core/scene_builder.h"

@@ -3,7 +3,7 @@
 #include "core/animation.h"
 
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "walk/bias_compensation.h"
 #include "walk/mirror_pass.h"
 #include "walk/ray_scene.h"

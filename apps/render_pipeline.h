@@ -1,6 +1,6 @@
 #pragma once
 // load -> walk -> raster, the path every rendering subcommand takes, with per-stage times.
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image.h"
 #include "core/log.h"
 #include "core/scene.h"
@@ -33,7 +33,7 @@ struct RenderRequest {
   std::uint32_t bias_samples = 16;
   bool clamped_fraction = false; // estimate the share of light the clamp removes
   bool progress = false;         // a progress line on stderr
-  LoadLimits limits;             // scene size limits (core/gltf_loader.h)
+  LoadLimits limits;             // scene size limits (core/gltf/loader.h)
   // When it becomes true (a signal handler), the render stops early: no further stage starts,
   // the running one returns what it has, and the result says cancelled.
   const std::atomic<bool>* cancel = nullptr;

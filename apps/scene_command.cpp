@@ -13,7 +13,7 @@
 #include "apps/options.h"
 #include "core/analytic_scenes.h"
 #include "core/error.h"
-#include "core/gltf_writer.h"
+#include "core/gltf/writer.h"
 
 #include <cmath>
 #include <filesystem>

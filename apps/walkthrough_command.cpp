@@ -11,7 +11,7 @@
 #include "apps/walkthrough_engine.h"
 #include "apps/window_viewer.h"
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_io.h"
 
 #include <chrono>

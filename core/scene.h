@@ -15,6 +15,20 @@ namespace irad {
 
 class Animation;
 
+// How a material looks up one of its textures: the TEXCOORD_n set and the KHR_texture_transform
+// matrix, uv' = matrix * (u, v, 1) (glTF: translation * rotation * scale, rotation
+// counter-clockwise in uv space as the extension defines it).
+struct TexCoordMap {
+  int texcoord = 0;          // 0: Scene::uvs (TEXCOORD_0), 1: Scene::uvs1 (TEXCOORD_1)
+  glm::mat3 matrix{1.0f};    // identity without KHR_texture_transform
+  glm::vec2 apply(glm::vec2 uv) const { return glm::vec2(matrix * glm::vec3(uv, 1.0f)); }
+};
+
+// glTF alphaMode. Coverage a(x) = base_alpha * texture alpha * COLOR_0 alpha. Mask: the surface
+// is there where a >= alpha_cutoff and absent elsewhere (rays, particles, shadow maps and shading
+// all pass through it). Blend: a is the probability that a ray or particle stops at the surface.
+enum class AlphaMode { Opaque, Mask, Blend };
+
 // Diffuse material: albedo rho(x) = base_color * texture(uv) (linear), emitted radiance
 // L_e(x) = emission * emissive_texture(uv), Lambertian, from the front face only unless
 // double_sided. The front face is the one whose vertices run counter-clockwise (glTF).
@@ -28,15 +42,24 @@ struct Material {
   int emissive_texture = -1;
   bool double_sided = false;
   bool specular = false;
+  TexCoordMap base_color_map; // how base_color_texture is looked up
+  TexCoordMap emissive_map;   // how emissive_texture is looked up
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f; // Mask only
+  float base_alpha = 1.0f;   // baseColorFactor's alpha
 
   bool emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
 
-// Pinhole camera. camera_to_world maps the camera frame (looking down -z, y up) to the world.
+// Pinhole camera, or orthographic (parallel rays along -z through a (2 xmag) x (2 ymag)
+// rectangle). camera_to_world maps the camera frame (looking down -z, y up) to the world.
 struct Camera {
   std::string name;
   glm::mat4 camera_to_world{1.0f};
-  float yfov = 0.6911f;        // radians
+  bool orthographic = false;
+  float xmag = 1.0f;           // orthographic only: half width and half height of the view, in
+  float ymag = 1.0f;           // scene units (aspect = xmag / ymag)
+  float yfov = 0.6911f;        // radians, perspective only
   std::optional<float> aspect; // width / height, if the file fixes it
   float znear = 0.0f;          // 0: derived from the scene's scale
   std::optional<float> zfar;
@@ -65,7 +88,10 @@ struct Scene {
   // Triangle soup in world space. Vertex arrays run in parallel; normals are unit length.
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
-  std::vector<glm::vec2> uvs; // empty when no primitive has TEXCOORD_0
+  std::vector<glm::vec2> uvs;    // empty when no primitive has TEXCOORD_0
+  std::vector<glm::vec2> uvs1;   // TEXCOORD_1; empty unless some texture of a material uses it
+  std::vector<glm::vec4> colors; // COLOR_0 (linear RGBA, 1 where a primitive has none); empty
+                                 // when no primitive has it. albedo *= rgb, coverage *= alpha.
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint32_t> triangle_material; // one per triangle
 

@@ -3,7 +3,7 @@
 // which the analytic scenes (core/analytic_scenes.h) and the tests assemble their geometry, and
 // Lambert's polygon formula (design.md section 3).
 //
-// The builders here keep the invariants of a loaded scene (core/gltf_loader.h) as long as their
+// The builders here keep the invariants of a loaded scene (core/gltf/loader.h) as long as their
 // inputs are valid: unit normals, no zero-area triangles, bounds set by finish(). Invalid inputs
 // (non-positive sizes, albedo outside [0, 1], negative radiance, degenerate quads or cameras)
 // throw irad::Error.

@@ -6,7 +6,7 @@
 // DIR/scene.gltf, and loaded with kFuzzLimits. DIR also holds two files that inputs may name as
 // external URIs: buffer.bin (64 bytes: 16 floats) and image.png (a 2x2 RGBA PNG).
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/log.h"
 #include "core/scene.h"
 

@@ -1,10 +1,10 @@
 // The analytic scenes of design.md section 3 (core/analytic_scenes.h): their geometry and answers,
-// the glTF round trip (core/gltf_writer.h), the path tracer against their answers, and the
+// the glTF round trip (core/gltf/writer.h), the path tracer against their answers, and the
 // `irad scene` command end to end.
 #include "core/analytic_scenes.h"
 #include "core/error.h"
-#include "core/gltf_loader.h"
-#include "core/gltf_writer.h"
+#include "core/gltf/loader.h"
+#include "core/gltf/writer.h"
 #include "core/image_io.h"
 #include "core/scene_builder.h"
 #include "core/view.h"

@@ -2,7 +2,7 @@
 // Cornell box posed against its static twin, and the per-frame updates (Embree refit, GL vertex
 // upload, cached shadow maps) against renderers built from scratch on the posed scene.
 #include "core/animation.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_metrics.h"
 #include "core/keyframes.h"
 #include "core/rng.h"

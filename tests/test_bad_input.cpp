@@ -2,7 +2,7 @@
 // irad::Error "FILE: ELEMENT: MESSAGE") and through the real command line (exit code 1, the one
 // line "irad: error: FILE: ELEMENT: MESSAGE" on stderr, no output file).
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/log.h"
 #include "tests/gltf_test_scene.h"
 

@@ -1,7 +1,7 @@
 // Batched VPL passes (RasterOptions::batch > 1, raster/batched_passes.h) against the per-VPL
 // passes (batch = 1, the reference) with the same VPLs, and against Lambert's formula.
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_metrics.h"
 #include "core/scene_builder.h"
 #include "core/view.h"

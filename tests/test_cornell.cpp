@@ -1,5 +1,5 @@
 // The bundled Cornell box end to end: loader, walk, raster, and the command line.
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_io.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"

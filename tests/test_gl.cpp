@@ -1,7 +1,7 @@
 // The GL layer's failure paths: every compile, link and framebuffer problem is an irad::Error
 // on one line, never a black image.
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_metrics.h"
 #include "core/view.h"
 #include "raster/gl_context.h"

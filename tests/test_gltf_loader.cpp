@@ -2,7 +2,7 @@
 // temporary directory: JSON through nlohmann::json, buffers as base64 data URIs, .bin files or GLB
 // chunks, images as hand-written (stored-deflate) PNGs.
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/log.h"
 #include "core/scene.h"
 #include "core/texture.h"

@@ -1,7 +1,7 @@
 // Hard cases of the estimators: degenerate albedos (rho_bar = 0 and 1), extreme path counts, the
 // scene's scale, a thin wall between a lit and a dark room, VPLs in corners, and the float
 // accumulation of many passes. Every bound below is a measured value with a stated margin.
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_metrics.h"
 #include "core/light_sampler.h"
 #include "core/particle_counts.h"

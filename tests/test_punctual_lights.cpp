@@ -5,7 +5,7 @@
 // Lambert's cosine law and its walk against the flux E A cos theta it delivers to a plane.
 //
 // With IRAD_TEST_IMAGES=DIR the tests write their images and scenes to DIR (docs/ext/punctual.md).
-#include "core/gltf_writer.h"
+#include "core/gltf/writer.h"
 #include "core/image_io.h"
 #include "core/image_metrics.h"
 #include "core/scene_builder.h"

@@ -1,6 +1,6 @@
 // The CPU estimators against answers they do not define (design.md section 3), and the raster
 // against the exact-visibility estimator on the same VPLs.
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_metrics.h"
 #include "core/scene_builder.h"
 #include "core/view.h"

@@ -1,6 +1,6 @@
 // The real-time ring of path images (seed section 5.1.3) against the full instant radiosity image.
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/image_io.h"
 #include "core/image_metrics.h"
 #include "core/view.h"

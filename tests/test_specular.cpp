@@ -2,8 +2,8 @@
 // polygons, the path tracer's mirror against Lambert's formula, the VPL estimators (mirrored VPLs,
 // the raster's pyramid clip and mirrored shadow cube, the ray-traced pass over visible mirrors)
 // against it and against the path tracer, and diffuse scenes untouched by all of it.
-#include "core/gltf_loader.h"
-#include "core/gltf_writer.h"
+#include "core/gltf/loader.h"
+#include "core/gltf/writer.h"
 #include "core/image_metrics.h"
 #include "core/mirrors.h"
 #include "core/scene_builder.h"

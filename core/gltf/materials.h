@@ -1,6 +1,6 @@
 #pragma once
 // Internal to the glTF loader: materials and their textures.
-#include "core/gltf_context.h"
+#include "core/gltf/context.h"
 #include "core/scene.h"
 
 namespace irad::gltf {

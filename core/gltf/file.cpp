@@ -1,4 +1,4 @@
-#include "core/gltf_file.h"
+#include "core/gltf/file.h"
 
 #include "core/error.h"
 

@@ -1,6 +1,6 @@
 #pragma once
 // Internal to the glTF loader: the node hierarchy of the default scene, flattened.
-#include "core/gltf_context.h"
+#include "core/gltf/context.h"
 
 #include <glm/glm.hpp>
 #include <vector>

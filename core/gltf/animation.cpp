@@ -1,6 +1,6 @@
-#include "core/gltf_animation.h"
+#include "core/gltf/animation.h"
 
-#include "core/gltf_accessors.h"
+#include "core/gltf/accessors.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 // primitives (indexed u8/u16/u32 or not), POSITION, NORMAL (flat normals when absent),
 // TEXCOORD_0; materials (baseColorFactor, baseColorTexture decoded from sRGB, emissiveFactor x
 // KHR_materials_emissive_strength, emissiveTexture, doubleSided; mirrors where metallicFactor >=
-// 0.9 and roughnessFactor <= 0.1, core/gltf_materials.h); perspective cameras;
+// 0.9 and roughnessFactor <= 0.1, core/gltf/materials.h); perspective cameras;
 // KHR_lights_punctual point and spot lights. Only the default scene (or scene 0) is loaded.
 // Every error throws irad::Error("FILE", "ELEMENT", "MESSAGE"), e.g. "box.gltf: accessors[3]: ...";
 // docs/errors.md lists them. Before tinygltf sees a byte, the file is checked (size, GLB header

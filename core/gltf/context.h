@@ -2,7 +2,7 @@
 // Internal to the glTF loader (not part of irad's API): the parsed tinygltf model with the file
 // name for messages and the logger, plus index checking shared by the loader's parts.
 #include "core/error.h"
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 #include "core/log.h"
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-#include "core/gltf_cameras_lights.h"
+#include "core/gltf/cameras_lights.h"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -6,7 +6,7 @@
 // supported (densified; sparse indices must increase strictly and lie below count). count may
 // not exceed 3 x limits.max_triangles. Errors name "accessors[N]",
 // "bufferViews[N]", or `use` (the referring element) for a bad accessor index.
-#include "core/gltf_context.h"
+#include "core/gltf/context.h"
 
 #include <cstdint>
 #include <glm/glm.hpp>

@@ -1,12 +1,12 @@
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 
-#include "core/gltf_animation.h"
-#include "core/gltf_cameras_lights.h"
-#include "core/gltf_context.h"
-#include "core/gltf_file.h"
-#include "core/gltf_geometry.h"
-#include "core/gltf_materials.h"
-#include "core/gltf_nodes.h"
+#include "core/gltf/animation.h"
+#include "core/gltf/cameras_lights.h"
+#include "core/gltf/context.h"
+#include "core/gltf/file.h"
+#include "core/gltf/geometry.h"
+#include "core/gltf/materials.h"
+#include "core/gltf/nodes.h"
 
 #include <algorithm>
 #include <array>

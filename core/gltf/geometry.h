@@ -1,6 +1,6 @@
 #pragma once
 // Internal to the glTF loader: triangle primitives to world-space triangles.
-#include "core/gltf_context.h"
+#include "core/gltf/context.h"
 #include "core/scene.h"
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "core/gltf_materials.h"
+#include "core/gltf/materials.h"
 
 #include <array>
 #include <cmath>

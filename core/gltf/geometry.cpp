@@ -1,6 +1,6 @@
-#include "core/gltf_geometry.h"
+#include "core/gltf/geometry.h"
 
-#include "core/gltf_accessors.h"
+#include "core/gltf/accessors.h"
 
 #include <cmath>
 #include <limits>

@@ -1,8 +1,8 @@
 #pragma once
 // Internal to the glTF loader: model.animations to an irad::Animation over the default scene.
 #include "core/animation.h"
-#include "core/gltf_context.h"
-#include "core/gltf_nodes.h"
+#include "core/gltf/context.h"
+#include "core/gltf/nodes.h"
 #include "core/scene.h"
 
 #include <memory>

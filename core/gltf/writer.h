@@ -1,6 +1,6 @@
 #pragma once
 // irad::Scene to glTF 2.0 (.gltf): one JSON file whose single binary buffer is embedded as a
-// base64 data URI, written with nlohmann::json. load_gltf (core/gltf_loader.h) reads it back to
+// base64 data URI, written with nlohmann::json. load_gltf (core/gltf/loader.h) reads it back to
 // the same triangles, materials, cameras and punctual lights, up to float rounding of the camera
 // and light frames.
 //

@@ -3,7 +3,7 @@
 // every bad input gets one message naming the element (docs/errors.md) and tinygltf never meets
 // input it mishandles (deep JSON nesting, GLB chunks beyond the file, empty buffers, negative
 // offsets it would read as absent, URIs outside the scene's folder, images too large to decode).
-#include "core/gltf_loader.h"
+#include "core/gltf/loader.h"
 
 #include <cstddef>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #pragma once
 // Internal to the glTF loader: perspective cameras and KHR_lights_punctual lights placed by nodes.
-#include "core/gltf_context.h"
+#include "core/gltf/context.h"
 #include "core/scene.h"
 
 #include <optional>

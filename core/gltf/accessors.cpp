@@ -1,4 +1,4 @@
-#include "core/gltf_accessors.h"
+#include "core/gltf/accessors.h"
 
 #include <algorithm>
 #include <cmath>

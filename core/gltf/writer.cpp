@@ -1,4 +1,4 @@
-#include "core/gltf_writer.h"
+#include "core/gltf/writer.h"
 
 #include "core/error.h"
 #include "core/view.h"

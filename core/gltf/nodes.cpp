@@ -1,4 +1,4 @@
-#include "core/gltf_nodes.h"
+#include "core/gltf/nodes.h"
 
 #include <cmath>
 #include <fmt/format.h>
