@@ -22,9 +22,9 @@ Interpolation interpolation_of(const Context& ctx, const std::string& name,
   ctx.fail(where, "unknown interpolation '" + name + "'");
 }
 
-std::vector<float> read_times(const Context& ctx, int accessor, const std::string& where) {
-  const std::vector<glm::vec4> v =
-      read_animation_values(ctx, accessor, where + ".input", TINYGLTF_TYPE_SCALAR);
+std::vector<float> read_times(const Context& ctx, std::uint64_t accessor,
+                              const std::string& where) {
+  const std::vector<glm::vec4> v = read_animation_values(ctx, accessor, where + ".input", "SCALAR");
   std::vector<float> times(v.size());
   for (std::size_t i = 0; i < v.size(); ++i) {
     times[i] = v[i].x;
@@ -37,18 +37,24 @@ std::vector<float> read_times(const Context& ctx, int accessor, const std::strin
 }
 
 // The keyframes of sampler `s` of animation `a` for `path`.
-Keyframes read_keyframes(const Context& ctx, std::size_t a, int s, Animation::Path path) {
-  const tinygltf::Animation& anim = ctx.model.animations[a];
+Keyframes read_keyframes(const Context& ctx, std::size_t a, const json& channel,
+                         Animation::Path path) {
+  const json& anim = ctx.array("animations")[a];
   const std::string owner = element("animations", a);
-  const std::size_t si = checked_index(ctx, s, anim.samplers.size(), owner, "sampler");
-  const tinygltf::AnimationSampler& sampler = anim.samplers[si];
+  const json* samplers = member(anim, "samplers");
+  const std::size_t count = samplers && samplers->is_array() ? samplers->size() : 0;
+  const auto s = index_member(channel, "sampler");
+  const std::size_t si =
+      checked_index(ctx, s ? static_cast<long long>(*s) : -1, count, owner, "sampler");
+  const json& sampler = (*samplers)[si];
   const std::string where = owner + element(".samplers", si);
+  ctx.use(pointer_of("animations", a) + "/samplers/" + std::to_string(si));
   Keyframes k;
-  k.interpolation = interpolation_of(ctx, sampler.interpolation, where);
+  k.interpolation = interpolation_of(ctx, string_member(sampler, "interpolation"), where);
   k.rotation = path == Animation::Path::Rotation;
-  k.times = read_times(ctx, sampler.input, where);
-  k.values = read_animation_values(ctx, sampler.output, where + ".output",
-                                   k.rotation ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3);
+  k.times = read_times(ctx, index_member(sampler, "input").value_or(~0ull >> 1), where);
+  k.values = read_animation_values(ctx, index_member(sampler, "output").value_or(~0ull >> 1),
+                                   where + ".output", k.rotation ? "VEC4" : "VEC3");
   const std::size_t per_key = k.interpolation == Interpolation::CubicSpline ? 3 : 1;
   if (k.values.size() != per_key * k.times.size())
     ctx.fail(where, fmt::format("output has {} elements, {} expected ({} keys)", k.values.size(),
@@ -64,23 +70,24 @@ Keyframes read_keyframes(const Context& ctx, std::size_t a, int s, Animation::Pa
 }
 
 Animation::Node node_at_rest(const Context& ctx, std::size_t n) {
-  const tinygltf::Node& node = ctx.model.nodes[n];
+  const json& node = ctx.array("nodes")[n];
   Animation::Node out;
-  const auto& t = node.translation;
-  const auto& r = node.rotation;
-  const auto& s = node.scale;
+  const std::vector<double> t = numbers_member(node, "translation");
+  const std::vector<double> r = numbers_member(node, "rotation");
+  const std::vector<double> s = numbers_member(node, "scale");
+  const std::vector<double> matrix = numbers_member(node, "matrix");
   if (t.size() == 3) out.translation = {t[0], t[1], t[2]};
   if (r.size() == 4) out.rotation = glm::normalize(glm::dquat(r[3], r[0], r[1], r[2]));
   if (s.size() == 3) out.scale = {s[0], s[1], s[2]};
-  if (node.matrix.size() == 16) {
+  if (matrix.size() == 16) {
     out.has_matrix = true;
     for (int c = 0; c < 4; ++c)
-      for (int row = 0; row < 4; ++row) out.matrix[c][row] = node.matrix[std::size_t(4 * c + row)];
+      for (int row = 0; row < 4; ++row) out.matrix[c][row] = matrix[std::size_t(4 * c + row)];
   }
   return out;
 }
 
-Animation::Path path_of(const std::string& path) {
+Animation::Path animation_path(const std::string& path) {
   if (path == "translation") return Animation::Path::Translation;
   if (path == "rotation") return Animation::Path::Rotation;
   return Animation::Path::Scale;
@@ -89,27 +96,38 @@ Animation::Path path_of(const std::string& path) {
 // The tracks of every channel targeting a reached node (`index` maps glTF node -> nodes).
 void read_tracks(const Context& ctx, const std::map<std::size_t, std::uint32_t>& index,
                  Animation& out) {
-  for (std::size_t a = 0; a < ctx.model.animations.size(); ++a) {
-    const auto& channels = ctx.model.animations[a].channels;
-    for (std::size_t c = 0; c < channels.size(); ++c) {
-      const tinygltf::AnimationChannel& ch = channels[c];
+  const json& animations = ctx.array("animations");
+  for (std::size_t a = 0; a < animations.size(); ++a) {
+    const json* channels = member(animations[a], "channels");
+    if (!channels || !channels->is_array()) continue;
+    for (std::size_t c = 0; c < channels->size(); ++c) {
+      const json& ch = (*channels)[c];
       const std::string where = element("animations", a) + element(".channels", c);
-      const std::string& path = ch.target_path;
+      const json* target = member(ch, "target");
+      const std::string path = target ? string_member(*target, "path") : std::string();
       if (path == "weights") {
-        ctx.warn("morph target weights are not supported; their animation is ignored");
+        ctx.warn("animated morph target weights are not supported; their animation is ignored");
         continue;
       }
-      if (path != "translation" && path != "rotation" && path != "scale")
-        ctx.fail(where, "unknown target path '" + path + "'");
-      if (ch.target_node < 0) continue; // no target node: the channel animates nothing here
-      const std::size_t node =
-          checked_index(ctx, ch.target_node, ctx.model.nodes.size(), where, "target node");
+      if (path == "pointer") {
+        ctx.warn("KHR_animation_pointer channels are not supported; ignored");
+        continue;
+      }
+      if (path != "translation" && path != "rotation" && path != "scale") {
+        ctx.warn(where + ": unknown target path '" + path + "'; the channel is ignored");
+        continue;
+      }
+      const auto target_node = index_member(*target, "node");
+      if (!target_node) continue; // no target node: the channel animates nothing here
+      const std::size_t node = checked_index(ctx, static_cast<long long>(*target_node),
+                                             ctx.count("nodes"), where, "target node");
       const auto it = index.find(node);
       if (it == index.end()) continue; // not in the scene being loaded
+      ctx.use(pointer_of("animations", a) + "/channels/" + std::to_string(c));
       if (out.nodes[it->second].has_matrix)
         ctx.fail(element("nodes", node), "an animated node must not have a matrix (glTF 3.11)");
       out.tracks.push_back(
-          {it->second, path_of(path), read_keyframes(ctx, a, ch.sampler, path_of(path))});
+          {it->second, animation_path(path), read_keyframes(ctx, a, ch, animation_path(path))});
     }
   }
 }
@@ -172,7 +190,7 @@ void build_parts(const std::vector<char>& dynamic, const std::vector<glm::dmat4>
 std::shared_ptr<const Animation> read_animation(const Context& ctx,
                                                 const std::vector<NodeInstance>& instances,
                                                 const ContentNodes& content, Scene& scene) {
-  if (ctx.model.animations.empty()) return nullptr;
+  if (ctx.array("animations").empty()) return nullptr;
   auto anim = std::make_shared<Animation>();
   std::map<std::size_t, std::uint32_t> index; // glTF node -> anim->nodes
   std::vector<std::size_t> gltf_node;
@@ -183,9 +201,13 @@ std::shared_ptr<const Animation> read_animation(const Context& ctx,
     rest.push_back(inst.world);
     anim->nodes.push_back(node_at_rest(ctx, inst.node));
   }
-  for (const NodeInstance& inst : instances) // parents are reached before their children
-    for (int child : ctx.model.nodes[inst.node].children)
-      anim->nodes[index.at(std::size_t(child))].parent = int(index.at(inst.node));
+  for (const NodeInstance& inst : instances) { // parents are reached before their children
+    const json* children = member(ctx.array("nodes")[inst.node], "children");
+    if (!children || !children->is_array()) continue;
+    for (const json& child : *children)
+      anim->nodes[index.at(std::size_t(as_index(child).value_or(0)))].parent =
+          int(index.at(inst.node));
+  }
   read_tracks(ctx, index, *anim);
   if (anim->tracks.empty()) return nullptr;
   const std::vector<char> dynamic = anim->dynamic_nodes();

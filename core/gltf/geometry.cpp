@@ -1,7 +1,10 @@
 #include "core/gltf/geometry.h"
 
 #include "core/gltf/accessors.h"
+#include "core/gltf/codecs.h"
 
+#include <fmt/format.h>
+#include <optional>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -10,53 +13,193 @@ namespace irad::gltf {
 
 namespace {
 
-// A primitive's vertex attributes in its mesh's frame.
+// A primitive's vertex attributes in its mesh's frame (morphed), or in the world when skinned.
 struct Attributes {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals; // empty without NORMAL
-  std::vector<glm::vec2> uvs;     // empty without TEXCOORD_0
+  std::vector<glm::vec2> uvs;     // empty without the set of uv slot 0
+  std::vector<glm::vec2> uvs1;    // empty without the set of uv slot 1
+  std::vector<glm::vec4> colors;  // empty without COLOR_0
 };
 
-int attribute(const tinygltf::Primitive& p, const char* name) {
-  const auto it = p.attributes.find(name);
-  return it == p.attributes.end() ? -1 : it->second;
+constexpr int kTriangles = 4;
+constexpr int kTriangleStrip = 5;
+
+// The accessor index of attribute `name` of `attributes` (an object), or nullopt.
+std::optional<std::uint64_t> attribute(const json& attributes, const std::string& name) {
+  return index_member(attributes, name.c_str());
 }
 
-Attributes read_attributes(const Context& ctx, const tinygltf::Primitive& p,
+template <class T>
+void require_count(const Context& ctx, const std::vector<T>& values, std::size_t n,
+                   const std::string& where, const std::string& name) {
+  if (values.size() != n) {
+    ctx.fail(where + ".attributes." + name,
+             fmt::format("{} elements, POSITION has {}", values.size(), n));
+  }
+}
+
+std::vector<glm::vec2> read_uv_set(const Context& ctx, const json& attrs, int set, std::size_t n,
+                                   const std::string& where) {
+  if (set < 0) return {};
+  const std::string name = "TEXCOORD_" + std::to_string(set);
+  const auto a = attribute(attrs, name);
+  if (!a) {
+    ctx.warn(where + ": its material's textures read " + name +
+             ", which the primitive lacks; (0, 0) is used");
+    return {};
+  }
+  std::vector<glm::vec2> uv = read_texcoords(ctx, *a, where + ".attributes." + name);
+  require_count(ctx, uv, n, where, name);
+  return uv;
+}
+
+// Adds the weighted displacements of the morph targets (glTF 3.7.2.2) to positions and normals.
+void apply_morph_targets(const Context& ctx, const json& p, const std::vector<double>& weights,
+                         const std::string& where, Attributes& a) {
+  const json* targets = member(p, "targets");
+  if (!targets || !targets->is_array() || weights.empty()) return;
+  const std::size_t n = a.positions.size();
+  for (std::size_t t = 0; t < targets->size() && t < weights.size(); ++t) {
+    const float w = float(weights[t]);
+    if (w == 0.0f) continue;
+    const json& target = (*targets)[t];
+    const std::string tw = where + ".targets[" + std::to_string(t) + "]";
+    if (const auto pos = attribute(target, "POSITION")) {
+      const std::vector<glm::vec3> d = read_vec3(ctx, *pos, tw + ".POSITION");
+      if (d.size() != n) ctx.fail(tw + ".POSITION", fmt::format("{} elements, POSITION has {}", d.size(), n));
+      for (std::size_t v = 0; v < n; ++v) a.positions[v] += w * d[v];
+    }
+    if (const auto nor = attribute(target, "NORMAL"); nor && !a.normals.empty()) {
+      const std::vector<glm::vec3> d = read_vec3(ctx, *nor, tw + ".NORMAL");
+      if (d.size() != n) ctx.fail(tw + ".NORMAL", fmt::format("{} elements, POSITION has {}", d.size(), n));
+      for (std::size_t v = 0; v < n; ++v) a.normals[v] += w * d[v];
+    }
+  }
+}
+
+// Linear blend skinning: p' = sum_k w_k M_{j_k} p with M = joint world x inverse bind matrix,
+// normals by the cofactor of the blended matrix (glTF 3.7.3). Weights are renormalised to sum 1.
+void apply_skin(const Context& ctx, const json& attrs, const std::vector<glm::dmat4>& joints,
+                const std::string& where, Attributes& a) {
+  const auto j = attribute(attrs, "JOINTS_0");
+  const auto w = attribute(attrs, "WEIGHTS_0");
+  if (!j || !w) {
+    ctx.warn(where + ": a skinned mesh without JOINTS_0 and WEIGHTS_0; left unskinned");
+    return;
+  }
+  const std::size_t n = a.positions.size();
+  const Values jv = read_values(ctx, *j, where + ".attributes.JOINTS_0", {"VEC4"},
+                                {kUnsignedByte, kUnsignedShort});
+  const Values wv = read_values(ctx, *w, where + ".attributes.WEIGHTS_0", {"VEC4"},
+                                {kUnsignedByte, kUnsignedShort, kFloat}, true);
+  if (jv.count() != n || wv.count() != n)
+    ctx.fail(where + ".attributes", "JOINTS_0 and WEIGHTS_0 must have POSITION's count");
+  for (std::size_t v = 0; v < n; ++v) {
+    glm::dmat4 m(0.0);
+    double total = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double weight = double(wv.data[4 * v + k]);
+      if (weight == 0.0) continue;
+      const std::size_t joint = std::size_t(jv.data[4 * v + k]);
+      if (joint >= joints.size())
+        ctx.fail(where + ".attributes.JOINTS_0",
+                 fmt::format("joint {} out of range ({} joints)", joint, joints.size()));
+      m += weight * joints[joint];
+      total += weight;
+    }
+    if (!(total > 0.0)) continue; // no influence: the vertex stays where it is
+    m /= total;
+    a.positions[v] = glm::vec3(m * glm::dvec4(glm::dvec3(a.positions[v]), 1.0));
+    if (!a.normals.empty()) {
+      const glm::dmat3 b(m);
+      const glm::dmat3 cof(glm::cross(b[1], b[2]), glm::cross(b[2], b[0]), glm::cross(b[0], b[1]));
+      a.normals[v] = glm::vec3((glm::determinant(b) < 0.0 ? -1.0 : 1.0) * (cof * glm::dvec3(a.normals[v])));
+    }
+  }
+}
+
+// Decodes a KHR_draco_mesh_compression primitive: its attributes become the decoded data of the
+// primitive's accessors (ctx.decoded_accessors); returns the decoded indices.
+std::vector<std::uint32_t> decode_draco(const Context& ctx, const json& ext, const json& attrs,
+                                        const std::string& where) {
+  const std::string ew = where + ".extensions.KHR_draco_mesh_compression";
+  const auto view = index_member(ext, "bufferView");
+  if (!view) ctx.fail(ew, "no bufferView");
+  const json& bv = ctx.at("bufferViews", *view, ew, "bufferView");
+  const std::string vname = element("bufferViews", std::size_t(*view));
+  const std::size_t b = checked_index(
+      ctx, static_cast<long long>(index_member(bv, "buffer").value_or(~0ull >> 1)),
+      ctx.buffers.size(), vname, "buffer");
+  ctx.use("buffers", b);
+  const BufferData& buffer = ctx.buffers[b];
+  const std::uint64_t offset = index_member(bv, "byteOffset").value_or(0);
+  const std::uint64_t length = index_member(bv, "byteLength").value_or(0);
+  if (!buffer.present || length > buffer.bytes.size() || offset > buffer.bytes.size() - length)
+    ctx.fail(vname, "exceeds its buffer's data");
+  try {
+    const DracoMesh mesh(buffer.bytes.data() + offset, std::size_t(length));
+    const json* ids = member(ext, "attributes");
+    for (const auto& [name, value] : attrs.items()) {
+      const auto accessor = as_index(value);
+      const auto id = ids ? index_member(*ids, name.c_str()) : std::nullopt;
+      if (!accessor || !id) continue;
+      const json& a = ctx.at("accessors", *accessor, where + ".attributes." + name, "accessor");
+      const std::size_t components = component_count(string_member(a, "type"));
+      if (components == 0) ctx.fail(element("accessors", std::size_t(*accessor)), "unknown type");
+      ctx.decoded_accessors[std::size_t(*accessor)] =
+          mesh.attribute(int(*id), int(number_member(a, "componentType", 0)), int(components),
+                         bool_member(a, "normalized", false));
+    }
+    return mesh.indices();
+  } catch (const CodecError& e) {
+    ctx.fail(vname, std::string("KHR_draco_mesh_compression: ") + e.what());
+  }
+}
+
+Attributes read_attributes(const Context& ctx, const json& p, const PrimitivePose& pose, UvSets uv,
                            const std::string& where) {
   Attributes a;
-  const int position = attribute(p, "POSITION");
-  if (position < 0) ctx.fail(where, "has no POSITION attribute");
-  a.positions = read_vec3(ctx, position, where + ".attributes.POSITION");
+  const json* attrs_ptr = member(p, "attributes");
+  const json& attrs = attrs_ptr ? *attrs_ptr : json::object();
+  const auto position = attribute(attrs, "POSITION");
+  a.positions = read_vec3(ctx, *position, where + ".attributes.POSITION");
   const std::size_t n = a.positions.size();
-  if (const int normal = attribute(p, "NORMAL"); normal >= 0) {
-    a.normals = read_vec3(ctx, normal, where + ".attributes.NORMAL");
-    if (a.normals.size() != n) ctx.fail(where, "NORMAL and POSITION counts differ");
+  if (const auto normal = attribute(attrs, "NORMAL")) {
+    a.normals = read_vec3(ctx, *normal, where + ".attributes.NORMAL");
+    require_count(ctx, a.normals, n, where, "NORMAL");
   }
-  if (const int uv = attribute(p, "TEXCOORD_0"); uv >= 0) {
-    a.uvs = read_texcoords(ctx, uv, where + ".attributes.TEXCOORD_0");
-    if (a.uvs.size() != n) ctx.fail(where, "TEXCOORD_0 and POSITION counts differ");
+  a.uvs = read_uv_set(ctx, attrs, uv.slot0, n, where);
+  a.uvs1 = read_uv_set(ctx, attrs, uv.slot1, n, where);
+  if (const auto color = attribute(attrs, "COLOR_0")) {
+    a.colors = read_colors(ctx, *color, where + ".attributes.COLOR_0");
+    require_count(ctx, a.colors, n, where, "COLOR_0");
   }
+  apply_morph_targets(ctx, p, pose.morph_weights, where, a);
+  if (pose.joint_matrices) apply_skin(ctx, attrs, *pose.joint_matrices, where, a);
   return a;
 }
 
 // Vertex indices of the primitive (0, 1, ..., n - 1 when it has none), each checked < n.
-std::vector<std::uint32_t> read_vertex_indices(const Context& ctx, const tinygltf::Primitive& p,
-                                               std::size_t n, const std::string& where) {
-  if (p.indices < 0) {
+std::vector<std::uint32_t> read_vertex_indices(const Context& ctx, const json& p, std::size_t n,
+                                               const std::string& where) {
+  const auto accessor = index_member(p, "indices");
+  if (!accessor) {
     if (n > std::numeric_limits<std::uint32_t>::max()) ctx.fail(where, "too many vertices");
     std::vector<std::uint32_t> indices(n);
     std::iota(indices.begin(), indices.end(), std::uint32_t(0));
     return indices;
   }
-  std::vector<std::uint32_t> indices = read_indices(ctx, p.indices, where + ".indices");
+  return read_indices(ctx, *accessor, where + ".indices");
+}
+
+void check_index_range(const Context& ctx, const std::vector<std::uint32_t>& indices,
+                       std::size_t n, const std::string& where) {
   for (std::uint32_t i : indices) {
     if (i >= n) {
-      ctx.fail(where + ".indices", "index value " + std::to_string(i) + " out of range (" +
-                                       std::to_string(n) + " vertices)");
+      ctx.fail(where, fmt::format("index value {} out of range ({} vertices)", i, n));
     }
   }
-  return indices;
 }
 
 // Triangle list from the index sequence of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive
@@ -64,11 +207,12 @@ std::vector<std::uint32_t> read_vertex_indices(const Context& ctx, const tinyglt
 std::vector<glm::uvec3> assemble(const Context& ctx, int mode,
                                  const std::vector<std::uint32_t>& idx, const std::string& where) {
   std::vector<glm::uvec3> out;
-  if (mode == TINYGLTF_MODE_TRIANGLES) {
-    if (idx.size() % 3 != 0) ctx.fail(where, "TRIANGLES index count is not a multiple of 3");
+  if (mode == kTriangles) {
+    if (idx.size() % 3 != 0) ctx.warn(where + ": TRIANGLES index count is not a multiple of 3; the "
+                                      "last incomplete triangle is dropped");
     for (std::size_t k = 0; k + 2 < idx.size(); k += 3)
       out.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
-  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+  } else if (mode == kTriangleStrip) {
     for (std::size_t k = 0; k + 2 < idx.size(); ++k) {
       if (k % 2 == 0)
         out.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
@@ -117,12 +261,14 @@ std::uint32_t push_vertex(const Context& ctx, const Attributes& a, std::size_t v
   soup.positions.push_back(place_point(pl, a.positions[v]));
   soup.normals.push_back(a.normals.empty() ? glm::vec3(0.0f) : place_normal(pl, a.normals[v]));
   soup.uvs.push_back(a.uvs.empty() ? glm::vec2(0.0f) : a.uvs[v]);
+  soup.uvs1.push_back(a.uvs1.empty() ? glm::vec2(0.0f) : a.uvs1[v]);
+  soup.colors.push_back(a.colors.empty() ? glm::vec4(1.0f) : a.colors[v]);
   return std::uint32_t(soup.positions.size() - 1);
 }
 
 // Triangles an index list of n entries gives in `mode` (TRIANGLES, TRIANGLE_STRIP or _FAN).
 std::uint64_t triangle_count(int mode, std::size_t n) {
-  if (mode == TINYGLTF_MODE_TRIANGLES) return n / 3;
+  if (mode == kTriangles) return n / 3;
   return n >= 3 ? n - 2 : 0;
 }
 
@@ -164,29 +310,52 @@ void push_triangle(glm::uvec3 t, bool flip, std::uint32_t material, Soup& soup) 
 } // namespace
 
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
-                      const glm::dmat4& world, std::uint32_t material, Soup& soup) {
-  const tinygltf::Primitive& p = ctx.model.meshes[mesh].primitives[primitive];
+                      const PrimitivePose& pose, std::uint32_t material, UvSets uv, Soup& soup) {
+  const json& p = ctx.array("meshes")[mesh]["primitives"][primitive];
   const std::string where = element("meshes", mesh) + element(".primitives", primitive);
-  if (p.mode >= TINYGLTF_MODE_POINTS && p.mode <= TINYGLTF_MODE_LINE_STRIP) {
+  const int mode = int(number_member(p, "mode", kTriangles));
+  if (mode >= 0 && mode <= 3) {
     ctx.warn("point and line primitives are not supported; skipped");
     return;
   }
-  if (p.mode < TINYGLTF_MODE_TRIANGLES || p.mode > TINYGLTF_MODE_TRIANGLE_FAN) {
-    ctx.fail(where, "invalid mode " + std::to_string(p.mode));
+  if (mode < kTriangles || mode > 6) ctx.fail(where, "invalid mode " + std::to_string(mode));
+  const json* attrs = member(p, "attributes");
+  if (!attrs || !attribute(*attrs, "POSITION")) {
+    ctx.warn(where + ": a primitive without POSITION draws nothing; skipped");
+    return;
   }
-  const Attributes a = read_attributes(ctx, p, where);
-  const std::vector<std::uint32_t> indices = read_vertex_indices(ctx, p, a.positions.size(), where);
-  check_triangle_limit(ctx, triangle_count(p.mode, indices.size()), soup, where);
-  const Placement pl = placement(world);
+  const std::string pp = "/meshes/" + std::to_string(mesh) + "/primitives/" + std::to_string(primitive);
+  ctx.use_exact(pp);
+  ctx.use_exact(pp + "/attributes");
+  std::vector<std::string> read{"POSITION", "NORMAL", "COLOR_0"};
+  for (int set : {uv.slot0, uv.slot1})
+    if (set >= 0) read.push_back("TEXCOORD_" + std::to_string(set));
+  if (pose.joint_matrices) read.insert(read.end(), {"JOINTS_0", "WEIGHTS_0"});
+  for (const std::string& name : read)
+    if (member(*attrs, name.c_str())) ctx.use(pp + "/attributes/" + name);
+  for (const char* part : {"/indices", "/mode", "/extensions/KHR_draco_mesh_compression"})
+    ctx.use(pp + part);
+  if (!pose.morph_weights.empty()) ctx.use(pp + "/targets");
+  std::optional<std::vector<std::uint32_t>> draco;
+  if (const json* ext = extension(p, "KHR_draco_mesh_compression"))
+    draco = decode_draco(ctx, *ext, *attrs, where);
+  const Attributes a = read_attributes(ctx, p, pose, uv, where);
+  const std::vector<std::uint32_t> indices =
+      draco ? std::move(*draco) : read_vertex_indices(ctx, p, a.positions.size(), where);
+  check_index_range(ctx, indices, a.positions.size(), where + ".indices");
+  check_triangle_limit(ctx, triangle_count(mode, indices.size()), soup, where);
+  const Placement pl = placement(pose.joint_matrices ? glm::dmat4(1.0) : pose.world);
   const std::vector<glm::uvec3> local =
-      drop_non_finite(assemble(ctx, p.mode, indices, where), a, pl, where, soup);
+      drop_non_finite(assemble(ctx, mode, indices, where), a, pl, where, soup);
   const std::uint64_t vertices = a.normals.empty() ? 3 * local.size() : a.positions.size();
   if (soup.positions.size() + vertices > 3 * ctx.limits.max_triangles) {
-    ctx.fail(where, "the scene would have " + std::to_string(soup.positions.size() + vertices) +
-                        " vertices, over the limit of 3 x " +
-                        std::to_string(ctx.limits.max_triangles) + " (--max-triangles)");
+    ctx.fail(where, fmt::format("the scene would have {} vertices, over the limit of 3 x {} "
+                                "(--max-triangles)",
+                                soup.positions.size() + vertices, ctx.limits.max_triangles));
   }
   soup.has_uvs = soup.has_uvs || !a.uvs.empty();
+  soup.has_uvs1 = soup.has_uvs1 || !a.uvs1.empty();
+  soup.has_colors = soup.has_colors || !a.colors.empty();
   if (!a.normals.empty()) {
     const std::uint32_t base = push_vertex(ctx, a, 0, pl, soup);
     for (std::size_t v = 1; v < a.positions.size(); ++v) push_vertex(ctx, a, v, pl, soup);
@@ -258,11 +427,15 @@ void compact(Soup& s) {
     s.positions[next] = s.positions[v];
     s.normals[next] = s.normals[v];
     if (!s.vertex_node.empty()) s.vertex_node[next] = s.vertex_node[v];
+    s.uvs1[next] = s.uvs1[v];
+    s.colors[next] = s.colors[v];
     s.uvs[next++] = s.uvs[v];
   }
   s.positions.resize(next);
   s.normals.resize(next);
   s.uvs.resize(next);
+  s.uvs1.resize(next);
+  s.colors.resize(next);
   if (!s.vertex_node.empty()) s.vertex_node.resize(next);
   for (glm::uvec3& t : s.triangles) t = {remap[t.x], remap[t.y], remap[t.z]};
 }
@@ -285,6 +458,8 @@ void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
   scene.positions = std::move(soup.positions);
   scene.normals = std::move(soup.normals);
   if (soup.has_uvs) scene.uvs = std::move(soup.uvs);
+  if (soup.has_uvs1) scene.uvs1 = std::move(soup.uvs1);
+  if (soup.has_colors) scene.colors = std::move(soup.colors);
   scene.triangles = std::move(soup.triangles);
   scene.triangle_material = std::move(soup.triangle_material);
   if (vertex_node) *vertex_node = std::move(soup.vertex_node);

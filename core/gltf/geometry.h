@@ -14,8 +14,12 @@ namespace irad::gltf {
 struct Soup {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals; // unit, or 0 where unknown (filled by finish_geometry)
-  std::vector<glm::vec2> uvs;     // (0, 0) for primitives without TEXCOORD_0
-  bool has_uvs = false;           // some primitive had TEXCOORD_0
+  std::vector<glm::vec2> uvs;     // uv slot 0, (0, 0) for primitives without it
+  std::vector<glm::vec2> uvs1;    // uv slot 1
+  std::vector<glm::vec4> colors;  // COLOR_0, 1 for primitives without it
+  bool has_uvs = false;           // some primitive had the set of slot 0
+  bool has_uvs1 = false;
+  bool has_colors = false;
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint32_t> triangle_material;
   std::vector<std::uint32_t> vertex_node; // glTF node per vertex, kept only for animated files
@@ -23,8 +27,24 @@ struct Soup {
   std::string non_finite_where;           // the primitive of the first of them
 };
 
-// Appends meshes[mesh].primitives[primitive] placed by `world`, all its triangles getting scene
-// material `material`. Modes TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are converted to
+// The TEXCOORD sets a material's textures read, in the scene's two uv slots (Scene::uvs and
+// Scene::uvs1); -1: the slot is not used. core/gltf/materials.h assigns them.
+struct UvSets {
+  int slot0 = -1;
+  int slot1 = -1;
+};
+
+// Where a primitive's vertices go: by its node's world matrix, after the morph targets' weighted
+// displacements (glTF 3.7.2.2), or, for a skinned mesh, by the weighted joint matrices
+// (joint world x inverse bind matrix; the node's own transform is ignored, glTF 3.7.3).
+struct PrimitivePose {
+  glm::dmat4 world{1.0};
+  std::vector<double> morph_weights;                        // empty: no morphing
+  const std::vector<glm::dmat4>* joint_matrices = nullptr; // non-null: skinned
+};
+
+// Appends meshes[mesh].primitives[primitive] placed by `pose`, all its triangles getting scene
+// material `material`, with the uv sets `uv`. Modes TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are converted to
 // triangle lists; point and line primitives are skipped with one warning per file.
 // Positions are p' = world p; normals n' = normalize(N n) with N the inverse transpose of the
 // upper 3x3 block, taken as cofactor(A) sign(det A) = |det A| A^-T so that singular blocks need no
@@ -35,8 +55,10 @@ struct Soup {
 // finish_geometry warns once). Fails on missing POSITION, mismatched attribute counts, index
 // values >= the vertex count, and triangles or vertices beyond ctx.limits (3 vertices per allowed
 // triangle), before allocating them.
+// A primitive without POSITION is skipped with a warning (glTF allows it); a
+// KHR_draco_mesh_compression primitive is decoded first (core/gltf/codecs.h).
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
-                      const glm::dmat4& world, std::uint32_t material, Soup& soup);
+                      const PrimitivePose& pose, std::uint32_t material, UvSets uv, Soup& soup);
 
 // Moves the soup into scene (and soup.vertex_node, compacted like the vertices, into
 // *vertex_node when given) (positions, normals, uvs, triangles, triangle_material, bounds):

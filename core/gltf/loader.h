@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 namespace irad {
 
@@ -36,6 +37,8 @@ struct LoadLimits {
   int max_json_depth = 64;
 };
 
-Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& limits = {});
+// `scene`: the glTF scene to load, by name or index (empty: the file's default scene).
+Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& limits = {},
+                const std::string& scene = {});
 
 } // namespace irad

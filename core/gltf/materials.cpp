@@ -1,6 +1,12 @@
 #include "core/gltf/materials.h"
 
+#include "core/gltf/accessors.h"
+#include "core/gltf/file.h"
+#include "core/gltf/image_decode.h"
+
 #include <array>
+#include <fmt/format.h>
+#include <optional>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -13,11 +19,11 @@ namespace {
 
 Wrap wrap_mode(const Context& ctx, int mode, const std::string& where, const char* field) {
   switch (mode) {
-  case TINYGLTF_TEXTURE_WRAP_REPEAT:
+  case 10497:
     return Wrap::Repeat;
-  case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+  case 33071:
     return Wrap::ClampToEdge;
-  case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+  case 33648:
     return Wrap::MirroredRepeat;
   default:
     ctx.fail(where, std::string("invalid ") + field + " " + std::to_string(mode));
@@ -50,37 +56,90 @@ private:
   std::array<float, 256> lut8_{};
 };
 
-// Texels of images[index] as linear RGBA: grey (1-2 channels) is replicated to RGB, a missing
-// alpha is 1.
-std::vector<glm::vec4> decode_image(const Context& ctx, std::size_t index, bool srgb) {
-  const tinygltf::Image& im = ctx.model.images[index];
+// The encoded bytes of images[index]: its uri's data or its bufferView's bytes.
+std::vector<unsigned char> image_bytes(const Context& ctx, std::size_t index) {
+  const json& im = ctx.array("images")[index];
   const std::string name = element("images", index);
-  if (im.image.empty()) {
-    ctx.fail(name, "image data could not be loaded or decoded" +
-                       (im.uri.empty() || im.uri.rfind("data:", 0) == 0 ? std::string()
-                                                                        : " ('" + im.uri + "')"));
+  if (const json* uri = member(im, "uri"); uri && uri->is_string()) {
+    return uri_bytes(uri->get<std::string>(), {"image/png", "image/jpeg", "image/webp"},
+                     ctx.folder, ctx.limits, ctx.file, name);
   }
-  const int c = im.component;
-  const bool layout_ok =
-      im.width > 0 && im.height > 0 && c >= 1 && c <= 4 && (im.bits == 8 || im.bits == 16);
-  const std::size_t texels = layout_ok ? std::size_t(im.width) * std::size_t(im.height) : 0;
-  if (!layout_ok || im.image.size() != texels * std::size_t(c) * std::size_t(im.bits / 8)) {
-    ctx.fail(name, "unsupported decoded image layout (" + std::to_string(c) + " channels, " +
-                       std::to_string(im.bits) + " bits)");
+  const auto view = index_member(im, "bufferView");
+  if (!view) ctx.fail(name, "has neither uri nor bufferView");
+  const ViewBytes v = view_bytes(ctx, *view, name);
+  return {v.data, v.data + v.length};
+}
+
+// Texels of images[index] as linear RGBA: grey (1-2 channels) is replicated to RGB, a missing
+// alpha is 1. `texels` counts the decoded texels of all images against the limit.
+Texture decode(const Context& ctx, std::size_t index, bool srgb, std::uint64_t& texels) {
+  const std::string name = element("images", index);
+  const std::vector<unsigned char> bytes = image_bytes(ctx, index);
+  DecodedImage im;
+  try {
+    im = decode_image(bytes.data(), bytes.size(),
+                      {ctx.limits.max_texture_size, ctx.limits.max_texture_texels});
+  } catch (const ImageError& e) {
+    ctx.fail(name, e.what());
   }
+  texels += std::uint64_t(im.width) * std::uint64_t(im.height);
+  if (texels > ctx.limits.max_texture_texels) {
+    ctx.fail(name, fmt::format("the images hold {} texels, over the limit of {} for all images "
+                               "together",
+                               texels, ctx.limits.max_texture_texels));
+  }
+  const int c = im.channels;
+  const std::size_t count = std::size_t(im.width) * std::size_t(im.height);
+  if (c < 1 || c > 4 || im.pixels.size() != count * std::size_t(c) * std::size_t(im.bits / 8))
+    ctx.fail(name, "unsupported decoded image layout");
   const ChannelDecoder channel(im.bits, srgb);
-  std::vector<glm::vec4> out(texels);
+  Texture out;
+  out.width = im.width;
+  out.height = im.height;
+  out.texels.resize(count);
   const std::size_t n = std::size_t(c);
-  for (std::size_t t = 0; t < texels; ++t) {
+  for (std::size_t t = 0; t < count; ++t) {
     const std::size_t k = t * n;
-    const float r = channel(im.image.data(), k, true);
+    const float r = channel(im.pixels.data(), k, true);
     const bool grey = c <= 2;
-    const float g = grey ? r : channel(im.image.data(), k + 1, true);
-    const float b = grey ? r : channel(im.image.data(), k + 2, true);
+    const float g = grey ? r : channel(im.pixels.data(), k + 1, true);
+    const float b = grey ? r : channel(im.pixels.data(), k + 2, true);
     const bool has_alpha = c == 2 || c == 4;
-    out[t] = {r, g, b, has_alpha ? channel(im.image.data(), k + n - 1, false) : 1.0f};
+    out.texels[t] = {r, g, b, has_alpha ? channel(im.pixels.data(), k + n - 1, false) : 1.0f};
   }
   return out;
+}
+
+// The image a texture shows: EXT_texture_webp's source (irad decodes WebP), else `source`.
+std::optional<std::size_t> texture_source(const Context& ctx, const json& tex,
+                                          const std::string& tname) {
+  const json* webp = extension(tex, "EXT_texture_webp");
+  const json& holder = webp ? *webp : tex;
+  const auto source = index_member(holder, "source");
+  if (!source) return std::nullopt;
+  const std::string where = webp ? tname + ".extensions.EXT_texture_webp" : tname;
+  ctx.at("images", *source, where, "image");
+  return std::size_t(*source);
+}
+
+// KHR_texture_transform as uv' = T R S uv (the extension's matrices; rotation counter-clockwise
+// by `rotation` radians: R = [cos sin; -sin cos] in rows).
+glm::mat3 texture_transform(const json& t) {
+  const std::vector<double> offset = numbers_member(t, "offset");
+  const std::vector<double> scale = numbers_member(t, "scale");
+  const double rotation = number_member(t, "rotation", 0.0);
+  glm::mat3 translation(1.0f), rot(1.0f), sc(1.0f);
+  if (offset.size() == 2) translation[2] = glm::vec3(float(offset[0]), float(offset[1]), 1.0f);
+  const float c = float(std::cos(rotation)), s = float(std::sin(rotation));
+  rot[0][0] = c;  // column 0: (cos, -sin)
+  rot[0][1] = -s;
+  rot[1][0] = s;  // column 1: (sin, cos)
+  rot[1][1] = c;
+  if (scale.size() == 2) {
+    sc[0][0] = float(scale[0]);
+    sc[1][1] = float(scale[1]);
+  }
+  return translation * rot * sc;
 }
 
 // Converts textures on first use and hands out their index in scene.textures.
@@ -89,44 +148,51 @@ public:
   TextureTable(const Context& ctx, std::vector<Texture>& textures)
       : ctx_(ctx), textures_(textures) {}
 
-  // Index in scene.textures of the texture referenced by `info` at element `where`.
-  int get(const tinygltf::TextureInfo& info, const std::string& where, bool srgb) {
-    const auto& model = ctx_.model;
-    const std::size_t t = checked_index(ctx_, info.index, model.textures.size(), where, "texture");
-    const tinygltf::Texture& tex = model.textures[t];
+  // Index in scene.textures of the texture referenced by textureInfo `info` at element `where`
+  // (and how it is looked up, into `map`), or -1 when the texture has no image irad can use.
+  int get(const json& info, const std::string& where, bool srgb, TexCoordMap& map,
+          int& texcoord) {
+    const std::string pointer = "/" + where;
+    const auto index = index_member(info, "index");
+    const json& tex = ctx_.at("textures", index.value_or(~0ull >> 1), where, "texture");
+    const std::size_t t = std::size_t(*index);
     const std::string tname = element("textures", t);
-    if (tex.source < 0) ctx_.fail(tname, "has no source image (only PNG and JPEG are supported)");
-    const std::size_t image = checked_index(ctx_, tex.source, model.images.size(), tname, "image");
-    const int sampler =
-        tex.sampler < 0
-            ? -1
-            : int(checked_index(ctx_, tex.sampler, model.samplers.size(), tname, "sampler"));
-    if (info.texCoord != 0) {
-      ctx_.warn(where + ": texCoord " + std::to_string(info.texCoord) +
-                " is not supported; TEXCOORD_0 is used");
+    texcoord = int(index_member(info, "texCoord").value_or(0));
+    if (const json* tt = extension(info, "KHR_texture_transform")) {
+      map.matrix = texture_transform(*tt);
+      if (const auto set = index_member(*tt, "texCoord")) texcoord = int(*set);
     }
-    const Key key{image, sampler, srgb};
+    const std::optional<std::size_t> image = texture_source(ctx_, tex, tname);
+    if (!image) {
+      ctx_.warn(tname + ": no image source irad can read; the texture is ignored");
+      return -1;
+    }
+    const auto sampler_index = index_member(tex, "sampler");
+    const int sampler =
+        sampler_index ? int(checked_index(ctx_, static_cast<long long>(*sampler_index),
+                                          ctx_.count("samplers"), tname, "sampler"))
+                      : -1;
+    if (sampler >= 0) ctx_.use("samplers", std::size_t(sampler));
+    const Key key{*image, sampler, srgb};
     const auto found = index_.find(key);
     if (found != index_.end()) return found->second;
-    textures_.push_back(make(image, sampler, srgb));
+    textures_.push_back(make(*image, sampler, srgb));
     return index_[key] = int(textures_.size() - 1);
   }
 
 private:
   using Key = std::tuple<std::size_t, int, bool>;
 
-  Texture make(std::size_t image, int sampler, bool srgb) const {
-    const tinygltf::Image& im = ctx_.model.images[image];
-    Texture out;
-    out.name = !im.name.empty() ? im.name : element("images", image);
-    out.texels = decode_image(ctx_, image, srgb);
-    out.width = im.width;
-    out.height = im.height;
+  Texture make(std::size_t image, int sampler, bool srgb) {
+    const json& im = ctx_.array("images")[image];
+    Texture out = decode(ctx_, image, srgb, texels_);
+    const std::string name = string_member(im, "name");
+    out.name = !name.empty() ? name : element("images", image);
     if (sampler >= 0) {
-      const tinygltf::Sampler& s = ctx_.model.samplers[std::size_t(sampler)];
+      const json& s = ctx_.array("samplers")[std::size_t(sampler)];
       const std::string sname = element("samplers", std::size_t(sampler));
-      out.wrap_s = wrap_mode(ctx_, s.wrapS, sname, "wrapS");
-      out.wrap_t = wrap_mode(ctx_, s.wrapT, sname, "wrapT");
+      out.wrap_s = wrap_mode(ctx_, int(number_member(s, "wrapS", 10497)), sname, "wrapS");
+      out.wrap_t = wrap_mode(ctx_, int(number_member(s, "wrapT", 10497)), sname, "wrapT");
     }
     return out;
   }
@@ -134,11 +200,13 @@ private:
   const Context& ctx_;
   std::vector<Texture>& textures_;
   std::map<Key, int> index_;
+  std::uint64_t texels_ = 0;
 };
 
 // Fails unless every component is finite, >= 0 and (when max_one) <= 1.
-glm::vec3 colour_factor(const Context& ctx, const std::vector<double>& values, std::size_t size,
+glm::vec4 colour_factor(const Context& ctx, const std::vector<double>& values, std::size_t size,
                         const std::string& where, const char* field, bool max_one) {
+  if (values.empty()) return size == 4 ? glm::vec4(1.0f) : glm::vec4(0.0f);
   if (values.size() != size) {
     ctx.fail(where, std::string(field) + " must have " + std::to_string(size) + " components");
   }
@@ -148,18 +216,15 @@ glm::vec3 colour_factor(const Context& ctx, const std::vector<double>& values, s
                           (max_one ? "in [0, 1]" : ">= 0") + ", got " + std::to_string(v));
     }
   }
-  return {float(values[0]), float(values[1]), float(values[2])};
+  return {float(values[0]), float(values[1]), float(values[2]),
+          size == 4 ? float(values[3]) : 0.0f};
 }
 
 // KHR_materials_emissive_strength.emissiveStrength, 1 when absent.
-double emissive_strength(const Context& ctx, const tinygltf::Material& m,
-                         const std::string& where) {
-  const auto ext = m.extensions.find("KHR_materials_emissive_strength");
-  if (ext == m.extensions.end()) return 1.0;
-  if (!ext->second.IsObject()) ctx.fail(where, "KHR_materials_emissive_strength must be an object");
-  if (!ext->second.Has("emissiveStrength")) return 1.0;
-  const tinygltf::Value& value = ext->second.Get("emissiveStrength");
-  const double s = value.IsNumber() ? value.GetNumberAsDouble() : -1.0;
+double emissive_strength(const Context& ctx, const json& m, const std::string& where) {
+  const json* ext = extension(m, "KHR_materials_emissive_strength");
+  if (!ext) return 1.0;
+  const double s = number_member(*ext, "emissiveStrength", 1.0);
   if (!std::isfinite(s) || s < 0.0) {
     ctx.fail(where,
              "KHR_materials_emissive_strength.emissiveStrength must be a finite number >= 0");
@@ -168,11 +233,11 @@ double emissive_strength(const Context& ctx, const tinygltf::Material& m,
 }
 
 // emissiveFactor x emissiveStrength, which must stay finite in single precision.
-glm::vec3 emission(const Context& ctx, const tinygltf::Material& m, const std::string& where) {
-  const std::vector<double> zero{0.0, 0.0, 0.0};
-  const std::vector<double>& factor = m.emissiveFactor.empty() ? zero : m.emissiveFactor;
-  const glm::dvec3 e = glm::dvec3(colour_factor(ctx, factor, 3, where, "emissiveFactor", false)) *
-                       emissive_strength(ctx, m, where);
+glm::vec3 emission(const Context& ctx, const json& m, const std::string& where) {
+  const std::vector<double> factor = numbers_member(m, "emissiveFactor");
+  const glm::dvec3 e =
+      glm::dvec3(glm::vec3(colour_factor(ctx, factor, 3, where, "emissiveFactor", false))) *
+      emissive_strength(ctx, m, where);
   const glm::vec3 out(e);
   if (!std::isfinite(out.x) || !std::isfinite(out.y) || !std::isfinite(out.z)) {
     ctx.fail(where, "emission (emissiveFactor x emissiveStrength) overflows");
@@ -180,39 +245,84 @@ glm::vec3 emission(const Context& ctx, const tinygltf::Material& m, const std::s
   return out;
 }
 
-Material convert(const Context& ctx, std::size_t index, TextureTable& textures) {
-  const tinygltf::Material& m = ctx.model.materials[index];
+AlphaMode alpha_mode(const Context& ctx, const json& m, const std::string& where) {
+  const std::string mode = string_member(m, "alphaMode", "OPAQUE");
+  if (mode == "OPAQUE") return AlphaMode::Opaque;
+  if (mode == "MASK") return AlphaMode::Mask;
+  if (mode == "BLEND") return AlphaMode::Blend;
+  ctx.fail(where, "unknown alphaMode '" + mode + "'");
+}
+
+// The glTF sets of the two uv slots of a material whose base colour and emissive textures read
+// sets `base` and `emissive` (-1: no such texture).
+UvSets uv_slots(int base, int emissive) {
+  UvSets out;
+  out.slot0 = base >= 0 ? base : emissive;
+  if (base >= 0 && emissive >= 0 && emissive != base) out.slot1 = emissive;
+  return out;
+}
+
+Material convert(const Context& ctx, std::size_t index, TextureTable& textures, UvSets& uv) {
+  const json& m = ctx.array("materials")[index];
   const std::string where = element("materials", index);
+  ctx.use("materials", index);
   Material out;
-  out.name = m.name;
-  const auto& pbr = m.pbrMetallicRoughness;
-  out.base_color = colour_factor(ctx, pbr.baseColorFactor, 4, where + ".pbrMetallicRoughness",
-                                 "baseColorFactor", true);
-  if (pbr.baseColorTexture.index >= 0) {
+  out.name = string_member(m, "name");
+  const json* pbr_ptr = member(m, "pbrMetallicRoughness");
+  const json& pbr = pbr_ptr ? *pbr_ptr : json::object();
+  const std::string pw = where + ".pbrMetallicRoughness";
+  const glm::vec4 base = colour_factor(ctx, numbers_member(pbr, "baseColorFactor"), 4, pw,
+                                       "baseColorFactor", true);
+  out.base_color = glm::vec3(base);
+  out.base_alpha = base.a;
+  int base_set = -1, emissive_set = -1;
+  if (const json* t = member(pbr, "baseColorTexture")) {
     out.base_color_texture =
-        textures.get(pbr.baseColorTexture, where + ".pbrMetallicRoughness.baseColorTexture", true);
+        textures.get(*t, pw + ".baseColorTexture", true, out.base_color_map, base_set);
+    if (out.base_color_texture < 0) base_set = -1;
   }
   out.emission = emission(ctx, m, where);
-  if (m.emissiveTexture.index >= 0) {
-    out.emissive_texture = textures.get(m.emissiveTexture, where + ".emissiveTexture", true);
+  if (const json* t = member(m, "emissiveTexture")) {
+    out.emissive_texture =
+        textures.get(*t, where + ".emissiveTexture", true, out.emissive_map, emissive_set);
+    if (out.emissive_texture < 0) emissive_set = -1;
   }
-  out.double_sided = m.doubleSided;
-  for (const auto& [value, field] : {std::pair{pbr.metallicFactor, "metallicFactor"},
-                                     std::pair{pbr.roughnessFactor, "roughnessFactor"}})
+  uv = uv_slots(base_set, emissive_set);
+  out.base_color_map.texcoord = base_set == uv.slot1 && uv.slot1 >= 0 ? 1 : 0;
+  out.emissive_map.texcoord = emissive_set == uv.slot1 && uv.slot1 >= 0 ? 1 : 0;
+  out.double_sided = bool_member(m, "doubleSided", false);
+  out.alpha_mode = alpha_mode(ctx, m, where);
+  out.alpha_cutoff = float(number_member(m, "alphaCutoff", 0.5));
+  const double metallic = number_member(pbr, "metallicFactor", 1.0);
+  const double roughness = number_member(pbr, "roughnessFactor", 1.0);
+  for (const auto& [value, field] :
+       {std::pair{metallic, "metallicFactor"}, std::pair{roughness, "roughnessFactor"}})
     if (!std::isfinite(value) || value < 0.0 || value > 1.0)
-      ctx.fail(where + ".pbrMetallicRoughness", std::string(field) + " must be in [0, 1]");
-  out.specular =
-      pbr.metallicFactor >= mirror_min_metallic && pbr.roughnessFactor <= mirror_max_roughness;
+      ctx.fail(pw, std::string(field) + " must be in [0, 1]");
+  out.specular = metallic >= mirror_min_metallic && roughness <= mirror_max_roughness;
+  return out;
+}
+
+// A material no drawn primitive uses keeps its place in the list with its factors (read
+// leniently: problems there are the validator's unused-part warning) and no textures.
+Material placeholder(const json& m) {
+  Material out;
+  out.name = string_member(m, "name");
   return out;
 }
 
 } // namespace
 
-void convert_materials(const Context& ctx, Scene& scene) {
+std::vector<UvSets> convert_materials(const Context& ctx, const std::vector<char>& referenced,
+                                      Scene& scene) {
   TextureTable textures(ctx, scene.textures);
-  for (std::size_t i = 0; i < ctx.model.materials.size(); ++i) {
-    scene.materials.push_back(convert(ctx, i, textures));
+  const json& materials = ctx.array("materials");
+  std::vector<UvSets> uv(materials.size());
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    scene.materials.push_back(referenced[i] ? convert(ctx, i, textures, uv[i])
+                                            : placeholder(materials[i]));
   }
+  return uv;
 }
 
 } // namespace irad::gltf

@@ -1,6 +1,7 @@
 #pragma once
 // Internal to the glTF loader: materials and their textures.
 #include "core/gltf/context.h"
+#include "core/gltf/geometry.h"
 #include "core/scene.h"
 
 namespace irad::gltf {
@@ -16,6 +17,12 @@ namespace irad::gltf {
 // metallicRoughnessTexture is ignored either way.
 inline constexpr double mirror_min_metallic = 0.9;
 inline constexpr double mirror_max_roughness = 0.1;
-void convert_materials(const Context& ctx, Scene& scene);
+// Materials no drawn primitive uses (referenced[i] == 0) are placeholders without textures.
+// Returns, per material, the TEXCOORD sets of its two uv slots (Material::*_map.texcoord is the
+// slot: a material whose textures read sets 0 and 2 gets TEXCOORD_0 in Scene::uvs and
+// TEXCOORD_2 in Scene::uvs1). Also read: alphaMode, alphaCutoff and baseColorFactor's alpha,
+// KHR_texture_transform and texCoord of each textureInfo, EXT_texture_webp's source.
+std::vector<UvSets> convert_materials(const Context& ctx, const std::vector<char>& referenced,
+                                      Scene& scene);
 
 } // namespace irad::gltf

@@ -1,0 +1,84 @@
+#include "core/gltf/issue_book.h"
+
+#include "core/error.h"
+#include "core/gltf/json_read.h"
+
+#include <array>
+#include <utility>
+
+namespace irad::gltf {
+
+namespace {
+
+// Problems the loader repairs where it uses them, with the repair it makes.
+struct Repair {
+  const char* code;
+  const char* what;
+};
+constexpr std::array<Repair, 9> kRepairs{{
+    {"ROTATION_NON_UNIT", "the quaternion is normalised"},
+    {"ACCESSOR_ANIMATION_SAMPLER_OUTPUT_NON_NORMALIZED_QUATERNION",
+     "the quaternions are normalised"},
+    {"ACCESSOR_VECTOR3_NON_UNIT", "the normals are normalised"},
+    {"MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS", "irad computes the bounds itself"},
+    {"ACCESSOR_MIN_MISMATCH", "irad computes the bounds itself"},
+    {"ACCESSOR_MAX_MISMATCH", "irad computes the bounds itself"},
+    {"ACCESSOR_ANIMATION_INPUT_NON_INCREASING", "irad computes the bounds itself"},
+    {"ANIMATION_SAMPLER_INPUT_ACCESSOR_WITHOUT_BOUNDS", "irad reads the times themselves"},
+    {"ACCESSOR_NON_CLAMPED", "the values are clamped"},
+}};
+
+bool at_or_below(const std::string& pointer, const std::string& prefix) {
+  return pointer.size() >= prefix.size() && pointer.compare(0, prefix.size(), prefix) == 0 &&
+         (pointer.size() == prefix.size() || pointer[prefix.size()] == '/' || prefix.empty());
+}
+
+} // namespace
+
+const char* repair_of(const std::string& code) {
+  for (const Repair& r : kRepairs)
+    if (code == r.code) return r.what;
+  return nullptr;
+}
+
+IssueBook::IssueBook(std::string file, std::vector<Issue> issues) : file_(std::move(file)) {
+  for (Issue& i : issues) add(std::move(i));
+}
+
+void IssueBook::add(Issue issue) {
+  std::string key = issue.pointer;
+  issues_.emplace(std::move(key), Entry{std::move(issue), false});
+}
+
+void IssueBook::use(const std::string& pointer, Log& log, bool exact) {
+  for (auto it = issues_.lower_bound(pointer);
+       it != issues_.end() && at_or_below(it->first, pointer); ++it) {
+    if (exact && it->first != pointer) continue;
+    Entry& e = it->second;
+    if (e.used) continue;
+    e.used = true;
+    const std::string where = path_of(e.issue.pointer);
+    if (const char* repair = repair_of(e.issue.code)) {
+      log.warn(file_ + ": " + where + ": " + e.issue.message + "; " + repair);
+      continue;
+    }
+    throw Error(file_, where, e.issue.message);
+  }
+}
+
+void IssueBook::warn_unused(Log& log) const {
+  std::size_t count = 0;
+  const Entry* first = nullptr;
+  for (const auto& [pointer, e] : issues_) {
+    if (e.used) continue;
+    if (!first) first = &e;
+    ++count;
+  }
+  if (!first) return;
+  const std::string where = path_of(first->issue.pointer);
+  log.warn(file_ + ": " + std::to_string(count) + " problem" + (count == 1 ? "" : "s") +
+           " in parts irad does not use; the first: " + (where.empty() ? "" : where + ": ") +
+           first->issue.message + " (" + first->issue.code + ")");
+}
+
+} // namespace irad::gltf

@@ -1,0 +1,45 @@
+#pragma once
+// Internal to the glTF loader: what the validator found (core/gltf/validate.h) and what the
+// loader made of it. The loader calls use(pointer) for every element it reads, before reading
+// it: the first issue at or below that pointer is thrown as the error of the file, unless its
+// code is one the loader repairs (then it is a warning naming the repair). At the end,
+// warn_unused() reports the issues of the elements irad never used as one warning line that
+// counts them and shows the first.
+#include "core/gltf/validate.h"
+#include "core/log.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace irad::gltf {
+
+class IssueBook {
+public:
+  IssueBook(std::string file, std::vector<Issue> issues);
+
+  // Adds an issue found while resolving the document (buffers, images), kept in pointer order.
+  void add(Issue issue);
+  // Throws Error(file, path, message) for the first unrepaired issue at or below `pointer`; warns
+  // once for each repaired one there. Issues are used at most once.
+  // exact: only issues at `pointer` itself, not below it.
+  void use(const std::string& pointer, Log& log, bool exact = false);
+  // One warning for every issue no use() reached: "N problems in parts irad does not use; the
+  // first: PATH: message (CODE)".
+  void warn_unused(Log& log) const;
+  std::size_t size() const { return issues_.size(); }
+
+private:
+  struct Entry {
+    Issue issue;
+    bool used = false;
+  };
+  std::string file_;
+  std::multimap<std::string, Entry> issues_; // by pointer
+};
+
+// The repair the loader makes for a problem of this code, or nullptr when it has none (the
+// problem is then an error wherever irad uses the element).
+const char* repair_of(const std::string& code);
+
+} // namespace irad::gltf

@@ -1,0 +1,34 @@
+#pragma once
+// Internal to the glTF loader: skins and morph target weights at rest (no animation applied).
+#include "core/gltf/context.h"
+#include "core/gltf/nodes.h"
+
+#include <glm/glm.hpp>
+#include <map>
+#include <vector>
+
+namespace irad::gltf {
+
+// The joint matrices of the file's skins: for skin k with joints j_0..j_n and inverse bind
+// matrices B_i (identity without inverseBindMatrices), M_i = world(j_i) B_i (glTF 3.7.3), with
+// world() the joint node's world matrix (from the node hierarchy, whether or not the joint is in
+// the loaded scene).
+class Skins {
+public:
+  Skins(const Context& ctx, const std::vector<NodeInstance>& instances);
+  // The joint matrices for the skin of nodes[node], or nullptr when it has none. Computed on
+  // first use; fails on a bad skin (joint indices, inverseBindMatrices count or type).
+  const std::vector<glm::dmat4>* joint_matrices(const Context& ctx, std::size_t node) const;
+
+private:
+  glm::dmat4 world(const Context& ctx, std::size_t node) const;
+  std::vector<long long> parent_; // -1 for roots
+  std::map<std::size_t, glm::dmat4> reached_;
+  mutable std::map<std::size_t, std::vector<glm::dmat4>> cache_;
+};
+
+// The morph target weights of mesh `mesh` drawn by nodes[node]: node.weights, else mesh.weights,
+// else zeros (empty when the mesh has no targets).
+std::vector<double> morph_weights(const Context& ctx, std::size_t node, std::size_t mesh);
+
+} // namespace irad::gltf
