@@ -1,17 +1,24 @@
 #pragma once
-// glTF 2.0 (.gltf and .glb) to irad::Scene through tinygltf 2.7.
-// Supported: node hierarchy (TRS or matrix; normals by the inverse transpose), triangle
-// primitives (indexed u8/u16/u32 or not), POSITION, NORMAL (flat normals when absent),
-// TEXCOORD_0; materials (baseColorFactor, baseColorTexture decoded from sRGB, emissiveFactor x
-// KHR_materials_emissive_strength, emissiveTexture, doubleSided; mirrors where metallicFactor >=
-// 0.9 and roughnessFactor <= 0.1, core/gltf/materials.h); perspective cameras;
-// KHR_lights_punctual point and spot lights. Only the default scene (or scene 0) is loaded.
-// Every error throws irad::Error("FILE", "ELEMENT", "MESSAGE"), e.g. "box.gltf: accessors[3]: ...";
-// docs/errors.md lists them. Before tinygltf sees a byte, the file is checked (size, GLB header
-// and chunks, JSON syntax and nesting depth, buffer and image URIs: data URIs must be base64,
-// external files must lie in the scene's folder and hold byteLength bytes), so that no input
-// makes the loader crash, hang or allocate beyond the limits below. Triangles with a NaN or Inf
-// vertex position are dropped with one warning.
+// glTF 2.0 (.gltf and .glb) to irad::Scene, read with irad's own JSON reader (nlohmann::json).
+// Supported (docs/gltf.md has the whole table): node hierarchy (TRS or matrix; normals by the
+// inverse transpose), triangle primitives (indexed u8/u16/u32 or not; strips and fans),
+// POSITION, NORMAL (flat normals when absent), TEXCOORD_n (two sets per material), COLOR_0,
+// KHR_mesh_quantization, sparse accessors, KHR_draco_mesh_compression, EXT_meshopt_compression;
+// skins and morph targets at rest (default weights); materials (baseColorFactor and
+// baseColorTexture decoded from sRGB, alphaMode and alphaCutoff, emissiveFactor x
+// KHR_materials_emissive_strength, emissiveTexture, doubleSided, KHR_texture_transform,
+// EXT_texture_webp; mirrors where metallicFactor >= 0.9 and roughnessFactor <= 0.1,
+// core/gltf/materials.h); perspective and orthographic cameras; KHR_lights_punctual lights.
+//
+// Validation (core/gltf/validate.h): the document is checked as the Khronos glTF-Validator
+// checks it. A problem in an element irad uses is the error of the file, named by its JSON path
+// ("meshes[2].primitives[0].attributes.NORMAL: ..."); problems irad repairs (a non-unit
+// rotation, missing POSITION bounds, ...) are warnings; problems in elements irad does not use
+// are one warning line that counts them. An unsupported extension is a warning, or an error when
+// the file lists it in extensionsRequired. Every error throws irad::Error("FILE", "ELEMENT",
+// "MESSAGE") in irad's own words (docs/errors.md); no input makes the loader crash, hang or
+// allocate beyond the limits below. Triangles with a NaN or Inf vertex position are dropped with
+// one warning.
 #include "core/log.h"
 #include "core/scene.h"
 
@@ -24,7 +31,7 @@ namespace irad {
 // Resource limits: a scene beyond one is an error naming the limit, never an out-of-memory kill.
 struct LoadLimits {
   // Bytes of the scene file and of each external file it names (--max-file-size, in MiB); the
-  // scene file is also limited to 4 GiB - 1 (tinygltf's sizes are 32-bit).
+  // scene file is also limited to 4 GiB - 1 (GLB lengths are 32-bit).
   std::uint64_t max_file_bytes = std::uint64_t(1) << 30;
   // Triangles of the scene, all instances together (--max-triangles). Vertices, and the elements
   // of one accessor, may be three times as many.
