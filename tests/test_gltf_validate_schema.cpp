@@ -1,0 +1,200 @@
+// check_schema (core/gltf/validate_schema*.cpp) against the Khronos glTF-Validator's
+// conformance files: each NAME.gltf / NAME.glb beside NAME.report.json. Valid files (no errors)
+// must give no issue; an invalid file whose report has an error with a code check_schema covers
+// must give an issue at (or above / below) one of those errors' JSON pointers.
+#include "core/gltf/validate_parts.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const fs::path kConformance =
+    fs::path(IRAD_SOURCE_DIR) / "../shared/conformance/gltf-validator/test";
+
+// The codes check_schema reports (the JSON-only errors of the validator).
+const std::set<std::string> kScope{"UNDEFINED_PROPERTY",
+                                   "TYPE_MISMATCH",
+                                   "ARRAY_TYPE_MISMATCH",
+                                   "VALUE_NOT_IN_RANGE",
+                                   "EMPTY_ENTITY",
+                                   "UNRESOLVED_REFERENCE",
+                                   "ARRAY_LENGTH_NOT_IN_LIST",
+                                   "ONE_OF_MISMATCH",
+                                   "PATTERN_MISMATCH",
+                                   "VALUE_MULTIPLE_OF",
+                                   "UNSATISFIED_DEPENDENCY",
+                                   "DUPLICATE_ELEMENTS",
+                                   "UNDECLARED_EXTENSION",
+                                   "UNEXPECTED_EXTENSION_OBJECT",
+                                   "NON_REQUIRED_EXTENSION",
+                                   "UNUSED_EXTENSION_REQUIRED",
+                                   "INVALID_URI",
+                                   "BUFFER_DATA_URI_MIME_TYPE_INVALID",
+                                   "IMAGE_MIME_TYPE_INVALID",
+                                   "IMAGE_NON_ENABLED_MIME_TYPE",
+                                   "UNKNOWN_ASSET_MAJOR_VERSION",
+                                   "ASSET_MIN_VERSION_GREATER_THAN_VERSION",
+                                   "CAMERA_ZFAR_LEQUAL_ZNEAR",
+                                   "CAMERA_XMAG_YMAG_ZERO",
+                                   "KHR_LIGHTS_PUNCTUAL_LIGHT_SPOT_ANGLES",
+                                   "KHR_MATERIALS_VARIANTS_NON_UNIQUE_VARIANT",
+                                   "KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_NODE",
+                                   "KHR_ANIMATION_POINTER_ANIMATION_CHANNEL_TARGET_PATH"};
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::uint32_t u32(const std::string& s, std::size_t at) {
+  std::uint32_t v = 0;
+  std::memcpy(&v, s.data() + at, sizeof v);
+  return v; // GLB is little-endian, as are the machines irad runs on
+}
+
+// The document's JSON; nullopt when it has none that parses.
+std::optional<json> load_document(const fs::path& p) {
+  std::string text = read_file(p);
+  if (p.extension() == ".glb") {
+    if (text.size() < 20 || u32(text, 16) != 0x4E4F534Au) return std::nullopt;
+    const std::size_t length = u32(text, 12);
+    if (length > text.size() - 20) return std::nullopt;
+    text = text.substr(20, length);
+  }
+  json doc = json::parse(text, nullptr, false);
+  if (doc.is_discarded()) return std::nullopt;
+  return doc;
+}
+
+// Pointers related as equal or as ancestor and descendant.
+bool related(const std::string& a, const std::string& b) {
+  const auto under = [](const std::string& top, const std::string& p) {
+    return p.starts_with(top) &&
+           (top.empty() || top == "/" || p.size() == top.size() || p[top.size()] == '/');
+  };
+  return under(a, b) || under(b, a);
+}
+
+struct Conformance {
+  int valid = 0, valid_clean = 0, in_scope = 0, caught = 0;
+  std::vector<std::string> false_alarms, misses;
+};
+
+void check_file(const fs::path& doc_path, const json& report, Conformance& c) {
+  const std::optional<json> doc = load_document(doc_path);
+  if (!doc) return;
+  std::vector<irad::gltf::Issue> issues;
+  irad::gltf::check_schema(*doc, issues);
+  const std::string name = fs::relative(doc_path, kConformance).string();
+  if (report["issues"]["numErrors"] == 0) {
+    ++c.valid;
+    if (issues.empty())
+      ++c.valid_clean;
+    else
+      c.false_alarms.push_back(name + ": " + issues[0].code + " at " + issues[0].pointer);
+    return;
+  }
+  std::vector<std::string> expected;
+  for (const json& m : report["issues"]["messages"])
+    if (m["severity"] == 0 && kScope.count(m["code"].get<std::string>()) != 0)
+      expected.push_back(m.value("pointer", ""));
+  if (expected.empty()) return;
+  ++c.in_scope;
+  for (const auto& issue : issues)
+    for (const auto& p : expected)
+      if (related(issue.pointer, p)) {
+        ++c.caught;
+        return;
+      }
+  c.misses.push_back(name + " (expected " + expected[0] + ")");
+}
+
+TEST(GltfValidateSchema, ConformanceFiles) {
+  ASSERT_TRUE(fs::is_directory(kConformance)) << kConformance;
+  Conformance c;
+  for (const auto& entry : fs::recursive_directory_iterator(kConformance)) {
+    const fs::path& p = entry.path();
+    if (p.extension() != ".gltf" && p.extension() != ".glb") continue;
+    const fs::path report_path = p.string() + ".report.json";
+    if (!fs::exists(report_path)) continue;
+    const json report = json::parse(read_file(report_path), nullptr, false);
+    if (!report.is_object()) continue;
+    check_file(p, report, c);
+  }
+  std::printf("check_schema: valid files without issues %d / %d; invalid files in scope caught "
+              "%d / %d\n",
+              c.valid_clean, c.valid, c.caught, c.in_scope);
+  for (const auto& f : c.false_alarms) std::printf("  false alarm: %s\n", f.c_str());
+  for (const auto& m : c.misses) std::printf("  missed: %s\n", m.c_str());
+  EXPECT_GT(c.valid, 100);
+  EXPECT_TRUE(c.false_alarms.empty());
+  EXPECT_GT(c.in_scope, 100);
+  EXPECT_TRUE(c.misses.empty());
+}
+
+// Every value of a document replaced by values of every JSON type (and a non-finite number):
+// check_schema must not throw.
+TEST(GltfValidateSchema, NeverThrowsOnMutatedDocuments) {
+  const std::array<json, 8> odd{json(nullptr),
+                                json(-1),
+                                json(1.5),
+                                json("x"),
+                                json::array(),
+                                json::object(),
+                                json(std::numeric_limits<double>::infinity()),
+                                json::array({-1, "x", nullptr})};
+  int documents = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(kConformance)) {
+    const fs::path& file = entry.path();
+    if (file.extension() != ".gltf" || entry.file_size() > 2048) continue;
+    const std::optional<json> doc = load_document(file);
+    if (!doc || !doc->is_object()) continue;
+    const json flat = doc->flatten();
+    std::set<std::string> pointers;
+    for (auto it = flat.begin(); it != flat.end(); ++it) {
+      // Every leaf and every ancestor of it.
+      std::string p = it.key();
+      while (!p.empty()) {
+        pointers.insert(p);
+        p = p.substr(0, p.rfind('/'));
+      }
+    }
+    for (const auto& p : pointers)
+      for (const json& v : odd) {
+        json mutated = *doc;
+        mutated[json::json_pointer(p)] = v;
+        std::vector<irad::gltf::Issue> issues;
+        EXPECT_NO_THROW(irad::gltf::check_schema(mutated, issues)) << file << " " << p;
+        ++documents;
+      }
+  }
+  EXPECT_GT(documents, 100);
+}
+
+TEST(GltfValidateSchema, NonObjectDocuments) {
+  for (const json& v : {json(nullptr), json(1), json::array(), json("gltf")}) {
+    std::vector<irad::gltf::Issue> issues;
+    irad::gltf::check_schema(v, issues);
+    ASSERT_EQ(issues.size(), 1u);
+    EXPECT_EQ(issues[0].code, "TYPE_MISMATCH");
+  }
+}
+
+} // namespace
