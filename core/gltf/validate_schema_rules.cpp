@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <numbers>
+#include <set>
 
 namespace irad::gltf::schema {
 namespace {
@@ -176,22 +177,18 @@ void rule_primitive_variants(const nlohmann::json& obj, const std::string& ptr, 
   if (mappings == nullptr || !mappings->is_array()) return;
   const nlohmann::json* ext = member(ctx.root, "extensions");
   const bool defined = ext != nullptr && has(*ext, "KHR_materials_variants");
-  std::vector<const nlohmann::json*> seen;
+  std::set<nlohmann::json> seen; // the variants of the mappings before this one
   for (std::size_t i = 0; i < mappings->size(); ++i) {
     const std::string at = child(child(ptr, "mappings"), i);
     if (!defined)
       ctx.add(at, "UNSATISFIED_DEPENDENCY", "needs the document's KHR_materials_variants object");
     const nlohmann::json* variants = member((*mappings)[i], "variants");
     if (variants == nullptr || !variants->is_array()) continue;
-    const std::size_t before = seen.size();
-    for (std::size_t j = 0; j < variants->size(); ++j) {
-      const nlohmann::json& v = (*variants)[j];
-      const auto same = [&](const nlohmann::json* s) { return *s == v; };
-      if (std::any_of(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(before), same))
+    for (std::size_t j = 0; j < variants->size(); ++j)
+      if (seen.count((*variants)[j]) != 0)
         ctx.add(child(child(at, "variants"), j), "KHR_MATERIALS_VARIANTS_NON_UNIQUE_VARIANT",
                 "this variant is already mapped for this primitive");
-      seen.push_back(&v);
-    }
+    seen.insert(variants->begin(), variants->end());
   }
 }
 
