@@ -31,6 +31,7 @@ const fs::path kConformance =
 
 // The codes check_schema reports (the JSON-only errors of the validator).
 const std::set<std::string> kScope{"UNDEFINED_PROPERTY",
+                                   "INVALID_INDEX",
                                    "TYPE_MISMATCH",
                                    "ARRAY_TYPE_MISMATCH",
                                    "VALUE_NOT_IN_RANGE",
@@ -213,6 +214,61 @@ TEST(GltfValidateSchema, NonObjectDocuments) {
     ASSERT_EQ(issues.size(), 1u);
     EXPECT_EQ(issues[0].code, "TYPE_MISMATCH");
   }
+}
+
+} // namespace
+
+namespace {
+
+// The issues of a document given as JSON text, as "CODE pointer" lines.
+std::vector<std::string> issues_of(const char* text) {
+  std::vector<irad::gltf::Issue> issues;
+  irad::gltf::check_schema(json::parse(text), issues);
+  std::vector<std::string> out;
+  for (const auto& i : issues) out.push_back(i.code + " " + i.pointer);
+  return out;
+}
+
+using Lines = std::vector<std::string>;
+
+TEST(GltfValidateSchema, IndicesAndIntegers) {
+  // Whole numbers written as floats are integers; negative or fractional indices are not.
+  EXPECT_EQ(issues_of(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4.0}],
+                          "bufferViews":[{"buffer":0.0,"byteLength":4}]})"),
+            Lines{});
+  EXPECT_EQ(
+      issues_of(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4}],
+                          "bufferViews":[{"buffer":-1,"byteLength":4,"byteStride":6},
+                                         {"buffer":0.5,"byteLength":4}]})"),
+      (Lines{"INVALID_INDEX /bufferViews/0/buffer", "VALUE_MULTIPLE_OF /bufferViews/0/byteStride",
+             "TYPE_MISMATCH /bufferViews/1/buffer"}));
+  EXPECT_EQ(issues_of(R"({"asset":{"version":"2.0"},"nodes":[{"children":[0,-1,"a",0]}]})"),
+            (Lines{"INVALID_INDEX /nodes/0/children/1", "INVALID_INDEX /nodes/0/children/2",
+                   "DUPLICATE_ELEMENTS /nodes/0/children/3"}));
+}
+
+TEST(GltfValidateSchema, Extensions) {
+  // A known extension outside extensionsUsed is only undeclared; declared and misplaced, it is
+  // unexpected; an unknown declared one is accepted.
+  EXPECT_EQ(issues_of(R"({"asset":{"version":"2.0"},"samplers":[{"extensions":{
+                          "KHR_materials_unlit":{}}}]})"),
+            Lines{"UNDECLARED_EXTENSION /samplers/0/extensions/KHR_materials_unlit"});
+  EXPECT_EQ(issues_of(R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_materials_unlit",
+                          "EXT_whatever"],"samplers":[{"extensions":{"KHR_materials_unlit":{},
+                          "EXT_whatever":{}}}]})"),
+            Lines{"UNEXPECTED_EXTENSION_OBJECT /samplers/0/extensions/KHR_materials_unlit"});
+}
+
+TEST(GltfValidateSchema, HugeArraysStayFast) {
+  // 100000 node indices, 0 and 1 alternating: uniqueness must not be quadratic.
+  json doc = json::parse(R"({"asset":{"version":"2.0"},"nodes":[{}]})");
+  json children = json::array();
+  for (int i = 0; i < 100000; ++i) children.push_back(i % 2);
+  doc["scenes"] = json::array({json{{"nodes", children}}});
+  std::vector<irad::gltf::Issue> issues;
+  irad::gltf::check_schema(doc, issues);
+  // Every 1 is unresolved; every element but the first two repeats an earlier one.
+  EXPECT_EQ(issues.size(), 50000u + 99998u);
 }
 
 } // namespace

@@ -72,6 +72,10 @@ void out_of_range(const nlohmann::json& v, const std::string& ptr, Ctx& ctx) {
   ctx.add(ptr, "VALUE_NOT_IN_RANGE", "value " + v.dump() + " is out of range");
 }
 
+void invalid_index(const std::string& ptr, Ctx& ctx) {
+  ctx.add(ptr, "INVALID_INDEX", "an index must be a non-negative integer");
+}
+
 bool pattern_matches(std::string_view s, Pattern pattern) {
   if (pattern == Pattern::Version) {
     const std::size_t dot = s.find('.');
@@ -125,7 +129,7 @@ bool check_scalar(const nlohmann::json& v, const Prop& p, Kind kind, const std::
     std::int64_t n = 0;
     if (!integer_of(v, n)) return false;
     if (n < 0) {
-      out_of_range(v, ptr, ctx);
+      invalid_index(ptr, ctx);
       return true;
     }
     const std::optional<std::size_t> size = target_size(p.target, ctx);
@@ -185,6 +189,14 @@ void check_array(const nlohmann::json& v, const Prop& p, const std::string& ptr,
     } else {
       ok = check_scalar(e, p, p.item, at, ctx);
     }
+    if (!ok && p.item == Kind::Index) {
+      invalid_index(at, ctx); // as the validator: per element, not ARRAY_TYPE_MISMATCH
+      continue;
+    }
+    if (!ok && p.item == Kind::String) {
+      ctx.add(at, "ARRAY_TYPE_MISMATCH", "expected a string, found " + std::string(type_name(e)));
+      continue;
+    }
     if (!ok && !type_reported) {
       ctx.add(ptr, "ARRAY_TYPE_MISMATCH",
               "an element is " + std::string(type_name(e)) + ", not " +
@@ -211,9 +223,13 @@ void check_value(const nlohmann::json& v, const Prop& p, const std::string& ptr,
 // One extension object found at `location`.
 void check_extension(const std::string& name, const nlohmann::json& v, std::string_view location,
                      const std::string& ptr, Ctx& ctx) {
-  if (!v.is_object()) return type_mismatch(v, "an object", ptr, ctx);
+  if (!v.is_object()) type_mismatch(v, "an object", ptr, ctx);
+  // As the validator: an extension not in extensionsUsed is not loaded, so nothing more is
+  // checked for it.
   if (!ctx.used(name))
-    ctx.add(ptr, "UNDECLARED_EXTENSION", "extension '" + name + "' is not in extensionsUsed");
+    return ctx.add(ptr, "UNDECLARED_EXTENSION",
+                   "extension '" + name + "' is not in extensionsUsed");
+  if (!v.is_object()) return;
   bool known = false;
   for (const Extension& e : extensions()) {
     if (e.name != name) continue;
@@ -289,7 +305,12 @@ void check_object(const nlohmann::json& obj, const Schema& s, const std::string&
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       if (it.key() == "extensions" || it.key() == "extras") continue;
       ++members;
-      check_value(it.value(), *s.each, child(ptr, it.key()), ctx);
+      const std::string at = child(ptr, it.key());
+      std::int64_t n = 0;
+      if (s.each->kind == Kind::Index && !integer_of(it.value(), n))
+        invalid_index(at, ctx);
+      else
+        check_value(it.value(), *s.each, at, ctx);
     }
     if (members < static_cast<std::size_t>(s.min_members))
       ctx.add(ptr, "EMPTY_ENTITY", "must not be empty");
