@@ -122,5 +122,6 @@ void rule_primitive_variants(const nlohmann::json& obj, const std::string& ptr, 
 void rule_ior(const nlohmann::json& obj, const std::string& ptr, Ctx& ctx);
 void rule_buffer(const nlohmann::json& obj, const std::string& ptr, Ctx& ctx);
 void rule_image(const nlohmann::json& obj, const std::string& ptr, Ctx& ctx);
+void rule_texture(const nlohmann::json& obj, const std::string& ptr, Ctx& ctx);
 
 } // namespace irad::gltf::schema

@@ -226,7 +226,8 @@ constexpr std::array skin_props{index("inverseBindMatrices", "/accessors"),
 constexpr Schema skin{.location = "skin", .props = skin_props};
 constexpr std::array texture_props{index("sampler", "/samplers"), index("source", "/images"),
                                    name_prop};
-constexpr Schema texture_schema{.location = "texture", .props = texture_props};
+constexpr Schema texture_schema{
+    .location = "texture", .props = texture_props, .rule = rule_texture};
 
 // The document.
 constexpr Prop extension_names(std::string_view name) {

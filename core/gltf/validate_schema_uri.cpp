@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <initializer_list>
 
 namespace irad::gltf::schema {
 namespace {
@@ -125,7 +126,45 @@ std::string image_type(const nlohmann::json& obj, const DataUri* data, std::stri
   return "";
 }
 
+// The MIME type the document declares for image `index`: its mimeType, else its data URI's
+// media type; "" when it declares none (or there is no such image).
+std::string declared_type(const nlohmann::json& root, const nlohmann::json& index) {
+  const nlohmann::json* images = member(root, "images");
+  if (!index.is_number_unsigned() || images == nullptr || !images->is_array() ||
+      index.get<std::uint64_t>() >= images->size())
+    return "";
+  const nlohmann::json& image = (*images)[index.get<std::size_t>()];
+  if (const std::string* mime = string_member(image, "mimeType")) return *mime;
+  DataUri data;
+  const std::string* uri = string_member(image, "uri");
+  return uri != nullptr && parse_data_uri(*uri, data) == Parsed::Data ? data.media : "";
+}
+
+// `holder`'s source must be an image of one of `allowed` types.
+void check_source(const nlohmann::json& holder, std::initializer_list<std::string_view> allowed,
+                  const std::string& ptr, Ctx& ctx) {
+  const nlohmann::json* source = member(holder, "source");
+  if (source == nullptr) return;
+  const std::string type = declared_type(ctx.root, *source);
+  if (!type.empty() && std::find(allowed.begin(), allowed.end(), type) == allowed.end())
+    ctx.add(child(ptr, "source"), "TEXTURE_INVALID_IMAGE_MIME_TYPE",
+            "an image of type " + type + " cannot be this texture's source");
+}
+
 } // namespace
+
+void rule_texture(const nlohmann::json& obj, const std::string& ptr, Ctx& ctx) {
+  check_source(obj, {"image/jpeg", "image/png"}, ptr, ctx);
+  const nlohmann::json* ext = member(obj, "extensions");
+  if (ext == nullptr) return;
+  const std::string at = child(ptr, "extensions");
+  if (const nlohmann::json* webp = member(*ext, "EXT_texture_webp");
+      webp != nullptr && ctx.used("EXT_texture_webp"))
+    check_source(*webp, {"image/webp"}, child(at, "EXT_texture_webp"), ctx);
+  if (const nlohmann::json* basisu = member(*ext, "KHR_texture_basisu");
+      basisu != nullptr && ctx.used("KHR_texture_basisu"))
+    check_source(*basisu, {"image/ktx2"}, child(at, "KHR_texture_basisu"), ctx);
+}
 
 void rule_buffer(const nlohmann::json& obj, const std::string& ptr, Ctx& ctx) {
   const std::string* uri = string_member(obj, "uri");
