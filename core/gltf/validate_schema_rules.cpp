@@ -185,10 +185,11 @@ void rule_primitive_variants(const nlohmann::json& obj, const std::string& ptr, 
     const nlohmann::json* variants = member((*mappings)[i], "variants");
     if (variants == nullptr || !variants->is_array()) continue;
     for (std::size_t j = 0; j < variants->size(); ++j)
-      if (seen.count((*variants)[j]) != 0)
+      if ((*variants)[j].is_number_integer() && seen.count((*variants)[j]) != 0)
         ctx.add(child(child(at, "variants"), j), "KHR_MATERIALS_VARIANTS_NON_UNIQUE_VARIANT",
                 "this variant is already mapped for this primitive");
-    seen.insert(variants->begin(), variants->end());
+    for (const nlohmann::json& v : *variants)
+      if (v.is_number_integer()) seen.insert(v); // numbers only: no NaN in the ordering
   }
 }
 
