@@ -1,9 +1,10 @@
 #pragma once
 // Internal to core/gltf/validate_schema*.cpp: the glTF 2.0 JSON schema (and the JSON schemas of
 // the extensions irad knows) as const tables, and the walker's context. A Schema describes one
-// object type: its properties (JSON type, required, numeric bounds, enums, array lengths, the
-// array an index refers to) and an optional rule for what the tables cannot say (dependencies,
-// exactly-one-of, camera planes, URIs).
+// object type: its properties (JSON type, required, numeric bounds, array lengths and
+// uniqueness, the array an index refers to, where its extensions may be) and an optional rule for
+// what the tables cannot say (dependencies, exactly-one-of, camera planes, URIs). Pointers and
+// codes are the validator's; messages are irad's.
 #include "core/gltf/validate_parts.h"
 
 #include <climits>
