@@ -3,7 +3,7 @@
 // probed copy exactly the errors (code and pointer) of the file's report.
 // Usage: node tests/conformance_probe_check.js SUITE PROBED_COPY
 // PROBED_COPY: the folder test_conformance.cpp copied SUITE into and probed in place
-// ($TEST_TMPDIR/irad_conformance). Files the probe left as they are (byte-identical) are skipped.
+// ($IRAD_CONFORMANCE_OUT). Files the probe left as they are (byte-identical) are skipped.
 // Exit code 1 when a probed file's errors differ, outside the listed exceptions.
 'use strict';
 const fs = require('fs');

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -27,6 +28,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -186,10 +188,19 @@ void load(Case& c) {
   c.messages.insert(c.messages.end(), warnings.begin(), warnings.end());
 }
 
-// Copies the suite into a temporary folder once (relative URIs keep working), probes each file
-// in place there and loads it.
+// The folder of the probed copies: $IRAD_CONFORMANCE_OUT, kept (tests/conformance_probe_check.js
+// validates it), else a temporary one of this process (ctest runs each test in its own process,
+// several at once), removed once loaded.
+fs::path copies_folder() {
+  const char* out = std::getenv("IRAD_CONFORMANCE_OUT");
+  if (out != nullptr && *out != '\0') return out;
+  return fs::path(::testing::TempDir()) / ("irad_conformance_" + std::to_string(::getpid()));
+}
+
+// Copies the suite into a folder once (relative URIs keep working), probes each file in place
+// there and loads it.
 std::vector<Case> run_suite() {
-  const fs::path dir = fs::path(::testing::TempDir()) / "irad_conformance";
+  const fs::path dir = copies_folder();
   fs::remove_all(dir);
   fs::copy(kSuite, dir, fs::copy_options::recursive);
   std::vector<Case> cases;
@@ -218,6 +229,7 @@ std::vector<Case> run_suite() {
     load(c);
     cases.push_back(std::move(c));
   }
+  if (std::getenv("IRAD_CONFORMANCE_OUT") == nullptr) fs::remove_all(dir);
   std::sort(cases.begin(), cases.end(),
             [](const Case& a, const Case& b) { return a.name < b.name; });
   return cases;

@@ -27,6 +27,6 @@ node scripts/validate_gltf.js data/*.gltf "$out"/*.gltf
 # The conformance test's probe repairs nothing: its probed copies keep their reports' errors.
 suite=../shared/conformance/gltf-validator/test
 if [ -d "$suite" ]; then
-  TEST_TMPDIR=$out "$tests" --gtest_brief=1 --gtest_filter='Conformance.Summary'
-  node tests/conformance_probe_check.js "$suite" "$out/irad_conformance"
+  IRAD_CONFORMANCE_OUT=$out/conformance "$tests" --gtest_brief=1 --gtest_filter='Conformance.Summary'
+  node tests/conformance_probe_check.js "$suite" "$out/conformance"
 fi
