@@ -2,9 +2,12 @@
 
 #include "core/error.h"
 
+#include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
+#include <glm/glm.hpp>
 
 namespace irad::apps {
 
@@ -34,6 +37,65 @@ void require_writable(const std::string& path, const char* option) {
   const fs::file_status status = fs::status(path, ec);
   if (fs::exists(status) && !fs::is_regular_file(status))
     throw Error(path, option, "it exists and is not a regular file");
+}
+
+void add_look_at_options(CLI::App& cmd, LookAtArgs& args) {
+  cmd.add_option("--look-from", args.from, "Own camera: its position X,Y,Z (with --look-at)");
+  cmd.add_option("--look-at", args.at, "Own camera: the point X,Y,Z it looks at");
+  cmd.add_option("--up", args.up, "Own camera: the up direction X,Y,Z (default: 0,1,0)");
+  cmd.add_option("--yfov", args.yfov, "Own camera: vertical field of view in degrees (39.6)");
+}
+
+namespace {
+
+glm::vec3 parse_vec3(const std::string& text, const char* option) {
+  float x = 0, y = 0, z = 0;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &x, &y, &z, &extra) != 3 || !std::isfinite(x) ||
+      !std::isfinite(y) || !std::isfinite(z))
+    throw Error("", option, fmt::format("'{}' is not X,Y,Z (three finite numbers)", text));
+  return {x, y, z};
+}
+
+float parse_yfov_degrees(const std::string& text) {
+  if (text.empty()) return 39.6f;
+  float deg = 0;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%f%c", &deg, &extra) != 1)
+    throw Error("", "--yfov", fmt::format("'{}' is not a number of degrees", text));
+  if (!(deg > 0.0f && deg < 180.0f))
+    throw Error("", "--yfov", fmt::format("must be in (0, 180) degrees, got {}", text));
+  return deg;
+}
+
+} // namespace
+
+std::optional<Camera> parse_look_at(const LookAtArgs& args, const std::string& camera) {
+  if (args.from.empty() && args.at.empty() && args.up.empty() && args.yfov.empty())
+    return std::nullopt;
+  if (args.from.empty())
+    throw Error("", "--look-from", "missing (needed by --look-at, --up, --yfov)");
+  if (args.at.empty()) throw Error("", "--look-at", "missing (needed by --look-from)");
+  if (!camera.empty()) throw Error("", "--look-from", "cannot be combined with --camera");
+  const glm::vec3 from = parse_vec3(args.from, "--look-from");
+  const glm::vec3 at = parse_vec3(args.at, "--look-at");
+  const glm::vec3 up = args.up.empty() ? glm::vec3(0, 1, 0) : parse_vec3(args.up, "--up");
+  const float yfov = parse_yfov_degrees(args.yfov);
+  if (from == at) throw Error("", "--look-at", "equals --look-from (no view direction)");
+  const glm::vec3 z = glm::normalize(from - at);
+  const glm::vec3 side = glm::cross(up, z);
+  if (!(glm::length(side) > 1e-6f * glm::length(up)))
+    throw Error("", "--up",
+                fmt::format("'{}' is zero or parallel to the view direction",
+                            args.up.empty() ? "0,1,0 (the default)" : args.up));
+  const glm::vec3 x = glm::normalize(side);
+  const glm::vec3 y = glm::cross(z, x);
+  Camera c;
+  c.name = "--look-from";
+  c.camera_to_world =
+      glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), glm::vec4(from, 1));
+  c.yfov = glm::radians(yfov);
+  return c;
 }
 
 } // namespace irad::apps

@@ -1,9 +1,15 @@
 #pragma once
 // Option values shared by the subcommands.
+#include "core/scene.h"
 #include "raster/raster_renderer.h"
 
+#include <optional>
 #include <string>
 #include <utility>
+
+namespace CLI {
+class App;
+}
 
 namespace irad::apps {
 
@@ -14,5 +20,21 @@ GlBackend parse_backend(const std::string& name);
 // Throws irad::Error naming `option` unless `path` can be written: its folder exists and it is
 // not something other than a regular file (a folder, a device).
 void require_writable(const std::string& path, const char* option);
+
+// The command line's own camera, as given (empty: not given):
+// --look-from X,Y,Z --look-at X,Y,Z [--up X,Y,Z] [--yfov DEG].
+struct LookAtArgs {
+  std::string from, at, up, yfov;
+};
+// Adds the four options to a subcommand.
+void add_look_at_options(CLI::App& cmd, LookAtArgs& args);
+// nullopt when none of the four is given; else their camera, named "--look-from": a right-handed
+// frame looking down -z with y up (z = normalize(from - at), x = normalize(cross(up, z)),
+// y = cross(z, x)), up (0,1,0) and yfov 39.6 degrees (Blender's 50 mm lens on 36 mm) unless
+// given, no aspect ratio, znear 0 (fitted to the scene). Throws irad::Error with one line naming
+// the option: a value that is not three finite numbers (or a number), --look-from without
+// --look-at or the reverse (or --up/--yfov without them), from == at, up zero or parallel to the
+// view direction, yfov outside (0, 180) degrees, or `camera` (the --camera value) not empty.
+std::optional<Camera> parse_look_at(const LookAtArgs& args, const std::string& camera);
 
 } // namespace irad::apps

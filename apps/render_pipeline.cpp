@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
+#include <memory>
 
 namespace irad::apps {
 
@@ -66,6 +67,15 @@ const Camera& select_camera(const Scene& scene, const std::string& which) {
     names += fmt::format("{}{} '{}'", i ? ", " : "", i, scene.cameras[i].name);
   }
   throw Error(scene.source, "--camera", fmt::format("no camera '{}' (have: {})", which, names));
+}
+
+void use_own_camera(Scene& scene, const Camera& camera) {
+  scene.cameras = {camera};
+  if (scene.animation && !scene.animation->camera_node.empty()) {
+    auto animation = std::make_shared<Animation>(*scene.animation);
+    animation->camera_node.clear(); // Animation::pose then leaves the camera where it is
+    scene.animation = std::move(animation);
+  }
 }
 
 std::pair<int, int> image_size(const Camera& camera, std::optional<std::pair<int, int>> size) {
@@ -126,6 +136,7 @@ RenderResult render_scene(const RenderRequest& request, Log& log) {
   const auto t0 = Clock::now();
   r.scene = load_gltf(request.scene_path, log, request.limits);
   if (request.time) pose_at(r.scene, *request.time, log);
+  if (request.own_camera) use_own_camera(r.scene, *request.own_camera);
   r.camera = select_camera(r.scene, request.camera);
   const auto [width, height] = image_size(r.camera, request.size);
   r.view = make_view(r.camera, r.scene.bounds, width, height);

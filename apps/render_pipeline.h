@@ -25,7 +25,8 @@ struct RenderRequest {
   std::string scene_path;
   std::optional<std::pair<int, int>> size; // WxH; default from the camera's aspect, 512 high
   std::string camera;                      // name or index; empty: the first camera
-  std::optional<float> time; // seconds: pose the scene's glTF animation (else the rest pose)
+  std::optional<Camera> own_camera; // --look-from...: replaces the file's cameras (use_own_camera)
+  std::optional<float> time;        // seconds: pose the scene's glTF animation (else the rest pose)
   WalkOptions walk;
   RasterOptions raster;           // clamp and shadow resolution (clamp also for rt-vpl)
   PathTracerOptions pt;           // spp, seed, threads
@@ -62,6 +63,8 @@ RenderResult render_scene(const RenderRequest& request, Log& log);
 
 // The camera selected by name or index (throws irad::Error listing the choices).
 const Camera& select_camera(const Scene& scene, const std::string& which);
+// Replaces the scene's cameras by `camera`, which the animation (if any) does not move.
+void use_own_camera(Scene& scene, const Camera& camera);
 // Image size: the request's, else 512 high with the camera's aspect (512x512 without one).
 std::pair<int, int> image_size(const Camera& camera, std::optional<std::pair<int, int>> size);
 

@@ -12,6 +12,7 @@ packages=(
   python3-glad gnuplot-nox
   libglfw3-dev xvfb xauth # irad walkthrough --window, and its test under xvfb-run
   clang-14 libclang-rt-14-dev # the fuzzer: cmake --preset fuzz, fuzz/run.sh (libFuzzer, ASan)
+  nodejs npm # the Khronos glTF-Validator on the files we write (scripts/validate_gltf.js)
 )
 
 missing=()
@@ -30,3 +31,10 @@ if [ ! -f build/build.ninja ]; then
   cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 fi
 cmake --build build --parallel "$(nproc)"
+
+# The Khronos glTF-Validator (npm; only pre-releases of 2.0 are published, hence the exact
+# version) for ctest's gltf_validator (scripts/validate_gltf.js). Needs the npm registry once.
+if [ ! -d build/npm/node_modules/gltf-validator ]; then
+  echo "setup: installing the npm package gltf-validator into build/npm" >&2
+  npm install --prefix build/npm --no-audit --no-fund gltf-validator@2.0.0-dev.3.10
+fi

@@ -8,6 +8,7 @@
 #include "core/image_io.h"
 #include "core/scene_builder.h"
 #include "core/view.h"
+#include "keep_written_gltf.h"
 #include "walk/path_tracer.h"
 #include "walk/ray_scene.h"
 
@@ -23,6 +24,7 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace fs = std::filesystem;
 
@@ -227,8 +229,11 @@ void expect_same_scene(const Scene& original, const Scene& loaded) {
   }
 }
 
-Scene round_trip(const Scene& scene, const fs::path& file) {
+// Writes the scene to FILE (a copy kept as KEEP_AS for the validator, keep_written_gltf.h) and
+// loads it back, failing on any loader warning.
+Scene round_trip(const Scene& scene, const fs::path& file, const std::string& keep_as) {
   write_gltf(scene, file);
+  test::keep_written_gltf(file, keep_as);
   EXPECT_FALSE(fs::exists(file.string() + ".tmp"));
   Log log([](const std::string& w) { ADD_FAILURE() << "loader warning: " << w; });
   return load_gltf(file, log);
@@ -236,10 +241,14 @@ Scene round_trip(const Scene& scene, const fs::path& file) {
 
 TEST(AnalyticScenes, GltfRoundTripOfTheAnalyticScenes) {
   const TempFolder dir;
-  for (const AnalyticScene& a : {integrating_sphere(2.5, 0.7, 3, 4.0), furnace_box(3.0, 0.4, 0.5),
-                                 square_light(SquareLight{})}) {
+  const std::pair<const char*, AnalyticScene> scenes[] = {
+      {"integrating_sphere", integrating_sphere(2.5, 0.7, 3, 4.0)},
+      {"furnace_box", furnace_box(3.0, 0.4, 0.5)},
+      {"square_light", square_light(SquareLight{})}};
+  for (const auto& [name, a] : scenes) {
     SCOPED_TRACE(a.scene.source);
-    expect_same_scene(a.scene, round_trip(a.scene, dir / "scene.gltf"));
+    expect_same_scene(a.scene, round_trip(a.scene, dir / "scene.gltf",
+                                          std::string("round_trip_") + name + ".gltf"));
   }
 }
 
@@ -284,7 +293,7 @@ TEST(AnalyticScenes, GltfRoundTripOfEverythingTheWriterWrites) {
   s.lights = {point, spot, down, sun};
   finish(s);
   const fs::path file = dir / "everything.gltf";
-  expect_same_scene(s, round_trip(s, file));
+  expect_same_scene(s, round_trip(s, file, "round_trip_everything.gltf"));
   const std::string text = read_text(file);
   EXPECT_NE(text.find("KHR_materials_emissive_strength"), std::string::npos);
   EXPECT_NE(text.find("data:application/octet-stream;base64,"), std::string::npos);

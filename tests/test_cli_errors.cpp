@@ -1,11 +1,16 @@
 // Bad input through the real command line: one line on stderr naming the file and the element,
 // exit code 1, no output file written.
+#include "core/gltf/loader.h"
+#include "core/image_io.h"
+#include "core/view.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -190,6 +195,74 @@ TEST_F(CliErrors, OutputFolderMissingOrBadType) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("x.jpg"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "x.jpg"));
+}
+
+// --look-from/--look-at/--up/--yfov: one line naming the option, nothing written.
+TEST_F(CliErrors, LookAtCamera) {
+  const std::string box = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf ";
+  expect_error(box + "--look-from 0,0,1", {"--look-at", "missing"});
+  expect_error(box + "--look-at 0,0,1", {"--look-from", "missing"});
+  expect_error(box + "--up 0,0,1", {"--look-from", "missing"});
+  expect_error(box + "--look-from 1,2 --look-at 0,0,0", {"--look-from", "X,Y,Z"});
+  expect_error(box + "--look-from 0,0,1 --look-at 0,0,x", {"--look-at", "X,Y,Z"});
+  expect_error(box + "--look-from 0,0,1 --look-at 0,0,0 --up 0,nan,1", {"--up", "X,Y,Z"});
+  expect_error(box + "--look-from 1,2,3 --look-at 1,2,3", {"--look-at", "equals --look-from"});
+  expect_error(box + "--look-from 0,1,0 --look-at 0,0,0", {"--up", "parallel"});
+  expect_error(box + "--look-from 0,0,1 --look-at 0,0,0 --up 0,0,-2", {"--up", "parallel"});
+  expect_error(box + "--look-from 0,0,1 --look-at 0,0,0 --up 0,0,0", {"--up", "zero"});
+  for (const char* yfov : {"0", "180", "-5", "200", "wide"})
+    expect_error(box + "--look-from 0,0,1 --look-at 0,0,0 --yfov " + yfov, {"--yfov"});
+  expect_error(box + "--camera 0 --look-from 0,0,1 --look-at 0,0,0", {"--look-from", "--camera"});
+  const CliRun r = irad("walkthrough " + box + "-o '" + (dir_ / "f%d.png").string() +
+                        "' --frames 0:1 --camera 0 --look-from 0,0,1 --look-at 0,0,0");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("--look-from: cannot be combined with --camera"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "f0.png"));
+}
+
+// A --look-from camera placed where the file's camera is gives the very same image as --camera:
+// the Cornell box's camera (at (0.278, 0.273, -0.8), turned 180 degrees about y, so looking down
+// +z) with the default yfov of 39.6 degrees, no aspect ratio and the near plane irad fits.
+TEST_F(CliErrors, LookAtCameraEqualsTheFilesCamera) {
+  // glTF requires znear; the file's is the near plane make_view fits for a camera without one.
+  irad::Log quiet([](const std::string&) {});
+  const irad::Scene loaded = irad::load_gltf(IRAD_SOURCE_DIR "/data/cornell_box.gltf", quiet);
+  irad::Camera fitted = loaded.cameras.at(0);
+  fitted.znear = 0.0f;
+  const float znear = irad::make_view(fitted, loaded.bounds, 24, 24).znear;
+  cornell_["cameras"][0]["perspective"] = {{"yfov", static_cast<double>(glm::radians(39.6f))},
+                                           {"znear", static_cast<double>(znear)}};
+  const std::string box = scene("box.gltf", cornell_).string();
+  const std::string common = " --estimator rt-vpl --paths 16 --size 24x24 --quiet";
+  const fs::path by_name = dir_ / "camera.exr", by_look = dir_ / "look.exr";
+  CliRun r = irad("render " + box + " -o '" + by_name.string() + "' --camera 0" + common);
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = irad("render " + box + " -o '" + by_look.string() +
+           "' --look-from 0.278,0.273,-0.8 --look-at 0.278,0.273,0" + common);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const irad::Image a = irad::read_exr(by_name), b = irad::read_exr(by_look);
+  ASSERT_EQ(a.pixels().size(), b.pixels().size());
+  EXPECT_TRUE(a.pixels() == b.pixels()) << "the images differ";
+  double sum = 0.0;
+  for (const auto& p : a.pixels()) sum += p.r;
+  EXPECT_GT(sum, 0.0) << "a black image proves nothing";
+  // A different viewpoint gives a different image (the option is not ignored).
+  r = irad("render " + box + " -o '" + by_look.string() +
+           "' --look-from 0.278,0.273,-0.8 --look-at 0.3,0.2,0 --up 0.1,1,0" + common);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(a.pixels() == irad::read_exr(by_look).pixels());
+}
+
+// irad walkthrough with its own camera renders (replacing the file's cameras, animated or not).
+TEST_F(CliErrors, WalkthroughWithLookAtCamera) {
+  const std::string animated = std::string(IRAD_SOURCE_DIR) + "/data/cornell_animated.gltf";
+  const CliRun r = irad("walkthrough " + animated + " -o '" + (dir_ / "f%d.exr").string() +
+                        "' --frames 0:2 --paths 4 --size 16x16 --gl osmesa --quiet"
+                        " --look-from 0.278,0.273,-0.8 --look-at 0.278,0.273,0 --yfov 50");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "f0.exr"));
+  EXPECT_TRUE(fs::exists(dir_ / "f1.exr"));
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include "core/mirrors.h"
 #include "core/scene_builder.h"
 #include "core/view.h"
+#include "keep_written_gltf.h"
 #include "raster/raster_renderer.h"
 #include "walk/mirror_pass.h"
 #include "walk/path_tracer.h"
@@ -109,6 +110,7 @@ TEST(Specular, LoaderThresholdsAndWriterRoundTrip) {
   EXPECT_FALSE(load_gltf(cornell, log).has_specular());
   const fs::path out = fs::path(::testing::TempDir()) / "irad_mirror_roundtrip.gltf";
   write_gltf(s, out);
+  test::keep_written_gltf(out, "mirror_roundtrip.gltf");
   const Scene back = load_gltf(out, log);
   for (std::size_t k = 0; k < s.materials.size(); ++k)
     EXPECT_EQ(back.materials[k].specular, s.materials[k].specular) << k;
