@@ -124,10 +124,10 @@ TEST(MeshoptCodec, OctahedralFilterWithinItsPrecision) {
   const std::vector<float> normals = unit_vectors(200);
   // 16-bit components, 16-bit octahedral encoding (stride 8): the error is a few 2^-15.
   const Bytes wide = filtered_round_trip(meshopt_encodeFilterOct, normals, 8, 16, "OCTAHEDRAL");
-  EXPECT_LT(max_error<std::int16_t>(normals, wide, 3), 2e-4);
+  EXPECT_LT(max_error<std::int16_t>(normals, wide, 3), 2e-4); // measured: 5.9e-5
   // 8-bit components (stride 4): the error is a few 2^-7.
   const Bytes narrow = filtered_round_trip(meshopt_encodeFilterOct, normals, 4, 8, "OCTAHEDRAL");
-  EXPECT_LT(max_error<std::int8_t>(normals, narrow, 3), 0.03);
+  EXPECT_LT(max_error<std::int8_t>(normals, narrow, 3), 0.03); // measured: 0.017
 }
 
 TEST(MeshoptCodec, QuaternionFilterWithinItsPrecision) {
@@ -153,7 +153,7 @@ TEST(MeshoptCodec, QuaternionFilterWithinItsPrecision) {
       worst = std::max(worst, std::abs(v - double(quaternions[4 * q + c])));
     }
   }
-  EXPECT_LT(worst, 2e-3);
+  EXPECT_LT(worst, 5e-4); // measured: 2.1e-4
 }
 
 TEST(MeshoptCodec, ExponentialFilterWithinItsPrecision) {
@@ -162,7 +162,7 @@ TEST(MeshoptCodec, ExponentialFilterWithinItsPrecision) {
     values.insert(values.end(), {float(i) * 3.7f - 50.0f, 1e-3f * float(i), 1234.5f, -0.5f});
   }
   // 16 bits of mantissa shared by the 4 components of an element (stride 16): the error is
-  // below 2^-15 of the element's largest magnitude.
+  // below 2^-15 of the element's largest magnitude (measured: 2.5e-5 of it).
   const std::vector<float> decoded =
       as<float>(filtered_round_trip(meshopt_encodeFilterExp, values, 16, 16, "EXPONENTIAL"));
   ASSERT_EQ(decoded.size(), values.size());
