@@ -20,8 +20,8 @@ const char* image_format_name(ImageFormat format); // "PNG", "JPEG", "WebP", "un
 struct DecodedImage {
   int width = 0;
   int height = 0;
-  int channels = 0; // 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA
-  int bits = 8;     // 8 or 16 per channel (16: native-endian std::uint16_t values)
+  int channels = 0;                  // 1 grey, 2 grey + alpha, 3 RGB, 4 RGBA
+  int bits = 8;                      // 8 or 16 per channel (16: native-endian std::uint16_t values)
   std::vector<unsigned char> pixels; // row-major, row 0 the top of the image
 };
 
@@ -33,12 +33,15 @@ public:
 };
 
 struct ImageLimits {
-  int max_side = 8192;                // texels per side
+  int max_side = 8192;                 // texels per side
   std::uint64_t max_texels = 1u << 26; // of this image
 };
 
 // Decodes PNG, JPEG or WebP bytes. The size is read from the header and checked against the
-// limits before any pixel is decoded.
+// limits before any pixel is decoded. Channels are the file's: PNG and JPEG as stored (a grey or
+// RGB PNG's tRNS colour key becomes an alpha channel; palettes expand to RGB or RGBA), 16-bit
+// PNGs as 16 bits; WebP as RGBA when it has alpha, else RGB. Refused: animated WebPs, PNGs whose
+// first IDAT chunk is empty (stb_image mishandles them), sizes beyond int. Thread-safe.
 DecodedImage decode_image(const unsigned char* bytes, std::size_t size, const ImageLimits& limits);
 
 } // namespace irad::gltf
