@@ -53,6 +53,19 @@ const std::vector<unsigned char>& meshopt_view(const Context& ctx, std::size_t v
   }
 }
 
+// A view into a placeholder buffer: zeros, with a warning.
+ViewBytes placeholder_view(const Context& ctx, std::size_t v, std::size_t b, std::uint64_t offset,
+                           std::uint64_t length, std::size_t stride) {
+  const BufferData& buffer = ctx.buffers[b];
+  if (length > buffer.byte_length || offset > buffer.byte_length - length)
+    ctx.fail(element("bufferViews", v), "exceeds its buffer's byteLength");
+  if (length > (std::uint64_t(1) << 30)) ctx.fail(element("bufferViews", v), "too large");
+  ctx.warn(element("buffers", b) + ": no uri and no data; its bytes are read as zeros");
+  auto& zeros = ctx.decoded_views[v];
+  zeros.assign(std::size_t(length), 0);
+  return {zeros.data(), zeros.size(), stride};
+}
+
 } // namespace
 
 ViewBytes view_bytes(const Context& ctx, std::uint64_t view, const std::string& where) {
@@ -69,10 +82,11 @@ ViewBytes view_bytes(const Context& ctx, std::uint64_t view, const std::string& 
       ctx.buffers.size(), name, "buffer");
   ctx.use("buffers", b);
   const BufferData& buffer = ctx.buffers[b];
-  if (!buffer.present) ctx.fail(element("buffers", b), "has no data");
-  const std::size_t size = buffer.bytes.size();
   const std::uint64_t offset = index_member(bv, "byteOffset").value_or(0);
   const std::uint64_t length = index_member(bv, "byteLength").value_or(0);
+  if (buffer.placeholder) return placeholder_view(ctx, v, b, offset, length, stride);
+  if (!buffer.present) ctx.fail(element("buffers", b), "has no data");
+  const std::size_t size = buffer.bytes.size();
   if (length > size || offset > size - length) {
     ctx.fail(name, fmt::format("byteOffset {} + byteLength {} exceeds the buffer's {} bytes",
                                offset, length, size));

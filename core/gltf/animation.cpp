@@ -29,9 +29,12 @@ std::vector<float> read_times(const Context& ctx, std::uint64_t accessor,
   for (std::size_t i = 0; i < v.size(); ++i) {
     times[i] = v[i].x;
     if (times[i] < 0.0f) ctx.fail(where, fmt::format("input time {} is negative", times[i]));
-    if (i > 0 && !(times[i] > times[i - 1]))
-      ctx.fail(where, fmt::format("input times must increase strictly ({} after {})", times[i],
-                                  times[i - 1]));
+    if (i > 0 && !(times[i] > times[i - 1])) {
+      ctx.warn(where + fmt::format(": input times do not increase ({} after {}); the channel is "
+                                   "ignored",
+                                   times[i], times[i - 1]));
+      return {};
+    }
   }
   return times;
 }
@@ -53,6 +56,7 @@ Keyframes read_keyframes(const Context& ctx, std::size_t a, const json& channel,
   k.interpolation = interpolation_of(ctx, string_member(sampler, "interpolation"), where);
   k.rotation = path == Animation::Path::Rotation;
   k.times = read_times(ctx, index_member(sampler, "input").value_or(~0ull >> 1), where);
+  if (k.times.empty()) return k; // ignored (read_times warned)
   k.values = read_animation_values(ctx, index_member(sampler, "output").value_or(~0ull >> 1),
                                    where + ".output", k.rotation ? "VEC4" : "VEC3");
   const std::size_t per_key = k.interpolation == Interpolation::CubicSpline ? 3 : 1;
@@ -126,8 +130,8 @@ void read_tracks(const Context& ctx, const std::map<std::size_t, std::uint32_t>&
       ctx.use(pointer_of("animations", a) + "/channels/" + std::to_string(c));
       if (out.nodes[it->second].has_matrix)
         ctx.fail(element("nodes", node), "an animated node must not have a matrix (glTF 3.11)");
-      out.tracks.push_back(
-          {it->second, animation_path(path), read_keyframes(ctx, a, ch, animation_path(path))});
+      Keyframes keys = read_keyframes(ctx, a, ch, animation_path(path));
+      if (!keys.times.empty()) out.tracks.push_back({it->second, animation_path(path), keys});
     }
   }
 }

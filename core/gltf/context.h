@@ -16,9 +16,13 @@
 namespace irad::gltf {
 
 // The bytes of one buffer, or none (a buffer without data: the validator has said why).
+// placeholder: a buffer without uri outside a GLB (valid glTF: its data come from elsewhere,
+// e.g. an extension); irad reads its bytes as zeros, with a warning, where they are used.
 struct BufferData {
   std::vector<unsigned char> bytes;
   bool present = false;
+  bool placeholder = false;
+  std::uint64_t byte_length = 0;
 };
 
 // Buffer views decoded from EXT_meshopt_compression, by view index (filled on first use).

@@ -308,11 +308,11 @@ std::vector<BufferData> resolve_buffers(const SceneFile& f, const fs::path& fold
         const auto* bin = f.bytes.data() + f.bin_offset;
         out[i].bytes.assign(bin, bin + f.bin_length);
         out[i].present = true;
+      } else if (f.binary && i == 0) {
+        issues.add({pointer, "BUFFER_MISSING_GLB_DATA", "no uri and the GLB has no BIN chunk"});
       } else {
-        issues.add({pointer, "IRAD_BUFFER_NO_DATA",
-                    f.binary && i == 0 ? "no uri and the GLB has no BIN chunk"
-                                       : "no uri (only buffers[0] of a GLB refers to its BIN "
-                                         "chunk)"});
+        out[i].placeholder = true;
+        out[i].byte_length = index_member(b, "byteLength").value_or(0);
       }
       continue;
     }
@@ -322,6 +322,12 @@ std::vector<BufferData> resolve_buffers(const SceneFile& f, const fs::path& fold
                                {"application/octet-stream", "application/gltf-buffer"}, folder,
                                limits, std::string(), pointer);
       out[i].present = true;
+      const std::uint64_t length = index_member(b, "byteLength").value_or(0);
+      if (out[i].bytes.size() != length) {
+        issues.add({pointer, "BUFFER_BYTE_LENGTH_MISMATCH",
+                    fmt::format("its data hold {} bytes, byteLength says {}", out[i].bytes.size(),
+                                length)});
+      }
     } catch (const Error& e) {
       // Error's text is "POINTER: message" (the file is added by the book).
       std::string what = e.what();

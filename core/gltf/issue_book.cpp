@@ -15,7 +15,7 @@ struct Repair {
   const char* code;
   const char* what;
 };
-constexpr std::array<Repair, 9> kRepairs{{
+constexpr std::array<Repair, 8> kRepairs{{
     {"ROTATION_NON_UNIT", "the quaternion is normalised"},
     {"ACCESSOR_ANIMATION_SAMPLER_OUTPUT_NON_NORMALIZED_QUATERNION",
      "the quaternions are normalised"},
@@ -23,7 +23,6 @@ constexpr std::array<Repair, 9> kRepairs{{
     {"MESH_PRIMITIVE_POSITION_ACCESSOR_WITHOUT_BOUNDS", "irad computes the bounds itself"},
     {"ACCESSOR_MIN_MISMATCH", "irad computes the bounds itself"},
     {"ACCESSOR_MAX_MISMATCH", "irad computes the bounds itself"},
-    {"ACCESSOR_ANIMATION_INPUT_NON_INCREASING", "irad computes the bounds itself"},
     {"ANIMATION_SAMPLER_INPUT_ACCESSOR_WITHOUT_BOUNDS", "irad reads the times themselves"},
     {"ACCESSOR_NON_CLAMPED", "the values are clamped"},
 }};

@@ -4,6 +4,7 @@
 #include "core/gltf/file.h"
 #include "core/gltf/image_decode.h"
 
+#include <algorithm>
 #include <array>
 #include <fmt/format.h>
 #include <optional>
@@ -308,6 +309,17 @@ Material convert(const Context& ctx, std::size_t index, TextureTable& textures, 
 Material placeholder(const json& m) {
   Material out;
   out.name = string_member(m, "name");
+  const json* pbr = member(m, "pbrMetallicRoughness");
+  const std::vector<double> base =
+      pbr ? numbers_member(*pbr, "baseColorFactor") : std::vector<double>{};
+  const std::vector<double> emissive = numbers_member(m, "emissiveFactor");
+  for (int k = 0; k < 3; ++k) {
+    if (base.size() == 4 && std::isfinite(base[std::size_t(k)]))
+      out.base_color[k] = float(std::clamp(base[std::size_t(k)], 0.0, 1.0));
+    if (emissive.size() == 3 && std::isfinite(emissive[std::size_t(k)]))
+      out.emission[k] = float(std::max(emissive[std::size_t(k)], 0.0));
+  }
+  out.double_sided = bool_member(m, "doubleSided", false);
   return out;
 }
 
