@@ -411,5 +411,34 @@ TEST(Alpha, ResidualGatherThroughCutout) {
   EXPECT_GT(mean, 0.0);
 }
 
+// Blend in the walk: the same particles (same Halton points, same rho_bar) meet an occluder of
+// albedo 0.5; with a = 0.25 each first hit on it stops with probability 0.25, so its depth-1 VPLs
+// number 0.25 of those on the opaque occluder.
+TEST(Alpha, WalkStopsAtBlendWithProbabilityCoverage) {
+  auto on_occluder = [](float a, AlphaMode mode) {
+    Scene s = square_light_over_plane(1.0f, 1.0f, 1.0f, 6.0f, 0.5f);
+    const std::uint32_t m = add_material(s, glm::vec3(0.5f));
+    s.materials[m].alpha_mode = mode;
+    s.materials[m].base_alpha = a;
+    add_occluder(s, -0.5f, 0.5f, m);
+    finish(s);
+    Log log([](const std::string&) {});
+    const RayScene rays(s);
+    int count = 0;
+    for (const Vpl& v : quasi_random_walk(s, rays, {4096, 64}, log).vpls)
+      count += v.depth == 1 && std::abs(v.position.z - 0.5f) < 1e-4f;
+    return count;
+  };
+  const int opaque = on_occluder(1.0f, AlphaMode::Opaque);
+  const int blend = on_occluder(0.25f, AlphaMode::Blend);
+  const double ratio = double(blend) / opaque;
+  std::printf("walk: depth-1 VPLs on the occluder, blend %d / opaque %d = %.4f\n", blend, opaque,
+              ratio);
+  // Measured 229 / 826 = 0.2772; 0.2593, 0.2749, 0.2539, 0.2486 at N = 1024, 2048, 8192, 16384
+  // (216..3319 opaque hits): binomial noise, std sqrt(0.25 * 0.75 / 826) = 0.015 here. Bound 0.06
+  // (4 std).
+  EXPECT_NEAR(ratio, 0.25, 0.06);
+}
+
 } // namespace
 } // namespace irad
