@@ -133,6 +133,7 @@ LightStart LightSampler::sample(const Scene& scene, double u, double v) const {
     s.kind = scene.material_of(t).double_sided ? VplKind::TwoSided : VplKind::Surface;
     s.beta = emission_at(scene, t, bary) * static_cast<float>(triangle_area(scene, t) / prob);
     s.triangle = e.triangle;
+    s.bary = bary;
     s.pdf = prob / triangle_area(scene, t);
     return s;
   }

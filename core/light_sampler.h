@@ -34,6 +34,7 @@ struct LightStart {
   VplKind kind = VplKind::Surface;
   float cos_inner = 1.0f, cos_outer = 0.0f; // Spot only
   std::int64_t triangle = -1;               // the emissive triangle, -1 for punctual lights
+  glm::vec2 bary{0.0f};                     // triangle only: barycentrics (b1, b2) of position
   float disk_area = 0.0f;                   // Directional only: pi R^2, the start disk's area
   double pdf = 0.0; // area density p(y0) = P(k) / A_k on a triangle; P(k) for a punctual light
 };

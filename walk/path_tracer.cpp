@@ -3,6 +3,7 @@
 #include "core/light_sampler.h"
 #include "core/rng.h"
 #include "core/vpl.h"
+#include "walk/alpha.h"
 #include "walk/parallel_rows.h"
 
 #include <cmath>
@@ -57,11 +58,14 @@ public:
   Tracer(const Scene& scene, const RayScene& rays, const PathTracerOptions& options)
       : scene_(scene), rays_(rays), options_(options), lights_(scene), eps_(rays.epsilon()) {}
 
-  glm::vec3 radiance(const glm::vec3& eye, const glm::vec3& dir, float tmin, Pcg32& rng) const;
+  // salt: the ray queries' salt (walk/ray_scene.h), one per pixel and sample, so that the samples
+  // of one pixel, whose camera rays coincide, make independent Blend decisions.
+  glm::vec3 radiance(const glm::vec3& eye, const glm::vec3& dir, float tmin, Pcg32& rng,
+                     std::uint64_t salt) const;
 
 private:
-  glm::vec3 next_event(const Hit& x, Pcg32& rng) const;
-  glm::vec3 directional(const Hit& x, const LightStart& s) const;
+  glm::vec3 next_event(const Hit& x, Pcg32& rng, std::uint64_t salt) const;
+  glm::vec3 directional(const Hit& x, const LightStart& s, std::uint64_t salt) const;
   float emitter_weight(const Hit& y, const glm::vec3& from, double bsdf_pdf) const;
 
   const Scene& scene_;
@@ -73,19 +77,23 @@ private:
 
 // Light from a directional light (a delta in direction, never hit by scattering: no MIS):
 // f * E cos_x * V(x, toward the light) / P(k), with s.beta = E / P(k).
-glm::vec3 Tracer::directional(const Hit& x, const LightStart& s) const {
+glm::vec3 Tracer::directional(const Hit& x, const LightStart& s, std::uint64_t salt) const {
   const glm::vec3 w = -s.normal;
   const float cos_x = glm::dot(x.ns, w);
   if (cos_x <= 0.0f || glm::dot(x.ng, w) <= 0.0f) return glm::vec3(0.0f);
-  if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, std::numeric_limits<float>::infinity()))
+  if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, std::numeric_limits<float>::infinity(),
+                     salt))
     return glm::vec3(0.0f);
   return s.beta * cos_x * x.albedo * inv_pi;
 }
 
-// Light from one sampled light to x: f * L * G / p, weighted against cosine sampling (MIS).
-glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng) const {
-  const LightStart s = lights_.sample(scene_, rng.next_double(), rng.next_double());
-  if (s.kind == VplKind::Directional) return directional(x, s);
+// Light from one sampled light to x: f * L * G / p, weighted against cosine sampling (MIS). An
+// emitter point is weighted by its presence P (walk/alpha.h): scattering finds it with
+// probability P, so both strategies estimate P L_e.
+glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng, std::uint64_t salt) const {
+  LightStart s = lights_.sample(scene_, rng.next_double(), rng.next_double());
+  s.beta *= light_presence(scene_, s);
+  if (s.kind == VplKind::Directional) return directional(x, s, salt);
   const glm::vec3 d = s.position - x.position;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > eps_ * eps_)) return glm::vec3(0.0f);
@@ -110,7 +118,8 @@ glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng) const {
     break;
   }
   if (profile <= 0.0f) return glm::vec3(0.0f);
-  if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, dist - 2.0f * eps_)) return glm::vec3(0.0f);
+  if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, dist - 2.0f * eps_, salt))
+    return glm::vec3(0.0f);
   float weight = 1.0f; // punctual lights cannot be hit by scattering
   if (s.triangle >= 0) {
     const double light_pdf = s.pdf * dist2 / profile; // solid angle at x
@@ -130,14 +139,14 @@ float Tracer::emitter_weight(const Hit& y, const glm::vec3& from, double bsdf_pd
   return power_heuristic(bsdf_pdf, area_pdf * dist2 / cos_y);
 }
 
-glm::vec3 Tracer::radiance(const glm::vec3& eye, const glm::vec3& dir0, float tmin,
-                           Pcg32& rng) const {
+glm::vec3 Tracer::radiance(const glm::vec3& eye, const glm::vec3& dir0, float tmin, Pcg32& rng,
+                           std::uint64_t salt) const {
   glm::vec3 sum(0.0f), throughput(1.0f), origin = eye, dir = dir0;
   double bsdf_pdf = 0.0; // solid-angle pdf of the direction that led here (0: camera ray)
   bool specular = false; // the direction that led here was a mirror reflection (a delta)
   for (int depth = 0; depth <= options_.max_depth; ++depth) {
     const auto h = rays_.intersect(origin, dir, depth == 0 ? tmin : 0.0f,
-                                   std::numeric_limits<float>::infinity());
+                                   std::numeric_limits<float>::infinity(), salt);
     if (!h) break;
     const Hit x = make_hit(scene_, *h, origin, dir);
     const glm::vec3 le = emitted(scene_, x);
@@ -156,7 +165,7 @@ glm::vec3 Tracer::radiance(const glm::vec3& eye, const glm::vec3& dir0, float tm
     }
     specular = false;
     if (max3(x.albedo) <= 0.0f) break;
-    sum += throughput * next_event(x, rng);
+    sum += throughput * next_event(x, rng, salt);
     // Cosine-weighted scattering: f cos / pdf = rho.
     const glm::vec3 next = [&] {
       const double u = rng.next_double(), v = rng.next_double();
@@ -199,7 +208,7 @@ Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
           const auto v = static_cast<float>(rng.next_double());
           d = image_point_direction(view, static_cast<float>(x) + u, static_cast<float>(y) + v);
         }
-        const glm::vec3 l = tracer.radiance(view.eye, d, view.znear, rng);
+        const glm::vec3 l = tracer.radiance(view.eye, d, view.znear, rng, mix64(seed ^ pixel) + s);
         if (std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z)) sum += glm::dvec3(l);
       }
       image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), 1.0f);

@@ -4,6 +4,7 @@
 #include "core/light_sampler.h"
 #include "core/particle_counts.h"
 #include "core/radical_inverse.h"
+#include "walk/alpha.h"
 #include "walk/mirror_walk.h"
 
 #include <cmath>
@@ -77,7 +78,8 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
   const float far = std::numeric_limits<float>::infinity();
   const int depth = counts_.depth_of(i);
   const std::uint32_t h = halton_index(i);
-  const LightStart start = lights_.sample(scene, halton_.sample(0, h), halton_.sample(1, h));
+  LightStart start = lights_.sample(scene, halton_.sample(0, h), halton_.sample(1, h));
+  start.beta *= light_presence(scene, start); // walk/alpha.h: 0 on a cut-out, a on Blend
   if (!positive(start.beta)) return;
   out.push_back(light_vpl(start, 1.0f / static_cast<float>(counts_.reaching(0)), i));
   if (!mirrors_.empty()) append_mirrored(out.back(), mirrors_, out);

@@ -2,8 +2,11 @@
 
 #include "core/animation.h"
 #include "core/error.h"
+#include "core/rng.h"
+#include "walk/alpha.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -35,7 +38,47 @@ struct GeometryPart {
   std::vector<std::uint32_t> vertices;  // Embree vertex -> scene vertex
   RTCGeometry geometry = nullptr;       // owned by the scene once attached
   float* vertex_buffer = nullptr;
+  const Scene* alpha_scene = nullptr; // the filters' scene (walk/alpha.h); null: no filter
+
+  std::uint32_t scene_triangle(unsigned prim) const {
+    return triangles.empty() ? prim : triangles[prim];
+  }
 };
+
+// Embree 3's query context with the caller's salt: Embree hands the filter the context pointer it
+// was given, so the filter reads the salt back (base must stay the first member).
+struct SaltedContext {
+  RTCIntersectContext base;
+  std::uint64_t salt = 0;
+};
+
+// Uniform in [0, 1) from the ray (origin and direction bits), the salt and the scene triangle.
+double hit_random(std::uint64_t salt, const float (&ray)[6], std::uint32_t triangle) {
+  std::uint64_t h = mix64(salt);
+  for (int i = 0; i < 6; i += 2)
+    h = mix64(h ^ (std::uint64_t(std::bit_cast<std::uint32_t>(ray[i])) |
+                   std::uint64_t(std::bit_cast<std::uint32_t>(ray[i + 1])) << 32));
+  h = mix64(h ^ triangle);
+  return double(h >> 11) * 0x1p-53;
+}
+
+// Filter of intersect and occluded queries: keeps a candidate hit with probability P(x).
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* part = static_cast<const GeometryPart*>(args->geometryUserPtr);
+  const auto* context = reinterpret_cast<const SaltedContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const std::uint32_t t = part->scene_triangle(RTCHitN_primID(args->hit, args->N, i));
+    const glm::vec2 bary(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    const float presence = presence_at(*part->alpha_scene, t, bary);
+    if (presence >= 1.0f) continue;
+    RTCRayN* r = args->ray;
+    const unsigned n = args->N;
+    const float ray[6] = {RTCRayN_org_x(r, n, i), RTCRayN_org_y(r, n, i), RTCRayN_org_z(r, n, i),
+                          RTCRayN_dir_x(r, n, i), RTCRayN_dir_y(r, n, i), RTCRayN_dir_z(r, n, i)};
+    if (presence <= 0.0f || !stops(presence, hit_random(context->salt, ray, t))) args->valid[i] = 0;
+  }
+}
 
 // The triangles that move with the scene's animation (a vertex in one of its mesh parts).
 std::vector<char> moving_triangles(const Scene& scene) {
@@ -67,8 +110,7 @@ struct RayScene::Impl {
     if (device) rtcReleaseDevice(device);
   }
   std::uint32_t triangle(unsigned geom, unsigned prim) const {
-    const GeometryPart& part = geom == moving.id ? moving : fixed;
-    return part.triangles.empty() ? prim : part.triangles[prim];
+    return (geom == moving.id ? moving : fixed).scene_triangle(prim);
   }
 
   // Builds the geometry of the triangles t with select[t] == want (all when select is empty).
@@ -111,6 +153,12 @@ void RayScene::Impl::add_part(const Scene& s, const std::vector<char>& select, c
   copy_vertices(s, part);
   for (std::size_t i = 0; i < local.size(); ++i)
     for (int c = 0; c < 3; ++c) idx[3 * i + c] = local[i][c];
+  if (irad::has_alpha(s)) {
+    part.alpha_scene = &s;
+    rtcSetGeometryUserData(part.geometry, &part);
+    rtcSetGeometryIntersectFilterFunction(part.geometry, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(part.geometry, alpha_filter);
+  }
   rtcCommitGeometry(part.geometry);
   part.id = rtcAttachGeometry(scene, part.geometry);
   rtcReleaseGeometry(part.geometry); // the scene holds it
@@ -143,6 +191,8 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
 }
 
 void RayScene::update(const Scene& scene) {
+  for (GeometryPart* p : {&impl_->fixed, &impl_->moving})
+    if (p->alpha_scene != nullptr) p->alpha_scene = &scene;
   GeometryPart& part = impl_->moving;
   if (part.geometry == nullptr) return;
   impl_->copy_vertices(scene, part);
@@ -154,10 +204,15 @@ void RayScene::update(const Scene& scene) {
 
 RayScene::~RayScene() = default;
 
+bool RayScene::has_alpha() const {
+  return impl_->fixed.alpha_scene != nullptr || impl_->moving.alpha_scene != nullptr;
+}
+
 std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::vec3& direction,
-                                          float tmin, float tmax) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+                                          float tmin, float tmax, std::uint64_t salt) const {
+  SaltedContext context;
+  rtcInitIntersectContext(&context.base);
+  context.salt = salt;
   RTCRayHit rh{};
   rh.ray.org_x = origin.x;
   rh.ray.org_y = origin.y;
@@ -169,16 +224,17 @@ std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::ve
   rh.ray.tfar = tmax;
   rh.ray.mask = 0xffffffffu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(impl_->scene, &context, &rh);
+  rtcIntersect1(impl_->scene, &context.base, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   return RayHit{rh.ray.tfar, impl_->triangle(rh.hit.geomID, rh.hit.primID),
                 glm::vec2(rh.hit.u, rh.hit.v)};
 }
 
-bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin,
-                        float tmax) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax,
+                        std::uint64_t salt) const {
+  SaltedContext context;
+  rtcInitIntersectContext(&context.base);
+  context.salt = salt;
   RTCRay ray{};
   ray.org_x = origin.x;
   ray.org_y = origin.y;
@@ -189,7 +245,7 @@ bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, flo
   ray.tnear = tmin;
   ray.tfar = tmax;
   ray.mask = 0xffffffffu;
-  rtcOccluded1(impl_->scene, &context, &ray);
+  rtcOccluded1(impl_->scene, &context.base, &ray);
   return ray.tfar < 0.0f; // Embree sets tfar = -inf on a hit
 }
 
