@@ -1,0 +1,192 @@
+// The data of mesh primitives' accessors: index ranges, unit normals and tangents, clamped
+// colours, joint indices within the skin, non-negative weights that sum to one.
+#include "core/gltf/validate_semantics_read.h"
+
+#include <cmath>
+#include <map>
+
+namespace irad::gltf::sem {
+
+using nlohmann::json;
+
+namespace {
+
+// Tolerance on a unit length or a sum of one, by component type: the quantisation of normalised
+// integers makes them coarser than floats.
+double tolerance(std::int64_t component_type) {
+  switch (component_type) {
+  case kByte:
+  case kUnsignedByte:
+    return 0.02;
+  case kShort:
+  case kUnsignedShort:
+    return 0.001;
+  default:
+    return 0.0005;
+  }
+}
+
+void check_indices_data(const Context& ctx, std::int64_t acc, std::int64_t vertices,
+                        const std::string& ptr) {
+  const auto a = accessor_view(ctx, acc);
+  if (!a || !a->valid || a->type != "SCALAR") return;
+  double restart = 0;
+  if (a->component_type == kUnsignedByte)
+    restart = 255;
+  else if (a->component_type == kUnsignedShort)
+    restart = 65535;
+  else if (a->component_type == kUnsignedInt)
+    restart = 4294967295.0;
+  else
+    return;
+  const AccessorData d = read_accessor(ctx, acc);
+  if (!d.ok) return;
+  bool oob = false, restarted = false;
+  for (double v : d.values) {
+    if (v == restart)
+      restarted = true;
+    else if (vertices >= 0 && v >= static_cast<double>(vertices))
+      oob = true;
+  }
+  if (restarted)
+    ctx.add(ptr, "ACCESSOR_INDEX_PRIMITIVE_RESTART", "an index is the primitive restart value");
+  if (oob) ctx.add(ptr, "ACCESSOR_INDEX_OOB", "an index is not less than the number of vertices");
+}
+
+// NORMAL (vec3) and TANGENT (xyz, and w = ±1) must be unit vectors.
+void check_unit(const Context& ctx, std::int64_t acc, bool tangent, const std::string& ptr) {
+  const auto a = accessor_view(ctx, acc);
+  if (!a || !a->valid || a->components != (tangent ? 4 : 3)) return;
+  const AccessorData d = read_accessor(ctx, acc);
+  if (!d.ok) return;
+  const auto n = static_cast<std::size_t>(a->components);
+  const double tol = tolerance(a->component_type);
+  bool non_unit = false, bad_sign = false;
+  for (std::size_t e = 0; e + n <= d.values.size(); e += n) {
+    double len2 = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double v = normalize(d.values[e + c], a->component_type, a->normalized);
+      len2 += v * v;
+    }
+    if (std::isfinite(len2) && std::fabs(std::sqrt(len2) - 1.0) > tol) non_unit = true;
+    if (tangent) {
+      const double w = normalize(d.values[e + 3], a->component_type, a->normalized);
+      if (std::fabs(std::fabs(w) - 1.0) > tol) bad_sign = true;
+    }
+  }
+  if (non_unit) ctx.add(ptr, "ACCESSOR_VECTOR3_NON_UNIT", "a vector is not of unit length");
+  if (bad_sign) ctx.add(ptr, "ACCESSOR_INVALID_SIGN", "a tangent's w is not 1 or -1");
+}
+
+void check_color(const Context& ctx, std::int64_t acc, const std::string& ptr) {
+  const auto a = accessor_view(ctx, acc);
+  if (!a || !a->valid || a->component_type != kFloat) return;
+  const AccessorData d = read_accessor(ctx, acc);
+  if (!d.ok) return;
+  for (double v : d.values) {
+    if (v >= 0.0 && v <= 1.0) continue;
+    if (!std::isfinite(v)) continue; // ACCESSOR_INVALID_FLOAT
+    ctx.add(ptr, "ACCESSOR_NON_CLAMPED", "a colour component is outside 0..1");
+    return;
+  }
+}
+
+// The fewest joints among the skins applied to mesh m (nullopt when no node skins it).
+std::optional<std::int64_t> joint_limit(const Context& ctx, std::int64_t m) {
+  std::optional<std::int64_t> limit;
+  for (const json& node : ctx.list("nodes")) {
+    if (index(node, "mesh") != m) continue;
+    const auto s = index(node, "skin");
+    const json* skin = s ? ctx.object("skins", *s) : nullptr;
+    if (skin == nullptr || !has(*skin, "joints")) continue;
+    const auto n = static_cast<std::int64_t>(array_size(*skin, "joints"));
+    limit = limit ? std::min(*limit, n) : n;
+  }
+  return limit;
+}
+
+struct SkinSets {
+  std::map<int, std::pair<std::int64_t, std::string>> joints, weights; // set → accessor, pointer
+};
+
+void check_skin_data(const Context& ctx, const SkinSets& sets, std::optional<std::int64_t> limit) {
+  for (const auto& [set, jp] : sets.joints) {
+    if (!limit) break;
+    const AccessorData d = read_accessor(ctx, jp.first);
+    if (!d.ok) continue;
+    for (double v : d.values) {
+      if (v < static_cast<double>(*limit)) continue;
+      ctx.add(jp.second, "ACCESSOR_JOINTS_INDEX_OOB", "a joint index is not in the skin");
+      break;
+    }
+  }
+  std::vector<double> sums;
+  bool all_read = true;
+  for (const auto& [set, wp] : sets.weights) {
+    const auto a = accessor_view(ctx, wp.first);
+    const AccessorData d = read_accessor(ctx, wp.first);
+    if (!a || !d.ok || a->components != 4) {
+      all_read = false;
+      continue;
+    }
+    if (sums.empty()) sums.assign(d.values.size() / 4, 0.0);
+    bool negative = false;
+    for (std::size_t k = 0; k < d.values.size(); ++k) {
+      const double w = normalize(d.values[k], a->component_type, a->normalized);
+      if (w < 0) negative = true;
+      if (k / 4 < sums.size()) sums[k / 4] += w;
+    }
+    if (negative) ctx.add(wp.second, "ACCESSOR_WEIGHTS_NEGATIVE", "a joint weight is negative");
+  }
+  if (!all_read || sets.weights.empty()) return;
+  const double tol = 0.002 * static_cast<double>(sets.weights.size());
+  for (double s : sums) {
+    if (!std::isfinite(s) || std::fabs(s - 1.0) <= tol || s == 0.0) continue;
+    for (const auto& [set, wp] : sets.weights)
+      ctx.add(wp.second, "ACCESSOR_WEIGHTS_NON_NORMALIZED", "a vertex's weights do not sum to 1");
+    return;
+  }
+}
+
+void check_primitive(const Context& ctx, const json& prim, std::int64_t m, const std::string& ptr) {
+  const json* attrs = member(prim, "attributes");
+  if (attrs == nullptr || !attrs->is_object()) return;
+  std::int64_t vertices = -1;
+  SkinSets sets;
+  for (const auto& [name, acc] : attrs->items()) {
+    const auto ai = as_int(&acc);
+    if (!ai || ctx.object("accessors", *ai) == nullptr) continue;
+    const std::string p = at(at(ptr, "attributes"), name);
+    if (const auto a = accessor_view(ctx, *ai);
+        a && a->valid && (vertices < 0 || name == "POSITION"))
+      vertices = a->count;
+    if (name == "NORMAL") check_unit(ctx, *ai, false, p);
+    if (name == "TANGENT") check_unit(ctx, *ai, true, p);
+    if (name.rfind("COLOR_", 0) == 0) check_color(ctx, *ai, p);
+    if (name.rfind("JOINTS_", 0) == 0) sets.joints[std::atoi(name.c_str() + 7)] = {*ai, p};
+    if (name.rfind("WEIGHTS_", 0) == 0) sets.weights[std::atoi(name.c_str() + 8)] = {*ai, p};
+  }
+  if (const auto ind = index(prim, "indices"); ind && ctx.object("accessors", *ind))
+    check_indices_data(ctx, *ind, vertices, at(ptr, "indices"));
+  if (!sets.joints.empty() || !sets.weights.empty())
+    check_skin_data(ctx, sets, joint_limit(ctx, m));
+}
+
+} // namespace
+
+void check_mesh_data(const Context& ctx) {
+  const json& meshes = ctx.list("meshes");
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const json* prims = member(meshes[m], "primitives");
+    if (prims == nullptr || !prims->is_array()) continue;
+    for (std::size_t p = 0; p < prims->size(); ++p) {
+      const json* ext = member((*prims)[p], "extensions");
+      if (ext != nullptr && has(*ext, "KHR_draco_mesh_compression")) continue;
+      const auto mi = static_cast<std::int64_t>(m);
+      check_primitive(ctx, (*prims)[p], mi,
+                      at(at(at("/meshes", mi), "primitives"), static_cast<std::int64_t>(p)));
+    }
+  }
+}
+
+} // namespace irad::gltf::sem
