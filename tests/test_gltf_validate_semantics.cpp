@@ -1,0 +1,123 @@
+// The semantic half of the glTF validator (core/gltf/validate_semantics*.cpp) against the
+// Khronos glTF-Validator conformance files: no issue on any valid file, and on every invalid
+// file whose report has an error in the semantic half's scope, at least one issue at (or
+// above, or below) one of the report's error pointers.
+#include "core/gltf/validate_parts.h"
+#include "tests/conformance_files.h"
+
+#include <gtest/gtest.h>
+#include <iostream>
+#include <set>
+
+namespace {
+
+using irad::test::ConformanceFile;
+
+// The error codes the semantic half reports (the schema half and the GLB/IO layer do the rest).
+bool in_scope(const std::string& code) {
+  static const std::set<std::string> exact = {
+      "BUFFER_BYTE_LENGTH_MISMATCH", "BUFFER_MISSING_GLB_DATA",
+      "INVALID_IBM_ACCESSOR_COUNT",  "ROTATION_NON_UNIT",
+      "SCENE_NON_ROOT_NODE",         "IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE",
+      "IMAGE_DATA_INVALID",          "IMAGE_UNEXPECTED_EOS",
+      "MESH_INVALID_WEIGHTS_COUNT",  "MESH_PRIMITIVES_UNEQUAL_TARGETS_COUNT"};
+  if (exact.count(code) != 0) return true;
+  for (const char* prefix :
+       {"ACCESSOR_", "BUFFER_VIEW_", "MESH_PRIMITIVE_", "NODE_", "SKIN_", "ANIMATION_"})
+    if (code.rfind(prefix, 0) == 0) return true;
+  return false;
+}
+
+// Image data errors of images in external files: check_semantics sees only the buffers.
+bool external_image(const ConformanceFile& f, const irad::test::ReportedError& e) {
+  if (e.code.rfind("IMAGE_", 0) != 0 || e.code == "IMAGE_BUFFER_VIEW_WITH_BYTESTRIDE") return false;
+  const auto image = f.root.value(nlohmann::json::json_pointer(e.pointer), nlohmann::json());
+  return !image.is_object() || !image.contains("bufferView");
+}
+
+bool related(const std::string& a, const std::string& b) {
+  const auto& shorter = a.size() < b.size() ? a : b;
+  const auto& longer = a.size() < b.size() ? b : a;
+  return longer.rfind(shorter, 0) == 0 &&
+         (longer.size() == shorter.size() || longer[shorter.size()] == '/');
+}
+
+std::vector<irad::gltf::Issue> run(const ConformanceFile& f) {
+  std::vector<irad::gltf::Issue> issues;
+  irad::gltf::check_semantics(f.root, f.buffers, issues);
+  return issues;
+}
+
+std::string rel(const ConformanceFile& f) {
+  return std::filesystem::relative(f.path, irad::test::conformance_dir()).string();
+}
+
+TEST(GltfValidateSemantics, ConformanceFiles) {
+  const auto documents = irad::test::conformance_documents();
+  ASSERT_GT(documents.size(), 300u) << "conformance files not found";
+  int valid = 0, valid_clean = 0, scoped = 0, caught = 0;
+  for (const auto& path : documents) {
+    const auto file = irad::test::load_conformance_file(path);
+    if (!file) continue;
+    const auto issues = run(*file);
+    if (file->errors.empty()) {
+      ++valid;
+      if (issues.empty()) ++valid_clean;
+      for (const auto& i : issues)
+        ADD_FAILURE() << rel(*file) << ": false alarm " << i.code << " at " << i.pointer << ": "
+                      << i.message;
+      continue;
+    }
+    std::vector<std::string> pointers;
+    for (const auto& e : file->errors)
+      if (in_scope(e.code) && !external_image(*file, e)) pointers.push_back(e.pointer);
+    if (pointers.empty()) continue;
+    ++scoped;
+    bool hit = false;
+    for (const auto& i : issues)
+      for (const auto& p : pointers) hit = hit || related(i.pointer, p);
+    if (hit) {
+      ++caught;
+      continue;
+    }
+    std::string want;
+    for (const auto& e : file->errors)
+      if (in_scope(e.code)) want += " " + e.code + "@" + e.pointer;
+    ADD_FAILURE() << rel(*file) << ": missed" << want;
+  }
+  std::cout << "[semantics] valid files without issues: " << valid_clean << " / " << valid
+            << "; invalid files in scope caught: " << caught << " / " << scoped << "\n";
+}
+
+// Any JSON value in any place: the checks read defensively and never throw.
+TEST(GltfValidateSemantics, HostileJsonNeverThrows) {
+  const char* docs[] = {
+      R"({"accessors":[{"bufferView":"x","count":-5,"componentType":5126,"type":"VEC3",
+         "min":[1,"a"],"sparse":{"count":1e30,"indices":7}}],"bufferViews":[1,null]})",
+      R"({"meshes":[{"primitives":[{"attributes":{"POSITION":99,"TEXCOORD_0":-1},
+         "targets":[{"POSITION":1e300},[]],"material":{"a":1}}],"weights":"w"}],
+         "materials":[{"normalTexture":{"index":0,"texCoord":1e99}}]})",
+      R"({"nodes":[{"children":[0,0,1e20,-1]},{"children":"c","matrix":[1,2]}],
+         "scenes":[{"nodes":[0,1,5]}],"skins":[{"joints":[0,1,7],"skeleton":3,
+         "inverseBindMatrices":0}],"accessors":[{"count":1,"componentType":5126,"type":"MAT4",
+         "bufferView":0}],"bufferViews":[{"buffer":0,"byteLength":64}],"buffers":[{"byteLength":64}]})",
+      R"({"animations":[{"samplers":[{"input":0,"output":0,"interpolation":5}],
+         "channels":[{"sampler":0,"target":{"node":0,"path":"weights"}},{"target":3}]}],
+         "nodes":[{"mesh":0,"matrix":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}],"meshes":[[]],
+         "accessors":[{"count":4,"componentType":5126,"type":"SCALAR","bufferView":0,
+         "byteOffset":1}],"bufferViews":[{"buffer":0,"byteLength":16,"byteStride":4}],
+         "buffers":[{"byteLength":16}],"images":[{"bufferView":0}]})",
+      R"([1,2,3])",
+      R"("text")",
+      R"(null)"};
+  const unsigned char bytes[8] = {0x89, 'P', 'N', 'G', 0, 0, 0, 0};
+  const std::vector<irad::gltf::BufferBytes> buffers = {{bytes, sizeof bytes, true}};
+  for (const char* doc : docs) {
+    const auto root = nlohmann::json::parse(doc);
+    std::vector<irad::gltf::Issue> issues;
+    EXPECT_NO_THROW(irad::gltf::check_semantics(root, buffers, issues)) << doc;
+    EXPECT_NO_THROW(irad::gltf::check_semantics(root, {}, issues)) << doc;
+  }
+}
+
+} // namespace
