@@ -82,13 +82,16 @@ inline std::uint32_t read_u32(const std::vector<unsigned char>& b, std::size_t a
 // Splits a GLB into its JSON text and BIN chunk; false when its structure is broken.
 inline bool split_glb(const std::vector<unsigned char>& b, std::string& json,
                       std::optional<std::vector<unsigned char>>& bin) {
-  if (b.size() < 20 || read_u32(b, 0) != 0x46546C67u || read_u32(b, 8) != b.size()) return false;
+  // Bytes after the header's total length are ignored (the validator only warns about them).
+  if (b.size() < 20 || read_u32(b, 0) != 0x46546C67u) return false;
+  const std::size_t total = read_u32(b, 8);
+  if (total < 20 || total > b.size()) return false;
   std::size_t at = 12;
   bool first = true;
-  while (at + 8 <= b.size()) {
+  while (at + 8 <= total) {
     const std::size_t length = read_u32(b, at);
     const std::uint32_t type = read_u32(b, at + 4);
-    if (length > b.size() - at - 8) return false;
+    if (length > total - at - 8) return false;
     const auto* data = b.data() + at + 8;
     if (first && type != 0x4E4F534Au) return false;
     if (first)
@@ -98,7 +101,7 @@ inline bool split_glb(const std::vector<unsigned char>& b, std::string& json,
     first = false;
     at += 8 + length;
   }
-  return !first && at == b.size();
+  return !first && at == total;
 }
 
 // Resolves buffer i's bytes into `file`; absent (present == false) when they cannot be had.

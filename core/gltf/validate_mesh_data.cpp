@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace irad::gltf::sem {
 
@@ -148,7 +149,10 @@ void check_skin_data(const Context& ctx, const SkinSets& sets, std::optional<std
   }
 }
 
-void check_primitive(const Context& ctx, const json& prim, std::int64_t m, const std::string& ptr) {
+// `checked`: accessors whose NORMAL, TANGENT or COLOR data was checked already (the validator
+// checks an accessor's data once, under its first semantic).
+void check_primitive(const Context& ctx, const json& prim, std::int64_t m, const std::string& ptr,
+                     std::set<std::int64_t>& checked) {
   const json* attrs = member(prim, "attributes");
   if (attrs == nullptr || !attrs->is_object()) return;
   std::int64_t vertices = -1;
@@ -160,9 +164,12 @@ void check_primitive(const Context& ctx, const json& prim, std::int64_t m, const
     if (const auto a = accessor_view(ctx, *ai);
         a && a->valid && (vertices < 0 || name == "POSITION"))
       vertices = a->count;
-    if (name == "NORMAL") check_unit(ctx, *ai, false, p);
-    if (name == "TANGENT") check_unit(ctx, *ai, true, p);
-    if (name.rfind("COLOR_", 0) == 0) check_color(ctx, *ai, p);
+    const bool vector = name == "NORMAL" || name == "TANGENT" || name.rfind("COLOR_", 0) == 0;
+    if (vector && checked.insert(*ai).second) {
+      if (name == "NORMAL") check_unit(ctx, *ai, false, p);
+      if (name == "TANGENT") check_unit(ctx, *ai, true, p);
+      if (name.rfind("COLOR_", 0) == 0) check_color(ctx, *ai, p);
+    }
     if (name.rfind("JOINTS_", 0) == 0) sets.joints[std::atoi(name.c_str() + 7)] = {*ai, p};
     if (name.rfind("WEIGHTS_", 0) == 0) sets.weights[std::atoi(name.c_str() + 8)] = {*ai, p};
   }
@@ -175,6 +182,7 @@ void check_primitive(const Context& ctx, const json& prim, std::int64_t m, const
 } // namespace
 
 void check_mesh_data(const Context& ctx) {
+  std::set<std::int64_t> checked;
   const json& meshes = ctx.list("meshes");
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const json* prims = member(meshes[m], "primitives");
@@ -184,7 +192,8 @@ void check_mesh_data(const Context& ctx) {
       if (ext != nullptr && has(*ext, "KHR_draco_mesh_compression")) continue;
       const auto mi = static_cast<std::int64_t>(m);
       check_primitive(ctx, (*prims)[p], mi,
-                      at(at(at("/meshes", mi), "primitives"), static_cast<std::int64_t>(p)));
+                      at(at(at("/meshes", mi), "primitives"), static_cast<std::int64_t>(p)),
+                      checked);
     }
   }
 }

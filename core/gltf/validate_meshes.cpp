@@ -289,6 +289,9 @@ void check_mesh(const Context& ctx, MeshState& st, const json& mesh, std::int64_
     if (const auto ind = index(prim, "indices"); ind && ctx.object("accessors", *ind))
       check_indices(ctx, *ind, at(pp, "indices"));
     check_targets(ctx, draco ? draco_state : st, prim, pp);
+    // Only primitives with attributes take part (the schema half reports the others).
+    const json* attrs = member(prim, "attributes");
+    if (attrs == nullptr || !attrs->is_object() || attrs->empty()) continue;
     const std::size_t n = array_size(prim, "targets");
     if (!targets0)
       targets0 = n;
