@@ -5,6 +5,7 @@
 #include "core/gltf/validate_parts.h"
 #include "tests/conformance_files.h"
 
+#include <algorithm>
 #include <gtest/gtest.h>
 #include <iostream>
 #include <set>
@@ -112,6 +113,49 @@ TEST(GltfValidateSemantics, ConformanceFiles) {
   for (const auto& m : code_misses)
     std::cout << "[semantics] error not reported as such: " << m << "\n";
   for (const auto& x : extras) std::cout << "[semantics] issue not in the report: " << x << "\n";
+}
+
+// Every conformance file with each member of its first objects replaced by hostile values, and
+// with its buffers cut short: check_semantics must neither throw nor crash (the sanitizer run
+// also checks for undefined behaviour and out-of-bounds reads).
+TEST(GltfValidateSemantics, MutatedConformanceFilesNeverThrow) {
+  const nlohmann::json hostile[] = {-1,
+                                    4294967295u,
+                                    1e30,
+                                    4611686018427387904,
+                                    "x",
+                                    nlohmann::json::array(),
+                                    nlohmann::json::object(),
+                                    nullptr};
+  std::size_t runs = 0;
+  for (const auto& path : irad::test::conformance_documents()) {
+    auto file = irad::test::load_conformance_file(path);
+    if (!file || !file->root.is_object()) continue;
+    std::vector<irad::gltf::Issue> issues;
+    auto shorter = file->buffers;
+    for (auto& b : shorter) b.size /= 2;
+    EXPECT_NO_THROW(irad::gltf::check_semantics(file->root, shorter, issues)) << path;
+    for (auto& [key, list] : file->root.items()) {
+      if (!list.is_array()) continue;
+      for (std::size_t i = 0; i < std::min<std::size_t>(list.size(), 3); ++i) {
+        if (!list[i].is_object()) continue;
+        std::vector<std::string> members;
+        for (const auto& item : list[i].items()) members.push_back(item.key());
+        for (const auto& m : members) {
+          const nlohmann::json saved = list[i][m];
+          for (const auto& h : hostile) {
+            list[i][m] = h;
+            issues.clear();
+            EXPECT_NO_THROW(irad::gltf::check_semantics(file->root, file->buffers, issues))
+                << path << " " << key << "/" << i << "/" << m << " = " << h.dump();
+            ++runs;
+          }
+          list[i][m] = saved;
+        }
+      }
+    }
+  }
+  EXPECT_GT(runs, 1000u);
 }
 
 // Any JSON value in any place: the checks read defensively and never throw.

@@ -24,14 +24,14 @@ void check_layout(const Context& ctx, const AccessorView& a, const std::string& 
     ctx.add(at(ptr, "byteOffset"), "ACCESSOR_MATRIX_ALIGNMENT",
             "a matrix accessor must start on a 4-byte boundary");
   const std::int64_t view_offset = index(*bv, "byteOffset").value_or(0);
-  if ((view_offset + a.byte_offset) % a.comp_size != 0)
+  if (sane(view_offset) && (view_offset + a.byte_offset) % a.comp_size != 0)
     ctx.add(ptr, "ACCESSOR_TOTAL_OFFSET_ALIGNMENT",
             "the view's and the accessor's byteOffset together are not a multiple of the "
             "component size");
   if (a.byte_stride && *a.byte_stride < element_size(a))
     ctx.add(ptr, "ACCESSOR_SMALL_BYTESTRIDE", "the view's byteStride is smaller than one element");
   const auto view_length = index(*bv, "byteLength");
-  if (!view_length || a.count == 0) return;
+  if (!view_length || a.count == 0 || !sane(*view_length)) return;
   const std::int64_t stride = a.byte_stride.value_or(element_size(a));
   const std::int64_t length = stride * (a.count - 1) + last_element_size(a);
   if (a.byte_offset >= *view_length)

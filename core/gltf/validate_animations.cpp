@@ -105,7 +105,7 @@ void check_output(const Context& ctx, const Channel& ch) {
             ? std::optional<std::int64_t>(static_cast<std::int64_t>(array_size(*p0, "targets")))
             : std::nullopt;
   }
-  if (ia && ia->valid && per_key && *per_key > 0 &&
+  if (ia && ia->valid && per_key && *per_key > 0 && *per_key < (std::int64_t{1} << 16) &&
       oa->count != ia->count * *per_key * (cubic ? 3 : 1))
     ctx.add(sp, "ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_COUNT",
             "the output accessor's count does not match the input's keyframes");

@@ -92,18 +92,19 @@ void check_color(const Context& ctx, std::int64_t acc, const std::string& ptr) {
   }
 }
 
-// The fewest joints among the skins applied to mesh m (nullopt when no node skins it).
-std::optional<std::int64_t> joint_limit(const Context& ctx, std::int64_t m) {
-  std::optional<std::int64_t> limit;
+// Per mesh, the fewest joints among the skins nodes apply to it (meshes no node skins: absent).
+std::map<std::int64_t, std::int64_t> joint_limits(const Context& ctx) {
+  std::map<std::int64_t, std::int64_t> limits;
   for (const json& node : ctx.list("nodes")) {
-    if (index(node, "mesh") != m) continue;
+    const auto m = index(node, "mesh");
     const auto s = index(node, "skin");
     const json* skin = s ? ctx.object("skins", *s) : nullptr;
-    if (skin == nullptr || !has(*skin, "joints")) continue;
+    if (!m || skin == nullptr || !has(*skin, "joints")) continue;
     const auto n = static_cast<std::int64_t>(array_size(*skin, "joints"));
-    limit = limit ? std::min(*limit, n) : n;
+    auto [it, inserted] = limits.emplace(*m, n);
+    if (!inserted) it->second = std::min(it->second, n);
   }
-  return limit;
+  return limits;
 }
 
 struct SkinSets {
@@ -151,8 +152,8 @@ void check_skin_data(const Context& ctx, const SkinSets& sets, std::optional<std
 
 // `checked`: accessors whose NORMAL, TANGENT or COLOR data was checked already (the validator
 // checks an accessor's data once, under its first semantic).
-void check_primitive(const Context& ctx, const json& prim, std::int64_t m, const std::string& ptr,
-                     std::set<std::int64_t>& checked) {
+void check_primitive(const Context& ctx, const json& prim, std::optional<std::int64_t> joints,
+                     const std::string& ptr, std::set<std::int64_t>& checked) {
   const json* attrs = member(prim, "attributes");
   if (attrs == nullptr || !attrs->is_object()) return;
   std::int64_t vertices = -1;
@@ -175,14 +176,14 @@ void check_primitive(const Context& ctx, const json& prim, std::int64_t m, const
   }
   if (const auto ind = index(prim, "indices"); ind && ctx.object("accessors", *ind))
     check_indices_data(ctx, *ind, vertices, at(ptr, "indices"));
-  if (!sets.joints.empty() || !sets.weights.empty())
-    check_skin_data(ctx, sets, joint_limit(ctx, m));
+  if (!sets.joints.empty() || !sets.weights.empty()) check_skin_data(ctx, sets, joints);
 }
 
 } // namespace
 
 void check_mesh_data(const Context& ctx) {
   std::set<std::int64_t> checked;
+  const auto limits = joint_limits(ctx);
   const json& meshes = ctx.list("meshes");
   for (std::size_t m = 0; m < meshes.size(); ++m) {
     const json* prims = member(meshes[m], "primitives");
@@ -191,9 +192,10 @@ void check_mesh_data(const Context& ctx) {
       const json* ext = member((*prims)[p], "extensions");
       if (ext != nullptr && has(*ext, "KHR_draco_mesh_compression")) continue;
       const auto mi = static_cast<std::int64_t>(m);
-      check_primitive(ctx, (*prims)[p], mi,
-                      at(at(at("/meshes", mi), "primitives"), static_cast<std::int64_t>(p)),
-                      checked);
+      const auto limit = limits.find(mi);
+      check_primitive(
+          ctx, (*prims)[p], limit != limits.end() ? std::optional(limit->second) : std::nullopt,
+          at(at(at("/meshes", mi), "primitives"), static_cast<std::int64_t>(p)), checked);
     }
   }
 }

@@ -136,8 +136,9 @@ void check_attribute_accessor(const Context& ctx, MeshState& st, const Semantic&
             "a POSITION accessor must declare min and max");
   const json* bv = a->buffer_view ? ctx.object("bufferViews", *a->buffer_view) : nullptr;
   if (bv == nullptr) return;
-  const std::int64_t total = index(*bv, "byteOffset").value_or(0) + a->byte_offset;
-  if (total % 4 != 0 || (a->byte_stride && *a->byte_stride % 4 != 0))
+  const std::int64_t view_offset = index(*bv, "byteOffset").value_or(0);
+  if (!sane(view_offset)) return;
+  if ((view_offset + a->byte_offset) % 4 != 0 || (a->byte_stride && *a->byte_stride % 4 != 0))
     ctx.add(ptr, "MESH_PRIMITIVE_ACCESSOR_UNALIGNED",
             "vertex attribute data must be aligned to 4 bytes");
   // The JSON's objects are sorted by key, so "first" is the accessor with the lowest index.
@@ -173,9 +174,9 @@ void check_material(const Context& ctx, const json& prim, const std::set<std::st
   const json* mat = mi ? ctx.object("materials", *mi) : nullptr;
   if (mat == nullptr) return;
   bool too_few = false;
-  // Every texture binding (an object member named *Texture), at any depth.
-  auto walk = [&](auto& self, const json& obj) -> void {
-    if (!obj.is_object()) return;
+  // Every texture binding (an object member named *Texture), down to a bounded depth.
+  auto walk = [&](auto& self, const json& obj, int depth) -> void {
+    if (!obj.is_object() || depth > 8) return;
     for (const auto& [key, v] : obj.items()) {
       if (key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0 && v.is_object() &&
           has(v, "index")) {
@@ -185,10 +186,10 @@ void check_material(const Context& ctx, const json& prim, const std::set<std::st
         if (tt != nullptr) set = index(*tt, "texCoord").value_or(set);
         if (set >= texcoords) too_few = true;
       }
-      self(self, v);
+      self(self, v, depth + 1);
     }
   };
-  walk(walk, *mat);
+  walk(walk, *mat, 0);
   if (too_few)
     ctx.add(at(ptr, "material"), "MESH_PRIMITIVE_TOO_FEW_TEXCOORDS",
             "the material reads a texture coordinate set the primitive does not have");

@@ -41,7 +41,7 @@ void check_buffer_view(const Context& ctx, const json& bv, std::int64_t i) {
   const std::int64_t offset = index(bv, "byteOffset").value_or(0);
   const json* b = buffer ? ctx.object("buffers", *buffer) : nullptr;
   const auto buffer_length = b != nullptr ? index(*b, "byteLength") : std::nullopt;
-  if (length && buffer_length && offset >= 0 && *length >= 0) {
+  if (length && buffer_length && sane(offset) && sane(*length) && sane(*buffer_length)) {
     if (offset >= *buffer_length && *length > 0)
       ctx.add(at(ptr, "byteOffset"), "BUFFER_VIEW_TOO_LONG",
               "the view starts past the end of its buffer");

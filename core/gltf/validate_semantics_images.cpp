@@ -77,7 +77,7 @@ std::optional<std::pair<const unsigned char*, std::size_t>> view_data(const Cont
   const auto buffer = index(*bv, "buffer");
   const auto length = index(*bv, "byteLength");
   const std::int64_t offset = index(*bv, "byteOffset").value_or(0);
-  if (!buffer || !length || *buffer < 0 || *length < 0 || offset < 0 ||
+  if (!buffer || !length || *buffer < 0 || !sane(*length) || !sane(offset) ||
       static_cast<std::size_t>(*buffer) >= ctx.buffers.size())
     return std::nullopt;
   const BufferBytes& b = ctx.buffers[static_cast<std::size_t>(*buffer)];

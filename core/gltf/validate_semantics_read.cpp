@@ -212,8 +212,8 @@ const unsigned char* view_bytes(const Context& ctx, std::int64_t view, std::int6
   const auto buffer = index(*bv, "buffer");
   const auto bv_length = index(*bv, "byteLength");
   const std::int64_t bv_offset = index(*bv, "byteOffset").value_or(0);
-  if (!buffer || !bv_length || *buffer < 0 || bv_offset < 0 ||
-      static_cast<std::size_t>(*buffer) >= ctx.buffers.size())
+  if (!buffer || !bv_length || *buffer < 0 || !sane(bv_offset) || !sane(*bv_length) ||
+      !sane(offset) || !sane(length) || static_cast<std::size_t>(*buffer) >= ctx.buffers.size())
     return nullptr;
   if (offset + length > *bv_length) return nullptr;
   const BufferBytes& b = ctx.buffers[static_cast<std::size_t>(*buffer)];
@@ -252,6 +252,7 @@ bool read_packed(const Context& ctx, const json& part, std::int64_t count,
   const int size = component_size(component_type);
   if (!view || size == 0 || compressed_view(ctx, *view)) return false;
   const std::int64_t offset = index(part, "byteOffset").value_or(0);
+  if (!sane(count) || components <= 0 || components > 16) return false;
   const std::int64_t n = count * components;
   const unsigned char* p = view_bytes(ctx, *view, offset, n * size);
   if (p == nullptr) return false;
@@ -274,12 +275,14 @@ std::optional<AccessorView> accessor_view(const Context& ctx, std::int64_t i) {
   a.buffer_view = index(*acc, "bufferView");
   a.byte_offset = index(*acc, "byteOffset").value_or(0);
   a.has_sparse = member(*acc, "sparse") != nullptr;
-  a.valid = a.components > 0 && a.comp_size > 0 && a.count >= 0 && a.byte_offset >= 0;
+  a.valid = a.components > 0 && a.comp_size > 0 && sane(a.count) && sane(a.byte_offset);
   if (a.buffer_view) {
     if (const json* bv = ctx.object("bufferViews", *a.buffer_view))
       a.byte_stride = index(*bv, "byteStride");
     a.compressed = compressed_view(ctx, *a.buffer_view);
   }
+  if (a.byte_stride && (*a.byte_stride <= 0 || *a.byte_stride > (std::int64_t{1} << 16)))
+    a.valid = false; // the schema half reports it
   if (static_cast<std::size_t>(i) < ctx.draco_accessors.size() &&
       ctx.draco_accessors[static_cast<std::size_t>(i)] != 0)
     a.compressed = true;
@@ -301,17 +304,22 @@ std::int64_t last_element_size(const AccessorView& a) {
 AccessorData read_accessor(const Context& ctx, std::int64_t i) {
   AccessorData out;
   const auto a = accessor_view(ctx, i);
-  if (!a || !a->valid || a->compressed || a->count > 0x1000000) return out;
+  if (!a || !a->valid || a->compressed) return out;
   // Without a bufferView the data is all zeros: the validator checks it only when sparse.
   if (!a->buffer_view && !a->has_sparse) return out;
   const auto n = static_cast<std::size_t>(a->components);
-  out.values.assign(static_cast<std::size_t>(a->count) * n, 0.0);
+  const unsigned char* p = nullptr;
+  const std::int64_t stride = a->byte_stride.value_or(element_size(*a));
   if (a->buffer_view && a->count > 0) {
-    const std::int64_t stride = a->byte_stride.value_or(element_size(*a));
-    if (stride <= 0) return {};
+    // The bytes must all be there before anything is allocated for them.
     const std::int64_t length = stride * (a->count - 1) + last_element_size(*a);
-    const unsigned char* p = view_bytes(ctx, *a->buffer_view, a->byte_offset, length);
+    p = view_bytes(ctx, *a->buffer_view, a->byte_offset, length);
     if (p == nullptr) return {};
+  } else if (a->count > (std::int64_t{1} << 22)) {
+    return {}; // sparse over zeros: no bytes bound the count
+  }
+  out.values.assign(static_cast<std::size_t>(a->count) * n, 0.0);
+  if (p != nullptr) {
     const int rows = matrix_rows(*a);
     const std::int64_t col = rows == 0 ? 0 : column_stride(*a);
     for (std::int64_t e = 0; e < a->count; ++e) {

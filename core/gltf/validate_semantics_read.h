@@ -16,6 +16,13 @@ namespace irad::gltf::sem {
 const nlohmann::json* member(const nlohmann::json& obj, std::string_view key);
 // Element i of the array `key` of `obj`, or nullptr.
 const nlohmann::json* element(const nlohmann::json& obj, std::string_view key, std::int64_t i);
+// The largest byte count, offset or element count the checks compute with: larger values (from
+// fuzzed JSON) are treated as unreadable, so that sums and products cannot overflow.
+inline constexpr std::int64_t kMaxSize = std::int64_t{1} << 40;
+inline bool sane(std::int64_t v) {
+  return v >= 0 && v <= kMaxSize;
+}
+
 // An integer value (a float with an integral value counts); nullopt otherwise.
 std::optional<std::int64_t> as_int(const nlohmann::json* v);
 std::optional<std::int64_t> index(const nlohmann::json& obj, std::string_view key);
@@ -51,7 +58,7 @@ int component_count(std::string_view type);      // 0 for an unknown type
 // An accessor's layout, resolved as far as its JSON allows. `valid` when componentType, type and
 // count are known; the data fields are set only when the bytes can be read.
 struct AccessorView {
-  bool valid = false;
+  bool valid = false; // also: count, byteOffset and byteStride (when set) are sane()
   std::int64_t component_type = 0;
   std::string type;
   int components = 0;     // 1..16
