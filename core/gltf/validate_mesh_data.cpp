@@ -2,6 +2,7 @@
 // colours, joint indices within the skin, non-negative weights that sum to one.
 #include "core/gltf/validate_semantics_read.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -111,6 +112,52 @@ struct SkinSets {
   std::map<int, std::pair<std::int64_t, std::string>> joints, weights; // set → accessor, pointer
 };
 
+// A vertex's weights over all sets: a joint out of the skin or used twice (with a non-zero
+// weight) does not count, nor does a negative weight. Reports a duplicate joint at its JOINTS_n.
+void sum_weights(const Context& ctx, const SkinSets& sets, std::optional<std::int64_t> limit,
+                 std::vector<double>& sums) {
+  std::vector<std::pair<AccessorData, std::string>> joints;
+  for (const auto& [set, jp] : sets.joints)
+    joints.emplace_back(read_accessor(ctx, jp.first), jp.second);
+  std::vector<std::pair<AccessorData, AccessorView>> weights;
+  for (const auto& [set, wp] : sets.weights) {
+    const auto a = accessor_view(ctx, wp.first);
+    weights.emplace_back(read_accessor(ctx, wp.first), a.value_or(AccessorView{}));
+  }
+  const bool joints_ok = joints.size() == weights.size() &&
+                         std::all_of(joints.begin(), joints.end(), [&](const auto& j) {
+                           return j.first.ok && j.first.values.size() == sums.size() * 4;
+                         });
+  std::vector<bool> duplicate(joints.size(), false);
+  for (std::size_t v = 0; v < sums.size(); ++v) {
+    std::vector<double> used;
+    for (std::size_t s = 0; s < weights.size(); ++s) {
+      for (std::size_t c = 0; c < 4; ++c) {
+        const AccessorView& a = weights[s].second;
+        const double w =
+            normalize(weights[s].first.values[v * 4 + c], a.component_type, a.normalized);
+        if (!joints_ok) {
+          sums[v] += w;
+          continue;
+        }
+        const double j = joints[s].first.values[v * 4 + c];
+        if (limit && j >= static_cast<double>(*limit)) continue;
+        if (w != 0 && std::find(used.begin(), used.end(), j) != used.end()) {
+          duplicate[s] = true;
+          continue;
+        }
+        if (w < 0) continue;
+        if (w != 0) used.push_back(j);
+        sums[v] += w;
+      }
+    }
+  }
+  for (std::size_t s = 0; s < duplicate.size(); ++s)
+    if (duplicate[s])
+      ctx.add(joints[s].second, "ACCESSOR_JOINTS_INDEX_DUPLICATE",
+              "a vertex uses the same joint twice");
+}
+
 void check_skin_data(const Context& ctx, const SkinSets& sets, std::optional<std::int64_t> limit) {
   for (const auto& [set, jp] : sets.joints) {
     if (!limit) break;
@@ -122,25 +169,25 @@ void check_skin_data(const Context& ctx, const SkinSets& sets, std::optional<std
       break;
     }
   }
-  std::vector<double> sums;
+  std::size_t vertices = 0;
   bool all_read = true;
   for (const auto& [set, wp] : sets.weights) {
     const auto a = accessor_view(ctx, wp.first);
     const AccessorData d = read_accessor(ctx, wp.first);
-    if (!a || !d.ok || a->components != 4) {
+    if (!a || !d.ok || a->components != 4 || (vertices != 0 && d.values.size() != vertices * 4)) {
       all_read = false;
       continue;
     }
-    if (sums.empty()) sums.assign(d.values.size() / 4, 0.0);
-    bool negative = false;
-    for (std::size_t k = 0; k < d.values.size(); ++k) {
-      const double w = normalize(d.values[k], a->component_type, a->normalized);
-      if (w < 0) negative = true;
-      if (k / 4 < sums.size()) sums[k / 4] += w;
+    vertices = d.values.size() / 4;
+    for (double raw : d.values) {
+      if (normalize(raw, a->component_type, a->normalized) >= 0) continue;
+      ctx.add(wp.second, "ACCESSOR_WEIGHTS_NEGATIVE", "a joint weight is negative");
+      break;
     }
-    if (negative) ctx.add(wp.second, "ACCESSOR_WEIGHTS_NEGATIVE", "a joint weight is negative");
   }
   if (!all_read || sets.weights.empty()) return;
+  std::vector<double> sums(vertices, 0.0);
+  sum_weights(ctx, sets, limit, sums);
   const double tol = 0.002 * static_cast<double>(sets.weights.size());
   for (double s : sums) {
     if (!std::isfinite(s) || std::fabs(s - 1.0) <= tol || s == 0.0) continue;
