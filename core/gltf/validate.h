@@ -22,6 +22,9 @@ struct BufferBytes {
   const unsigned char* data = nullptr;
   std::size_t size = 0;
   bool present = false;
+  // Set by the caller on buffer 0 of a GLB file that has no BIN chunk (BUFFER_MISSING_GLB_DATA
+  // when that buffer has no uri); a .gltf file's uri-less buffer is not an error by itself.
+  bool glb_without_bin = false;
 };
 
 // Every error-severity problem the glTF-Validator would report for this document (schema: types,
