@@ -308,9 +308,7 @@ std::vector<BufferData> resolve_buffers(const SceneFile& f, const fs::path& fold
         const auto* bin = f.bytes.data() + f.bin_offset;
         out[i].bytes.assign(bin, bin + f.bin_length);
         out[i].present = true;
-      } else if (f.binary && i == 0) {
-        issues.add({pointer, "BUFFER_MISSING_GLB_DATA", "no uri and the GLB has no BIN chunk"});
-      } else {
+      } else if (!(f.binary && i == 0)) { // (a GLB without BIN: the validator's error)
         out[i].placeholder = true;
         out[i].byte_length = index_member(b, "byteLength").value_or(0);
       }

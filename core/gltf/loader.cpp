@@ -57,10 +57,12 @@ void check_extensions(const Context& ctx) {
 }
 
 // The validator's view of the resolved buffers.
-std::vector<gltf::BufferBytes> buffer_views(const std::vector<gltf::BufferData>& buffers) {
+std::vector<gltf::BufferBytes> buffer_views(const gltf::SceneFile& f,
+                                            const std::vector<gltf::BufferData>& buffers) {
   std::vector<gltf::BufferBytes> out;
   for (const gltf::BufferData& b : buffers)
-    out.push_back({b.bytes.data(), b.bytes.size(), b.present});
+    out.push_back({b.bytes.data(), b.bytes.size(), b.present, false});
+  if (!out.empty() && f.binary && f.bin_length == 0) out[0].glb_without_bin = true;
   return out;
 }
 
@@ -165,7 +167,7 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
   gltf::IssueBook issues(file, {});
   const std::vector<gltf::BufferData> buffers =
       gltf::resolve_buffers(f, path.parent_path(), limits, issues);
-  for (gltf::Issue& issue : gltf::validate(f.root, buffer_views(buffers)))
+  for (gltf::Issue& issue : gltf::validate(f.root, buffer_views(f, buffers)))
     issues.add(std::move(issue));
   gltf::DecodedViews views;
   gltf::DecodedAccessors accessors;
