@@ -183,6 +183,27 @@ const char* image_format_name(ImageFormat format) {
   return "unknown";
 }
 
+void check_image_header(const unsigned char* bytes, std::size_t size) {
+  const ImageFormat format = sniff_image(bytes, size);
+  int w = 0, h = 0, channels = 0;
+  WebPBitstreamFeatures features;
+  switch (format) {
+  case ImageFormat::Png:
+  case ImageFormat::Jpeg:
+    if (size > std::size_t(std::numeric_limits<int>::max()) ||
+        !stbi_info_from_memory(bytes, int(size), &w, &h, &channels))
+      throw not_decoding(format, stb_reason());
+    return;
+  case ImageFormat::Webp:
+    if (WebPGetFeatures(bytes, size, &features) != VP8_STATUS_OK)
+      throw not_decoding(format, "corrupt data");
+    return;
+  case ImageFormat::Unknown:
+    break;
+  }
+  throw ImageError("not a PNG, JPEG or WebP image");
+}
+
 DecodedImage decode_image(const unsigned char* bytes, std::size_t size, const ImageLimits& limits) {
   const ImageFormat format = sniff_image(bytes, size);
   switch (format) {

@@ -37,6 +37,10 @@ struct ImageLimits {
   std::uint64_t max_texels = 1u << 26; // of this image
 };
 
+// Reads only the header of PNG, JPEG or WebP bytes (no pixel is decoded) and throws ImageError
+// as decode_image would for an unknown format or a header that does not parse.
+void check_image_header(const unsigned char* bytes, std::size_t size);
+
 // Decodes PNG, JPEG or WebP bytes. The size is read from the header and checked against the
 // limits before any pixel is decoded. Channels are the file's: PNG and JPEG as stored (a grey or
 // RGB PNG's tRNS colour key becomes an alpha channel; palettes expand to RGB or RGBA), 16-bit

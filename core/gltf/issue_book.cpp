@@ -15,7 +15,9 @@ struct Repair {
   const char* code;
   const char* what;
 };
-constexpr std::array<Repair, 8> kRepairs{{
+constexpr std::array<Repair, 9> kRepairs{{
+    {"ACCESSOR_INVALID_FLOAT",
+     "triangles with a NaN or Inf vertex are dropped, such normals replaced"},
     {"ROTATION_NON_UNIT", "the quaternion is normalised"},
     {"ACCESSOR_ANIMATION_SAMPLER_OUTPUT_NON_NORMALIZED_QUATERNION",
      "the quaternions are normalised"},

@@ -180,8 +180,10 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
   scene.source = file;
   const std::vector<gltf::NodeInstance> instances = gltf::flatten_scene(ctx, scene_name);
   const gltf::Skins skins(ctx, instances);
+  std::vector<char> decoded_images;
   Builder builder(ctx, scene,
-                  gltf::convert_materials(ctx, referenced_materials(ctx, instances), scene),
+                  gltf::convert_materials(ctx, referenced_materials(ctx, instances), scene,
+                                          decoded_images),
                   skins);
   for (const gltf::NodeInstance& instance : instances) builder.add(instance);
   const gltf::ContentNodes content = builder.finish();
@@ -192,6 +194,7 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
   }
   scene.animation = gltf::read_animation(ctx, instances, content, scene);
   if (scene.cameras.empty()) scene.cameras.push_back(gltf::default_camera(scene.bounds));
+  gltf::check_unused_images(ctx, decoded_images);
   issues.warn_unused(log);
   return scene;
 }

@@ -146,8 +146,8 @@ glm::mat3 texture_transform(const json& t) {
 // Converts textures on first use and hands out their index in scene.textures.
 class TextureTable {
 public:
-  TextureTable(const Context& ctx, std::vector<Texture>& textures)
-      : ctx_(ctx), textures_(textures) {}
+  TextureTable(const Context& ctx, std::vector<Texture>& textures, std::vector<char>& decoded)
+      : ctx_(ctx), textures_(textures), decoded_(decoded) {}
 
   // Index in scene.textures of the texture referenced by textureInfo `info` at element `where`
   // (and how it is looked up, into `map`), or -1 when the texture has no image irad can use.
@@ -187,6 +187,7 @@ private:
   Texture make(std::size_t image, int sampler, bool srgb) {
     const json& im = ctx_.array("images")[image];
     Texture out = decode(ctx_, image, srgb, texels_);
+    if (image < decoded_.size()) decoded_[image] = 1;
     const std::string name = string_member(im, "name");
     out.name = !name.empty() ? name : element("images", image);
     if (sampler >= 0) {
@@ -202,6 +203,7 @@ private:
   std::vector<Texture>& textures_;
   std::map<Key, int> index_;
   std::uint64_t texels_ = 0;
+  std::vector<char>& decoded_;
 };
 
 // Fails unless every component is finite, >= 0 and (when max_one) <= 1.
@@ -325,9 +327,32 @@ Material placeholder(const json& m) {
 
 } // namespace
 
+void check_unused_images(const Context& ctx, const std::vector<char>& decoded) {
+  const json& images = ctx.array("images");
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    if (i < decoded.size() && decoded[i]) continue;
+    const std::string pointer = pointer_of("images", i);
+    const bool has_uri = member(images[i], "uri") != nullptr;
+    try {
+      if (has_uri && !member(images[i], "uri")->is_string()) continue; // the schema's issue
+      if (!has_uri && !index_member(images[i], "bufferView")) continue;
+      const std::vector<unsigned char> bytes = image_bytes(ctx, i);
+      check_image_header(bytes.data(), bytes.size());
+    } catch (const Error& e) {
+      std::string what = e.what();
+      const std::string prefix = ctx.file + ": " + element("images", i) + ": ";
+      if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+      ctx.issues.add({pointer + (has_uri ? "/uri" : ""), "IO_ERROR", what});
+    } catch (const ImageError& e) {
+      ctx.issues.add({pointer, "IMAGE_DATA_INVALID", e.what()});
+    }
+  }
+}
+
 std::vector<UvSets> convert_materials(const Context& ctx, const std::vector<char>& referenced,
-                                      Scene& scene) {
-  TextureTable textures(ctx, scene.textures);
+                                      Scene& scene, std::vector<char>& decoded_images) {
+  decoded_images.assign(ctx.count("images"), 0);
+  TextureTable textures(ctx, scene.textures, decoded_images);
   const json& materials = ctx.array("materials");
   std::vector<UvSets> uv(materials.size());
   for (std::size_t i = 0; i < materials.size(); ++i) {
