@@ -171,6 +171,22 @@ public:
     return accessor(view(v.data(), v.size() * sizeof(glm::vec3)), kFloat, v.size(), "VEC3");
   }
 
+  // A POSITION accessor: VEC3 floats with the min and max glTF requires (over the finite
+  // components; a component with none gets 0).
+  int positions(const std::vector<glm::vec3>& v) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& p : v)
+      for (int k = 0; k < 3; ++k)
+        if (std::isfinite(p[k])) {
+          lo[k] = std::min(lo[k], p[k]);
+          hi[k] = std::max(hi[k], p[k]);
+        }
+    for (int k = 0; k < 3; ++k)
+      if (lo[k] > hi[k]) lo[k] = hi[k] = 0.0f;
+    return accessor(view(v.data(), v.size() * sizeof(glm::vec3)), kFloat, v.size(), "VEC3",
+                    {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}});
+  }
+
   int vec2s(const std::vector<glm::vec2>& v) {
     return accessor(view(v.data(), v.size() * sizeof(glm::vec2)), kFloat, v.size(), "VEC2");
   }
@@ -233,7 +249,7 @@ inline const std::vector<glm::vec3> kQuad{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1
 inline const std::vector<std::uint16_t> kQuadIndices{0, 1, 2, 0, 2, 3};
 
 inline json quad_primitive(Gltf& g, int material, const std::vector<glm::vec3>& normals) {
-  json p = {{"attributes", {{"POSITION", g.vec3s(kQuad)}}}, {"indices", g.indices(kQuadIndices)}};
+  json p = {{"attributes", {{"POSITION", g.positions(kQuad)}}}, {"indices", g.indices(kQuadIndices)}};
   if (!normals.empty()) p["attributes"]["NORMAL"] = g.vec3s(normals);
   if (material >= 0) p["material"] = material;
   return p;
