@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <gtest/gtest.h>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -423,6 +424,44 @@ TEST_F(GltfLoader, GlbLoadsTheSameAsGltf) {
   }
 }
 
+// A GLB chunk of another type after JSON and BIN is skipped (glTF 2.0, 4.4.3.1: clients must
+// ignore chunks of unknown types).
+TEST_F(GltfLoader, GlbChunkOfUnknownTypeIsSkipped) {
+  Gltf g = emissive_quad();
+  const fs::path path = g.write_glb(dir / "extra.glb");
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), {}};
+  in.close();
+  put_le32(bytes, 4);
+  bytes.insert(bytes.end(), {'X', 'T', 'R', 'A', 1, 2, 3, 4});
+  const std::uint32_t length = static_cast<std::uint32_t>(bytes.size());
+  std::memcpy(bytes.data() + 8, &length, 4); // little-endian hosts only, as irad
+  write_file(path, bytes.data(), bytes.size());
+  const Scene s = load(path);
+  EXPECT_EQ(corners(s), corners(load(g.write_gltf(dir / "extra.gltf"))));
+}
+
+// A buffer without uri outside a GLB reads as zeros, with a warning naming it: here the quad's
+// normals, which then fall back to the geometric normal.
+TEST_F(GltfLoader, BufferWithoutUriInGltfReadsAsZerosWithAWarning) {
+  Gltf g = emissive_quad();
+  const fs::path path = g.write_gltf(dir / "nouri.gltf");
+  json doc = json::parse(std::ifstream(path));
+  doc["buffers"].push_back({{"byteLength", 48}});
+  doc["bufferViews"].push_back({{"buffer", 1}, {"byteLength", 48}});
+  doc["accessors"].push_back({{"bufferView", doc["bufferViews"].size() - 1},
+                              {"componentType", kFloat},
+                              {"count", 4},
+                              {"type", "VEC3"}});
+  doc["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = doc["accessors"].size() - 1;
+  write_file(path, doc.dump());
+  const Scene s = load(path);
+  ASSERT_EQ(s.triangle_count(), 2u);
+  for (const glm::vec3& n : s.normals) expect_near(n, {0, 0, 1});
+  EXPECT_EQ(warnings_containing("buffers[1]: no uri and no data; its bytes are read as zeros"), 1)
+      << ::testing::PrintToString(warnings);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad inputs: each gives one irad::Error naming the file and the element.
 
@@ -521,10 +560,11 @@ const BadCase kBadCases[] = {
      "no triangles"},
     {"node_cycle",
      [](Gltf& g) {
+       // Below the scene's root (a cycle through a root also makes it a child: another error).
        g.doc["nodes"][0]["children"] = {1};
-       g.push("nodes", {{"children", {0}}});
+       g.push("nodes", {{"children", {1}}});
      },
-     "nodes[0]", "cycle"},
+     "nodes[1]", "the node is in a loop"},
     {"mesh_out_of_range", [](Gltf& g) { g.doc["nodes"][0]["mesh"] = 5; }, "nodes[0].mesh",
      "index 5 refers to nothing"},
     {"child_out_of_range", [](Gltf& g) { g.doc["nodes"][0]["children"] = {9}; },
