@@ -554,6 +554,13 @@ std::vector<Case> cases() {
                "images[0]: 8 x 2 texels exceed --max-texture-size 4",
                limits([](irad::LoadLimits& l) { l.max_texture_size = 4; }),
                "--max-texture-size 4"});
+  c.push_back({"image_over_texel_limit",
+               [](const fs::path& d) {
+                 return textured_quad(d, "texels1.gltf",
+                                      {{"uri", "data:image/png;base64," + base64(grey_png(8, 8))}});
+               },
+               "images[0]: 8 x 8 texels exceed the limit of 32 texels per image",
+               limits([](irad::LoadLimits& l) { l.max_texture_texels = 32; }), ""});
   c.push_back({"images_over_texel_limit",
                [](const fs::path& d) {
                  // Two images of 25 texels each: each is under the limit, together they are over.

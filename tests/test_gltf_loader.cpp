@@ -627,6 +627,24 @@ const BadCase kBadCases[] = {
      },
      "meshes[0].primitives[0]", "NORMAL"},
     {"scene_out_of_range", [](Gltf& g) { g.doc["scene"] = 3; }, "scene", "scene index 3"},
+    {"cycle_through_root",
+     [](Gltf& g) {
+       g.doc["nodes"][0]["children"] = {1};
+       g.push("nodes", {{"children", {0}}});
+     },
+     "scenes[0].nodes[0]", "a scene's node must not have a parent"},
+    {"emissive_above_one",
+     [](Gltf& g) { g.doc["materials"][0]["emissiveFactor"] = {2.0, 1.0, 1.0}; },
+     "materials[0].emissiveFactor[0]", "value 2.0 is out of range"},
+    {"undeclared_extension",
+     [](Gltf& g) {
+       g.doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] =
+           2.0;
+     },
+     "materials[0].extensions.KHR_materials_emissive_strength",
+     "extension 'KHR_materials_emissive_strength' is not in extensionsUsed"},
+    {"data_above_max", [](Gltf& g) { g.doc["accessors"][0]["max"][0] = 0.5; },
+     "accessors[0].max[0]", "element(s) lie outside the declared max"},
 };
 
 TEST_F(GltfLoader, EveryBadInputIsOneLineErrorNamingFileAndElement) {
