@@ -53,16 +53,16 @@ void GpuScene::update_vertices() {
   if (!scene_->animation) return;
   api_->BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
   std::vector<Vertex> run;
-  for (const Animation::MeshPart& part : scene_->animation->parts) {
-    // A node's vertices are contiguous runs of the scene's arrays: one upload per run.
-    for (std::size_t k = 0; k < part.vertices.size();) {
-      const std::uint32_t first = part.vertices[k];
-      run.clear();
-      while (k < part.vertices.size() && part.vertices[k] == first + run.size())
-        run.push_back(vertex_of(*scene_, part.vertices[k++]));
-      api_->BufferSubData(GL_ARRAY_BUFFER, GLintptr(first * sizeof(Vertex)),
-                          GLsizeiptr(run.size() * sizeof(Vertex)), run.data());
-    }
+  // The moving vertices (ascending) form contiguous runs of the scene's arrays: one upload per
+  // run.
+  const std::vector<std::uint32_t> moving = scene_->animation->moving_vertices();
+  for (std::size_t k = 0; k < moving.size();) {
+    const std::uint32_t first = moving[k];
+    run.clear();
+    while (k < moving.size() && moving[k] == first + run.size())
+      run.push_back(vertex_of(*scene_, moving[k++]));
+    api_->BufferSubData(GL_ARRAY_BUFFER, GLintptr(first * sizeof(Vertex)),
+                        GLsizeiptr(run.size() * sizeof(Vertex)), run.data());
   }
 }
 

@@ -85,8 +85,7 @@ std::vector<char> moving_triangles(const Scene& scene) {
   std::vector<char> moving(scene.triangles.size(), 0);
   if (!scene.animation || !scene.animation->moves_geometry()) return moving;
   std::vector<char> moving_vertex(scene.positions.size(), 0);
-  for (const Animation::MeshPart& part : scene.animation->parts)
-    for (std::uint32_t v : part.vertices) moving_vertex[v] = 1;
+  for (std::uint32_t v : scene.animation->moving_vertices()) moving_vertex[v] = 1;
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const glm::uvec3 tri = scene.triangles[t];
     moving[t] = moving_vertex[tri.x] || moving_vertex[tri.y] || moving_vertex[tri.z];

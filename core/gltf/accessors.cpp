@@ -22,10 +22,9 @@ bool fits(std::size_t offset, std::size_t stride, std::size_t count, std::size_t
   return count <= 1 || (stride > 0 && count - 1 <= room / stride);
 }
 
-
 // EXT_meshopt_compression of bufferViews[v]: its bytes decoded into ctx.decoded_views.
-const std::vector<unsigned char>& meshopt_view(const Context& ctx, std::size_t v,
-                                               const json& ext, const std::string& name) {
+const std::vector<unsigned char>& meshopt_view(const Context& ctx, std::size_t v, const json& ext,
+                                               const std::string& name) {
   if (const auto found = ctx.decoded_views.find(v); found != ctx.decoded_views.end())
     return found->second;
   const std::string where = name + ".extensions.EXT_meshopt_compression";
@@ -41,8 +40,7 @@ const std::vector<unsigned char>& meshopt_view(const Context& ctx, std::size_t v
   const std::uint64_t count = index_member(ext, "count").value_or(0);
   if (length > buffer.bytes.size() || offset > buffer.bytes.size() - length)
     ctx.fail(where, "byteOffset + byteLength exceed the buffer");
-  if (stride == 0 || count == 0 || count > 3 * ctx.limits.max_triangles * 4 ||
-      stride > 256)
+  if (stride == 0 || count == 0 || count > 3 * ctx.limits.max_triangles * 4 || stride > 256)
     ctx.fail(where, "count and byteStride must be positive (byteStride at most 256)");
   try {
     auto decoded = decode_meshopt(buffer.bytes.data() + offset, length, count, stride,
@@ -77,9 +75,9 @@ ViewBytes view_bytes(const Context& ctx, std::uint64_t view, const std::string& 
     const std::vector<unsigned char>& bytes = meshopt_view(ctx, v, *ext, name);
     return {bytes.data(), bytes.size(), stride};
   }
-  const std::size_t b = checked_index(
-      ctx, static_cast<long long>(index_member(bv, "buffer").value_or(~0ull >> 1)),
-      ctx.buffers.size(), name, "buffer");
+  const std::size_t b =
+      checked_index(ctx, static_cast<long long>(index_member(bv, "buffer").value_or(~0ull >> 1)),
+                    ctx.buffers.size(), name, "buffer");
   ctx.use("buffers", b);
   const BufferData& buffer = ctx.buffers[b];
   const std::uint64_t offset = index_member(bv, "byteOffset").value_or(0);
@@ -142,8 +140,8 @@ void attach_view(const Context& ctx, const json& a, std::uint64_t view, const st
   const ViewBytes v = view_bytes(ctx, view, name);
   e.stride = v.stride != 0 ? v.stride : e.size;
   if (e.stride < e.size) {
-    ctx.fail(name, fmt::format("byteStride {} is smaller than the element size {}", e.stride,
-                               e.size));
+    ctx.fail(name,
+             fmt::format("byteStride {} is smaller than the element size {}", e.stride, e.size));
   }
   const std::uint64_t offset = index_member(a, "byteOffset").value_or(0);
   if (offset > v.length || !fits(std::size_t(offset), e.stride, e.count, e.size, v.length)) {
@@ -180,7 +178,8 @@ std::uint32_t read_uint(const unsigned char* p, int component_type) {
 // Overwrites the elements listed by accessor.sparse (glTF sparse storage) in e.dense.
 void apply_sparse(const Context& ctx, const json& s, const std::string& name, Elements& e) {
   const std::uint64_t n = index_member(s, "count").value_or(0);
-  if (n < 1 || n > e.count) ctx.fail(name, fmt::format("sparse.count {} must lie in [1, count]", n));
+  if (n < 1 || n > e.count)
+    ctx.fail(name, fmt::format("sparse.count {} must lie in [1, count]", n));
   const json* indices = member(s, "indices");
   const json* values = member(s, "values");
   if (!indices || !values) ctx.fail(name, "sparse needs indices and values");
@@ -190,8 +189,8 @@ void apply_sparse(const Context& ctx, const json& s, const std::string& name, El
   const std::size_t isize = component_size(itype);
   const ViewBytes iv = view_bytes(ctx, index_member(*indices, "bufferView").value_or(~0ull),
                                   name + ".sparse.indices");
-  const ViewBytes vv = view_bytes(ctx, index_member(*values, "bufferView").value_or(~0ull),
-                                  name + ".sparse.values");
+  const ViewBytes vv =
+      view_bytes(ctx, index_member(*values, "bufferView").value_or(~0ull), name + ".sparse.values");
   const std::uint64_t ioff = index_member(*indices, "byteOffset").value_or(0);
   const std::uint64_t voff = index_member(*values, "byteOffset").value_or(0);
   if (ioff > iv.length || !fits(std::size_t(ioff), isize, n, isize, iv.length))
@@ -342,8 +341,8 @@ Values read_values(const Context& ctx, std::uint64_t accessor, const std::string
   for (std::size_t i = 0; i < e.count; ++i) {
     const unsigned char* p = e.at(i);
     for (std::size_t k = 0; k < l.components; ++k)
-      out.data[i * l.components + k] = read_component(p + l.offset_of(k), l.component_type,
-                                                      l.normalized);
+      out.data[i * l.components + k] =
+          read_component(p + l.offset_of(k), l.component_type, l.normalized);
   }
   return out;
 }
@@ -383,10 +382,10 @@ std::vector<glm::vec4> read_colors(const Context& ctx, std::uint64_t accessor,
 std::vector<glm::vec4> read_animation_values(const Context& ctx, std::uint64_t accessor,
                                              const std::string& use, const char* type) {
   const bool scalar = std::string(type) == "SCALAR";
-  const Values v =
-      scalar ? read_values(ctx, accessor, use, {"SCALAR"}, {kFloat})
-             : read_values(ctx, accessor, use, {type},
-                           {kByte, kUnsignedByte, kShort, kUnsignedShort, kFloat}, true);
+  const Values v = scalar
+                       ? read_values(ctx, accessor, use, {"SCALAR"}, {kFloat})
+                       : read_values(ctx, accessor, use, {type},
+                                     {kByte, kUnsignedByte, kShort, kUnsignedShort, kFloat}, true);
   std::vector<glm::vec4> out(v.count(), glm::vec4(0.0f));
   for (std::size_t i = 0; i < out.size(); ++i)
     for (std::size_t k = 0; k < v.components; ++k) {
@@ -403,11 +402,12 @@ std::vector<std::uint32_t> read_indices(const Context& ctx, std::uint64_t access
   const json& a = accessor_json(ctx, accessor, use);
   const std::string name = element("accessors", std::size_t(accessor));
   const Layout l = layout_of(ctx, a, name);
-  if (l.type != "SCALAR" || (l.component_type != kUnsignedByte &&
-                             l.component_type != kUnsignedShort &&
-                             l.component_type != kUnsignedInt)) {
-    ctx.fail(name, "used as " + use + ", must be a SCALAR accessor of unsigned bytes, shorts or "
-                                      "ints");
+  if (l.type != "SCALAR" ||
+      (l.component_type != kUnsignedByte && l.component_type != kUnsignedShort &&
+       l.component_type != kUnsignedInt)) {
+    ctx.fail(name, "used as " + use +
+                       ", must be a SCALAR accessor of unsigned bytes, shorts or "
+                       "ints");
   }
   const Elements e = elements(ctx, accessor, l);
   std::vector<std::uint32_t> out(e.count);

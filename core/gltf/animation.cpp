@@ -1,5 +1,7 @@
 #include "core/gltf/animation.h"
 
+#include "core/gltf/skins.h"
+
 #include "core/gltf/accessors.h"
 
 #include <algorithm>
@@ -91,6 +93,68 @@ Animation::Node node_at_rest(const Context& ctx, std::size_t n) {
   return out;
 }
 
+// The world matrix of any glTF node from the hierarchy at rest (parents found by search).
+glm::dmat4 local_world(const Context& ctx, std::size_t node) {
+  const json& nodes = ctx.array("nodes");
+  glm::dmat4 m = local_matrix(ctx, node);
+  std::size_t current = node;
+  for (std::size_t steps = 0; steps < nodes.size(); ++steps) {
+    std::optional<std::size_t> parent;
+    for (std::size_t p = 0; p < nodes.size() && !parent; ++p) {
+      const json* children = member(nodes[p], "children");
+      if (!children || !children->is_array()) continue;
+      for (const json& c : *children)
+        if (as_index(c) == current) parent = p;
+    }
+    if (!parent) break;
+    m = local_matrix(ctx, *parent) * m;
+    current = *parent;
+  }
+  return m;
+}
+
+// A weights channel of a node with N morph targets: outputs hold N weights per key (3 N for
+// CUBICSPLINE: in-tangents, values, out-tangents), split into tracks of four weights each.
+void read_weight_tracks(const Context& ctx, std::size_t a, const json& channel, std::uint32_t node,
+                        Animation& out) {
+  const std::size_t n = out.nodes[node].weights.size();
+  const std::string owner = element("animations", a);
+  if (n == 0) {
+    ctx.warn(owner + ": a weights channel targets a node without morph targets; ignored");
+    return;
+  }
+  const json& anim = ctx.array("animations")[a];
+  const json* samplers = member(anim, "samplers");
+  const std::size_t count = samplers && samplers->is_array() ? samplers->size() : 0;
+  const auto s = index_member(channel, "sampler");
+  const std::size_t si =
+      checked_index(ctx, s ? static_cast<long long>(*s) : -1, count, owner, "sampler");
+  const json& sampler = (*samplers)[si];
+  const std::string where = owner + element(".samplers", si);
+  ctx.use(pointer_of("animations", a) + "/samplers/" + std::to_string(si));
+  const Interpolation interpolation =
+      interpolation_of(ctx, string_member(sampler, "interpolation"), where);
+  const std::vector<float> times =
+      read_times(ctx, index_member(sampler, "input").value_or(~0ull >> 1), where);
+  if (times.empty()) return;
+  const std::vector<glm::vec4> v = read_animation_values(
+      ctx, index_member(sampler, "output").value_or(~0ull >> 1), where + ".output", "SCALAR");
+  const std::size_t per_key = interpolation == Interpolation::CubicSpline ? 3 : 1;
+  if (v.size() != per_key * n * times.size())
+    ctx.fail(where, fmt::format("output has {} elements, {} expected ({} keys x {} weights)",
+                                v.size(), per_key * n * times.size(), times.size(), n));
+  for (std::size_t first = 0; first < n; first += 4) {
+    Keyframes k;
+    k.interpolation = interpolation;
+    k.times = times;
+    k.values.resize(per_key * times.size(), glm::vec4(0.0f));
+    for (std::size_t e = 0; e < k.values.size(); ++e)
+      for (std::size_t c = 0; c < 4 && first + c < n; ++c)
+        k.values[e][int(c)] = v[e * n + first + c].x;
+    out.tracks.push_back({node, Animation::Path::Weights, std::move(k), std::uint32_t(first)});
+  }
+}
+
 Animation::Path animation_path(const std::string& path) {
   if (path == "translation") return Animation::Path::Translation;
   if (path == "rotation") return Animation::Path::Rotation;
@@ -109,15 +173,11 @@ void read_tracks(const Context& ctx, const std::map<std::size_t, std::uint32_t>&
       const std::string where = element("animations", a) + element(".channels", c);
       const json* target = member(ch, "target");
       const std::string path = target ? string_member(*target, "path") : std::string();
-      if (path == "weights") {
-        ctx.warn("animated morph target weights are not supported; their animation is ignored");
-        continue;
-      }
       if (path == "pointer") {
         ctx.warn("KHR_animation_pointer channels are not supported; ignored");
         continue;
       }
-      if (path != "translation" && path != "rotation" && path != "scale") {
+      if (path != "translation" && path != "rotation" && path != "scale" && path != "weights") {
         ctx.warn(where + ": unknown target path '" + path + "'; the channel is ignored");
         continue;
       }
@@ -128,6 +188,10 @@ void read_tracks(const Context& ctx, const std::map<std::size_t, std::uint32_t>&
       const auto it = index.find(node);
       if (it == index.end()) continue; // not in the scene being loaded
       ctx.use(pointer_of("animations", a) + "/channels/" + std::to_string(c));
+      if (path == "weights") {
+        read_weight_tracks(ctx, a, ch, it->second, out);
+        continue;
+      }
       if (out.nodes[it->second].has_matrix)
         ctx.fail(element("nodes", node), "an animated node must not have a matrix (glTF 3.11)");
       Keyframes keys = read_keyframes(ctx, a, ch, animation_path(path));
@@ -167,6 +231,38 @@ void widen_bounds(const Context& ctx, const Animation& anim, const std::vector<g
         bounds.extend(glm::vec3(w * glm::dvec4(corner, 1.0)));
       }
     }
+    if (anim.deformed.empty()) continue;
+    const std::vector<std::vector<double>> weights = anim.weights(t);
+    std::vector<glm::vec3> p, n;
+    for (const Animation::DeformedPart& part : anim.deformed) {
+      anim.deform(part, world, weights[part.node], p, n);
+      for (const glm::vec3& x : p)
+        if (std::isfinite(x.x + x.y + x.z)) bounds.extend(x);
+    }
+  }
+}
+
+// The deformed parts whose pose depends on time: a joint moves, or the node's weights are
+// animated, or (unskinned) the node moves. Their glTF nodes are mapped to animation nodes;
+// joints outside the loaded scene keep their rest matrix (folded into joint_matrix).
+void build_deformed(const Context& ctx, const std::vector<char>& dynamic,
+                    const std::map<std::size_t, std::uint32_t>& index, ContentNodes& content,
+                    const std::vector<char>& weighted, Animation& out) {
+  for (Soup::Deform& d : content.deforms) {
+    Animation::DeformedPart& part = d.part;
+    part.node = index.at(d.gltf_node);
+    bool moving = weighted[part.node] || (d.gltf_joints.empty() && dynamic[part.node]);
+    for (std::size_t j = 0; j < d.gltf_joints.size(); ++j) {
+      const auto it = index.find(d.gltf_joints[j]);
+      if (it == index.end()) {
+        part.joints.push_back(Animation::kFixedJoint);
+        part.joint_matrix[j] = local_world(ctx, d.gltf_joints[j]) * part.joint_matrix[j];
+      } else {
+        part.joints.push_back(it->second);
+        moving = moving || dynamic[it->second];
+      }
+    }
+    if (moving && !part.vertices.empty()) out.deformed.push_back(std::move(part));
   }
 }
 
@@ -175,7 +271,11 @@ void build_parts(const std::vector<char>& dynamic, const std::vector<glm::dmat4>
                  const std::map<std::size_t, std::uint32_t>& index, const ContentNodes& content,
                  const Scene& scene, Animation& out) {
   std::map<std::uint32_t, Animation::MeshPart> parts;
+  std::vector<char> deformed(content.vertex_node.size(), 0); // skinned or morphed: not rigid
+  for (const Soup::Deform& d : content.deforms)
+    for (std::uint32_t v : d.part.vertices) deformed[v] = 1;
   for (std::size_t v = 0; v < content.vertex_node.size(); ++v) {
+    if (deformed[v]) continue;
     const std::uint32_t n = index.at(content.vertex_node[v]);
     if (!dynamic[n]) continue;
     Animation::MeshPart& part = parts[n];
@@ -193,7 +293,7 @@ void build_parts(const std::vector<char>& dynamic, const std::vector<glm::dmat4>
 
 std::shared_ptr<const Animation> read_animation(const Context& ctx,
                                                 const std::vector<NodeInstance>& instances,
-                                                const ContentNodes& content, Scene& scene) {
+                                                ContentNodes& content, Scene& scene) {
   if (ctx.array("animations").empty()) return nullptr;
   auto anim = std::make_shared<Animation>();
   std::map<std::size_t, std::uint32_t> index; // glTF node -> anim->nodes
@@ -204,6 +304,9 @@ std::shared_ptr<const Animation> read_animation(const Context& ctx,
     gltf_node.push_back(inst.node);
     rest.push_back(inst.world);
     anim->nodes.push_back(node_at_rest(ctx, inst.node));
+    if (const auto mesh = index_member(ctx.array("nodes")[inst.node], "mesh");
+        mesh && *mesh < ctx.count("meshes"))
+      anim->nodes.back().weights = morph_weights(ctx, inst.node, std::size_t(*mesh));
   }
   for (const NodeInstance& inst : instances) { // parents are reached before their children
     const json* children = member(ctx.array("nodes")[inst.node], "children");
@@ -216,6 +319,10 @@ std::shared_ptr<const Animation> read_animation(const Context& ctx,
   if (anim->tracks.empty()) return nullptr;
   const std::vector<char> dynamic = anim->dynamic_nodes();
   build_parts(dynamic, rest, index, content, scene, *anim);
+  std::vector<char> weighted(anim->nodes.size(), 0);
+  for (const Animation::Track& k : anim->tracks)
+    if (k.path == Animation::Path::Weights) weighted[k.node] = 1;
+  build_deformed(ctx, dynamic, index, content, weighted, *anim);
   for (std::size_t n : content.camera_node) {
     const std::uint32_t i = index.at(n);
     anim->camera_node.push_back(dynamic[i] ? int(i) : -1);

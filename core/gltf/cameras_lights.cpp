@@ -37,8 +37,8 @@ void validate_orthographic(const Context& ctx, const json& o, const std::string&
   const double znear = number_member(o, "znear", -1.0);
   const double zfar = number_member(o, "zfar", 0.0);
   if (!(std::isfinite(xmag) && xmag != 0.0 && std::isfinite(ymag) && ymag != 0.0)) {
-    ctx.fail(where, fmt::format("xmag and ymag must be finite and non-zero, got {} and {}", xmag,
-                                ymag));
+    ctx.fail(where,
+             fmt::format("xmag and ymag must be finite and non-zero, got {} and {}", xmag, ymag));
   }
   if (!(std::isfinite(znear) && znear >= 0.0)) {
     ctx.fail(where, fmt::format("znear must be >= 0, got {}", znear));
@@ -126,8 +126,7 @@ std::optional<Camera> place_camera(const Context& ctx, std::size_t camera, std::
   if (const double aspect = number_member(*params, "aspectRatio", 0.0); aspect != 0.0)
     out.aspect = float(aspect);
   out.znear = float(number_member(*params, "znear", 0.0));
-  if (const double zfar = number_member(*params, "zfar", 0.0); zfar != 0.0)
-    out.zfar = float(zfar);
+  if (const double zfar = number_member(*params, "zfar", 0.0); zfar != 0.0) out.zfar = float(zfar);
   return out;
 }
 

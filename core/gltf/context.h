@@ -87,8 +87,8 @@ std::optional<std::size_t> optional_index(const Context& ctx, const json& object
 inline const json& Context::at(const char* name, std::uint64_t i, const std::string& where,
                                const std::string& what) const {
   const json& a = array(name);
-  const std::size_t k = checked_index(*this, i > 0x7fffffffffffffffull ? -1 : static_cast<long long>(i),
-                                      a.size(), where, what);
+  const std::size_t k = checked_index(
+      *this, i > 0x7fffffffffffffffull ? -1 : static_cast<long long>(i), a.size(), where, what);
   use(name, k);
   return a[k];
 }

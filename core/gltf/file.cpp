@@ -171,8 +171,9 @@ std::vector<unsigned char> external_bytes(const std::string& uri, const fs::path
   if (path.find('\0') != std::string::npos) fail(where, "uri contains a NUL byte");
   const fs::path relative(path);
   if (relative.is_absolute() || relative.has_root_name() || relative.has_root_directory()) {
-    fail(where, "uri '" + uri + "' is an absolute path (external files must lie in the scene's "
-                "folder)");
+    fail(where, "uri '" + uri +
+                    "' is an absolute path (external files must lie in the scene's "
+                    "folder)");
   }
   for (const fs::path& part : relative) {
     if (part == "..") fail(where, "uri '" + uri + "' leaves the scene's folder ('..')");

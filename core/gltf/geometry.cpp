@@ -2,12 +2,13 @@
 
 #include "core/gltf/accessors.h"
 #include "core/gltf/codecs.h"
+#include "core/gltf/skins.h"
 
-#include <fmt/format.h>
-#include <optional>
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 namespace irad::gltf {
 
@@ -54,67 +55,103 @@ std::vector<glm::vec2> read_uv_set(const Context& ctx, const json& attrs, int se
   return uv;
 }
 
-// Adds the weighted displacements of the morph targets (glTF 3.7.2.2) to positions and normals.
-void apply_morph_targets(const Context& ctx, const json& p, const std::vector<double>& weights,
-                         const std::string& where, Attributes& a) {
+// The morph targets' displacements (glTF 3.7.2.2), [target][vertex]; normals' empty when the
+// targets have none.
+struct Targets {
+  std::vector<std::vector<glm::vec3>> positions;
+  std::vector<std::vector<glm::vec3>> normals;
+};
+
+Targets read_targets(const Context& ctx, const json& p, std::size_t n, bool with_normals,
+                     const std::string& where) {
+  Targets out;
   const json* targets = member(p, "targets");
-  if (!targets || !targets->is_array() || weights.empty()) return;
-  const std::size_t n = a.positions.size();
-  for (std::size_t t = 0; t < targets->size() && t < weights.size(); ++t) {
-    const float w = float(weights[t]);
-    if (w == 0.0f) continue;
+  if (!targets || !targets->is_array()) return out;
+  for (std::size_t t = 0; t < targets->size(); ++t) {
     const json& target = (*targets)[t];
     const std::string tw = where + ".targets[" + std::to_string(t) + "]";
-    if (const auto pos = attribute(target, "POSITION")) {
-      const std::vector<glm::vec3> d = read_vec3(ctx, *pos, tw + ".POSITION");
-      if (d.size() != n) ctx.fail(tw + ".POSITION", fmt::format("{} elements, POSITION has {}", d.size(), n));
-      for (std::size_t v = 0; v < n; ++v) a.positions[v] += w * d[v];
-    }
-    if (const auto nor = attribute(target, "NORMAL"); nor && !a.normals.empty()) {
-      const std::vector<glm::vec3> d = read_vec3(ctx, *nor, tw + ".NORMAL");
-      if (d.size() != n) ctx.fail(tw + ".NORMAL", fmt::format("{} elements, POSITION has {}", d.size(), n));
-      for (std::size_t v = 0; v < n; ++v) a.normals[v] += w * d[v];
-    }
+    auto read = [&](const char* name) {
+      const auto a = attribute(target, name);
+      if (!a) return std::vector<glm::vec3>(n, glm::vec3(0.0f));
+      std::vector<glm::vec3> d = read_vec3(ctx, *a, tw + "." + name);
+      if (d.size() != n)
+        ctx.fail(tw + "." + name, fmt::format("{} elements, POSITION has {}", d.size(), n));
+      return d;
+    };
+    out.positions.push_back(read("POSITION"));
+    if (with_normals) out.normals.push_back(read("NORMAL"));
+  }
+  return out;
+}
+
+// p += sum_i w_i dp_i (and normals alike).
+void apply_morph(const Targets& t, const std::vector<double>& weights, Attributes& a) {
+  for (std::size_t i = 0; i < t.positions.size() && i < weights.size(); ++i) {
+    const float w = float(weights[i]);
+    if (w == 0.0f) continue;
+    for (std::size_t v = 0; v < a.positions.size(); ++v) a.positions[v] += w * t.positions[i][v];
+    if (i < t.normals.size() && !a.normals.empty())
+      for (std::size_t v = 0; v < a.normals.size(); ++v) a.normals[v] += w * t.normals[i][v];
   }
 }
 
-// Linear blend skinning: p' = sum_k w_k M_{j_k} p with M = joint world x inverse bind matrix,
-// normals by the cofactor of the blended matrix (glTF 3.7.3). Weights are renormalised to sum 1.
-void apply_skin(const Context& ctx, const json& attrs, const std::vector<glm::dmat4>& joints,
-                const std::string& where, Attributes& a) {
+// JOINTS_0 and WEIGHTS_0 of a skinned primitive, per vertex.
+struct Influences {
+  std::vector<glm::uvec4> joints;
+  std::vector<glm::vec4> weights;
+};
+
+Influences read_influences(const Context& ctx, const json& attrs, std::size_t n,
+                           std::size_t joint_count, const std::string& where) {
+  Influences out;
   const auto j = attribute(attrs, "JOINTS_0");
   const auto w = attribute(attrs, "WEIGHTS_0");
   if (!j || !w) {
     ctx.warn(where + ": a skinned mesh without JOINTS_0 and WEIGHTS_0; left unskinned");
-    return;
+    return out;
   }
-  const std::size_t n = a.positions.size();
   const Values jv = read_values(ctx, *j, where + ".attributes.JOINTS_0", {"VEC4"},
                                 {kUnsignedByte, kUnsignedShort});
   const Values wv = read_values(ctx, *w, where + ".attributes.WEIGHTS_0", {"VEC4"},
                                 {kUnsignedByte, kUnsignedShort, kFloat}, true);
   if (jv.count() != n || wv.count() != n)
     ctx.fail(where + ".attributes", "JOINTS_0 and WEIGHTS_0 must have POSITION's count");
-  for (std::size_t v = 0; v < n; ++v) {
+  out.joints.resize(n);
+  out.weights.resize(n);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int k = 0; k < 4; ++k) {
+      const float weight = wv.data[4 * v + std::size_t(k)];
+      const std::uint32_t joint = std::uint32_t(jv.data[4 * v + std::size_t(k)]);
+      if (weight != 0.0f && joint >= joint_count)
+        ctx.fail(where + ".attributes.JOINTS_0",
+                 fmt::format("joint {} out of range ({} joints)", joint, joint_count));
+      out.joints[v][k] = joint;
+      out.weights[v][k] = std::isfinite(weight) ? std::max(weight, 0.0f) : 0.0f;
+    }
+  return out;
+}
+
+// Linear blend skinning: p' = sum_k w_k M_{j_k} p with M = joint world x inverse bind matrix,
+// normals by the cofactor of the blended matrix (glTF 3.7.3). Weights are renormalised to sum 1;
+// a vertex without influence stays where it is.
+void apply_skin(const Influences& inf, const std::vector<glm::dmat4>& joints, Attributes& a) {
+  for (std::size_t v = 0; v < inf.joints.size(); ++v) {
     glm::dmat4 m(0.0);
     double total = 0.0;
-    for (std::size_t k = 0; k < 4; ++k) {
-      const double weight = double(wv.data[4 * v + k]);
+    for (int k = 0; k < 4; ++k) {
+      const double weight = double(inf.weights[v][k]);
       if (weight == 0.0) continue;
-      const std::size_t joint = std::size_t(jv.data[4 * v + k]);
-      if (joint >= joints.size())
-        ctx.fail(where + ".attributes.JOINTS_0",
-                 fmt::format("joint {} out of range ({} joints)", joint, joints.size()));
-      m += weight * joints[joint];
+      m += weight * joints[inf.joints[v][k]];
       total += weight;
     }
-    if (!(total > 0.0)) continue; // no influence: the vertex stays where it is
+    if (!(total > 0.0)) continue;
     m /= total;
     a.positions[v] = glm::vec3(m * glm::dvec4(glm::dvec3(a.positions[v]), 1.0));
     if (!a.normals.empty()) {
       const glm::dmat3 b(m);
       const glm::dmat3 cof(glm::cross(b[1], b[2]), glm::cross(b[2], b[0]), glm::cross(b[0], b[1]));
-      a.normals[v] = glm::vec3((glm::determinant(b) < 0.0 ? -1.0 : 1.0) * (cof * glm::dvec3(a.normals[v])));
+      a.normals[v] =
+          glm::vec3((glm::determinant(b) < 0.0 ? -1.0 : 1.0) * (cof * glm::dvec3(a.normals[v])));
     }
   }
 }
@@ -128,9 +165,9 @@ std::vector<std::uint32_t> decode_draco(const Context& ctx, const json& ext, con
   if (!view) ctx.fail(ew, "no bufferView");
   const json& bv = ctx.at("bufferViews", *view, ew, "bufferView");
   const std::string vname = element("bufferViews", std::size_t(*view));
-  const std::size_t b = checked_index(
-      ctx, static_cast<long long>(index_member(bv, "buffer").value_or(~0ull >> 1)),
-      ctx.buffers.size(), vname, "buffer");
+  const std::size_t b =
+      checked_index(ctx, static_cast<long long>(index_member(bv, "buffer").value_or(~0ull >> 1)),
+                    ctx.buffers.size(), vname, "buffer");
   ctx.use("buffers", b);
   const BufferData& buffer = ctx.buffers[b];
   const std::uint64_t offset = index_member(bv, "byteOffset").value_or(0);
@@ -157,8 +194,15 @@ std::vector<std::uint32_t> decode_draco(const Context& ctx, const json& ext, con
   }
 }
 
-Attributes read_attributes(const Context& ctx, const json& p, const PrimitivePose& pose, UvSets uv,
-                           const std::string& where) {
+// A primitive's attributes as the file stores them (mesh frame, unmorphed, unskinned), with its
+// morph targets and skin influences.
+struct RawPrimitive {
+  Attributes a;
+  Targets targets;
+  Influences influences;
+};
+
+Attributes read_attributes(const Context& ctx, const json& p, UvSets uv, const std::string& where) {
   Attributes a;
   const json* attrs_ptr = member(p, "attributes");
   const json& attrs = attrs_ptr ? *attrs_ptr : json::object();
@@ -175,8 +219,28 @@ Attributes read_attributes(const Context& ctx, const json& p, const PrimitivePos
     a.colors = read_colors(ctx, *color, where + ".attributes.COLOR_0");
     require_count(ctx, a.colors, n, where, "COLOR_0");
   }
-  apply_morph_targets(ctx, p, pose.morph_weights, where, a);
-  if (pose.joint_matrices) apply_skin(ctx, attrs, *pose.joint_matrices, where, a);
+  return a;
+}
+
+RawPrimitive read_primitive(const Context& ctx, const json& p, const PrimitivePose& pose, UvSets uv,
+                            const std::string& where) {
+  RawPrimitive raw;
+  raw.a = read_attributes(ctx, p, uv, where);
+  const std::size_t n = raw.a.positions.size();
+  if (!pose.morph_weights.empty())
+    raw.targets = read_targets(ctx, p, n, !raw.a.normals.empty(), where);
+  if (pose.skin)
+    raw.influences =
+        read_influences(ctx, *member(p, "attributes"), n, pose.skin->matrices.size(), where);
+  return raw;
+}
+
+// The attributes at rest: morphed by the default weights, then skinned.
+Attributes posed_attributes(const RawPrimitive& raw, const PrimitivePose& pose) {
+  Attributes a = raw.a;
+  apply_morph(raw.targets, pose.morph_weights, a);
+  if (pose.skin && !raw.influences.joints.empty())
+    apply_skin(raw.influences, pose.skin->matrices, a);
   return a;
 }
 
@@ -193,8 +257,8 @@ std::vector<std::uint32_t> read_vertex_indices(const Context& ctx, const json& p
   return read_indices(ctx, *accessor, where + ".indices");
 }
 
-void check_index_range(const Context& ctx, const std::vector<std::uint32_t>& indices,
-                       std::size_t n, const std::string& where) {
+void check_index_range(const Context& ctx, const std::vector<std::uint32_t>& indices, std::size_t n,
+                       const std::string& where) {
   for (std::uint32_t i : indices) {
     if (i >= n) {
       ctx.fail(where, fmt::format("index value {} out of range ({} vertices)", i, n));
@@ -208,8 +272,9 @@ std::vector<glm::uvec3> assemble(const Context& ctx, int mode,
                                  const std::vector<std::uint32_t>& idx, const std::string& where) {
   std::vector<glm::uvec3> out;
   if (mode == kTriangles) {
-    if (idx.size() % 3 != 0) ctx.warn(where + ": TRIANGLES index count is not a multiple of 3; the "
-                                      "last incomplete triangle is dropped");
+    if (idx.size() % 3 != 0)
+      ctx.warn(where + ": TRIANGLES index count is not a multiple of 3; the "
+                       "last incomplete triangle is dropped");
     for (std::size_t k = 0; k + 2 < idx.size(); k += 3)
       out.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
   } else if (mode == kTriangleStrip) {
@@ -309,6 +374,42 @@ void push_triangle(glm::uvec3 t, bool flip, std::uint32_t material, Soup& soup) 
 
 } // namespace
 
+namespace {
+
+Soup::Deform& start_deform(const RawPrimitive& raw, const PrimitivePose& pose, bool skinned,
+                           bool flip, Soup& soup) {
+  Soup::Deform d;
+  d.gltf_node = pose.node;
+  if (skinned) {
+    d.gltf_joints = pose.skin->joints;
+    d.part.joint_matrix = pose.skin->inverse_bind;
+  }
+  d.part.flat = raw.a.normals.empty();
+  d.part.flip = flip;
+  d.part.position_targets.resize(raw.targets.positions.size());
+  d.part.normal_targets.resize(raw.targets.normals.size());
+  soup.deforms.push_back(std::move(d));
+  return soup.deforms.back();
+}
+
+// Adds file vertex v, pushed as soup vertex `index`, to the deformed part.
+void record(const RawPrimitive& raw, std::size_t v, std::size_t index, Soup::Deform& d) {
+  Animation::DeformedPart& p = d.part;
+  p.vertices.push_back(std::uint32_t(index));
+  p.positions.push_back(raw.a.positions[v]);
+  if (!raw.a.normals.empty()) p.normals.push_back(raw.a.normals[v]);
+  for (std::size_t t = 0; t < p.position_targets.size(); ++t)
+    p.position_targets[t].push_back(raw.targets.positions[t][v]);
+  for (std::size_t t = 0; t < p.normal_targets.size(); ++t)
+    p.normal_targets[t].push_back(raw.targets.normals[t][v]);
+  if (!d.gltf_joints.empty()) {
+    p.vertex_joints.push_back(raw.influences.joints[v]);
+    p.vertex_weights.push_back(raw.influences.weights[v]);
+  }
+}
+
+} // namespace
+
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
                       const PrimitivePose& pose, std::uint32_t material, UvSets uv, Soup& soup) {
   const json& p = ctx.array("meshes")[mesh]["primitives"][primitive];
@@ -324,13 +425,14 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
     ctx.warn(where + ": a primitive without POSITION draws nothing; skipped");
     return;
   }
-  const std::string pp = "/meshes/" + std::to_string(mesh) + "/primitives/" + std::to_string(primitive);
+  const std::string pp =
+      "/meshes/" + std::to_string(mesh) + "/primitives/" + std::to_string(primitive);
   ctx.use_exact(pp);
   ctx.use_exact(pp + "/attributes");
   std::vector<std::string> read{"POSITION", "NORMAL", "COLOR_0"};
   for (int set : {uv.slot0, uv.slot1})
     if (set >= 0) read.push_back("TEXCOORD_" + std::to_string(set));
-  if (pose.joint_matrices) read.insert(read.end(), {"JOINTS_0", "WEIGHTS_0"});
+  if (pose.skin) read.insert(read.end(), {"JOINTS_0", "WEIGHTS_0"});
   for (const std::string& name : read)
     if (member(*attrs, name.c_str())) ctx.use(pp + "/attributes/" + name);
   for (const char* part : {"/indices", "/mode", "/extensions/KHR_draco_mesh_compression"})
@@ -339,12 +441,14 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
   std::optional<std::vector<std::uint32_t>> draco;
   if (const json* ext = extension(p, "KHR_draco_mesh_compression"))
     draco = decode_draco(ctx, *ext, *attrs, where);
-  const Attributes a = read_attributes(ctx, p, pose, uv, where);
+  const RawPrimitive raw = read_primitive(ctx, p, pose, uv, where);
+  const Attributes a = posed_attributes(raw, pose);
   const std::vector<std::uint32_t> indices =
       draco ? std::move(*draco) : read_vertex_indices(ctx, p, a.positions.size(), where);
   check_index_range(ctx, indices, a.positions.size(), where + ".indices");
   check_triangle_limit(ctx, triangle_count(mode, indices.size()), soup, where);
-  const Placement pl = placement(pose.joint_matrices ? glm::dmat4(1.0) : pose.world);
+  const bool skinned = pose.skin && !raw.influences.joints.empty();
+  const Placement pl = placement(skinned ? glm::dmat4(1.0) : pose.world);
   const std::vector<glm::uvec3> local =
       drop_non_finite(assemble(ctx, mode, indices, where), a, pl, where, soup);
   const std::uint64_t vertices = a.normals.empty() ? 3 * local.size() : a.positions.size();
@@ -356,15 +460,22 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
   soup.has_uvs = soup.has_uvs || !a.uvs.empty();
   soup.has_uvs1 = soup.has_uvs1 || !a.uvs1.empty();
   soup.has_colors = soup.has_colors || !a.colors.empty();
+  Soup::Deform* deform = nullptr;
+  if (soup.record_deforms && (skinned || !raw.targets.positions.empty()))
+    deform = &start_deform(raw, pose, skinned, a.normals.empty() && pl.flip, soup);
   if (!a.normals.empty()) {
     const std::uint32_t base = push_vertex(ctx, a, 0, pl, soup);
     for (std::size_t v = 1; v < a.positions.size(); ++v) push_vertex(ctx, a, v, pl, soup);
+    if (deform)
+      for (std::size_t v = 0; v < a.positions.size(); ++v) record(raw, v, base + v, *deform);
     for (const glm::uvec3& t : local) push_triangle(t + base, pl.flip, material, soup);
     return;
   }
   for (const glm::uvec3& t : local) { // flat normals: every triangle gets its own vertices
     const glm::uvec3 own{push_vertex(ctx, a, t.x, pl, soup), push_vertex(ctx, a, t.y, pl, soup),
                          push_vertex(ctx, a, t.z, pl, soup)}; // braces: evaluated in order
+    if (deform)
+      for (int c = 0; c < 3; ++c) record(raw, t[c], own[c], *deform);
     push_triangle(own, pl.flip, material, soup);
   }
 }
@@ -417,9 +528,39 @@ void fill_normals(Soup& s) {
 }
 
 // Removes vertices no triangle uses, keeping the order of the others.
+// Keeps the entries of a deformed part whose vertex survived compaction, renumbered. A flat part
+// loses whole triangles (triples) only, so its triples stay aligned.
+void remap_deform(const std::vector<std::uint32_t>& remap, const std::vector<char>& used,
+                  Animation::DeformedPart& p) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < p.vertices.size(); ++k) {
+    if (!used[p.vertices[k]]) continue;
+    p.vertices[kept] = remap[p.vertices[k]];
+    p.positions[kept] = p.positions[k];
+    if (!p.normals.empty()) p.normals[kept] = p.normals[k];
+    for (auto& t : p.position_targets) t[kept] = t[k];
+    for (auto& t : p.normal_targets) t[kept] = t[k];
+    if (!p.vertex_joints.empty()) {
+      p.vertex_joints[kept] = p.vertex_joints[k];
+      p.vertex_weights[kept] = p.vertex_weights[k];
+    }
+    ++kept;
+  }
+  p.vertices.resize(kept);
+  p.positions.resize(kept);
+  if (!p.normals.empty()) p.normals.resize(kept);
+  for (auto& t : p.position_targets) t.resize(kept);
+  for (auto& t : p.normal_targets) t.resize(kept);
+  if (!p.vertex_joints.empty()) {
+    p.vertex_joints.resize(kept);
+    p.vertex_weights.resize(kept);
+  }
+}
+
 void compact(Soup& s) {
   std::vector<std::uint32_t> remap(s.positions.size(), 0);
   for (const glm::uvec3& t : s.triangles) remap[t.x] = remap[t.y] = remap[t.z] = 1;
+  const std::vector<char> used(remap.begin(), remap.end());
   std::uint32_t next = 0;
   for (std::size_t v = 0; v < s.positions.size(); ++v) {
     if (remap[v] == 0) continue;
@@ -438,12 +579,13 @@ void compact(Soup& s) {
   s.colors.resize(next);
   if (!s.vertex_node.empty()) s.vertex_node.resize(next);
   for (glm::uvec3& t : s.triangles) t = {remap[t.x], remap[t.y], remap[t.z]};
+  for (Soup::Deform& d : s.deforms) remap_deform(remap, used, d.part);
 }
 
 } // namespace
 
 void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
-                     std::vector<std::uint32_t>* vertex_node) {
+                     std::vector<std::uint32_t>* vertex_node, std::vector<Soup::Deform>* deforms) {
   if (soup.non_finite_dropped > 0) {
     ctx.warn(std::to_string(soup.non_finite_dropped) +
              " triangle(s) with a NaN or Inf vertex position dropped (the first in " +
@@ -463,6 +605,7 @@ void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
   scene.triangles = std::move(soup.triangles);
   scene.triangle_material = std::move(soup.triangle_material);
   if (vertex_node) *vertex_node = std::move(soup.vertex_node);
+  if (deforms) *deforms = std::move(soup.deforms);
 }
 
 } // namespace irad::gltf

@@ -1,5 +1,6 @@
 #pragma once
 // Internal to the glTF loader: triangle primitives to world-space triangles.
+#include "core/animation.h"
 #include "core/gltf/context.h"
 #include "core/scene.h"
 
@@ -23,8 +24,18 @@ struct Soup {
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint32_t> triangle_material;
   std::vector<std::uint32_t> vertex_node; // glTF node per vertex, kept only for animated files
-  std::size_t non_finite_dropped = 0;     // triangles with a NaN or Inf (placed) vertex position
-  std::string non_finite_where;           // the primitive of the first of them
+  // Skinned or morphed primitives of an animated file, kept so that the animation can pose them
+  // (core/animation.h): part.vertices are soup indices until finish_geometry maps them; the
+  // glTF nodes of the mesh and of the skin's joints are mapped by read_animation.
+  struct Deform {
+    std::size_t gltf_node;
+    std::vector<std::size_t> gltf_joints;
+    Animation::DeformedPart part;
+  };
+  std::vector<Deform> deforms;
+  bool record_deforms = false;
+  std::size_t non_finite_dropped = 0; // triangles with a NaN or Inf (placed) vertex position
+  std::string non_finite_where;       // the primitive of the first of them
 };
 
 // The TEXCOORD sets a material's textures read, in the scene's two uv slots (Scene::uvs and
@@ -37,15 +48,17 @@ struct UvSets {
 // Where a primitive's vertices go: by its node's world matrix, after the morph targets' weighted
 // displacements (glTF 3.7.2.2), or, for a skinned mesh, by the weighted joint matrices
 // (joint world x inverse bind matrix; the node's own transform is ignored, glTF 3.7.3).
+struct SkinPose;
 struct PrimitivePose {
+  std::size_t node = 0; // the glTF node drawing the mesh
   glm::dmat4 world{1.0};
-  std::vector<double> morph_weights;                        // empty: no morphing
-  const std::vector<glm::dmat4>* joint_matrices = nullptr; // non-null: skinned
+  std::vector<double> morph_weights; // empty: no morphing
+  const SkinPose* skin = nullptr;    // non-null: skinned
 };
 
 // Appends meshes[mesh].primitives[primitive] placed by `pose`, all its triangles getting scene
-// material `material`, with the uv sets `uv`. Modes TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are converted to
-// triangle lists; point and line primitives are skipped with one warning per file.
+// material `material`, with the uv sets `uv`. Modes TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN are
+// converted to triangle lists; point and line primitives are skipped with one warning per file.
 // Positions are p' = world p; normals n' = normalize(N n) with N the inverse transpose of the
 // upper 3x3 block, taken as cofactor(A) sign(det A) = |det A| A^-T so that singular blocks need no
 // inverse. When det A < 0 the winding is reversed, so cross(p1 - p0, p2 - p0) keeps pointing to
@@ -66,7 +79,10 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
 // drops triangles with a repeated vertex or with area <= 1e-12 diagonal^2 (one warning with the
 // count), gives each vertex without a usable normal the geometric normal of the first triangle
 // that uses it, and drops vertices no triangle uses. uvs stay empty unless soup.has_uvs.
+// soup.deforms' vertices are mapped to scene vertices (those of dropped vertices removed) into
+// *deforms when given.
 void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
-                     std::vector<std::uint32_t>* vertex_node = nullptr);
+                     std::vector<std::uint32_t>* vertex_node = nullptr,
+                     std::vector<Soup::Deform>* deforms = nullptr);
 
 } // namespace irad::gltf

@@ -1,5 +1,6 @@
 #include "core/gltf/loader.h"
 
+#include "core/gltf/accessors.h"
 #include "core/gltf/animation.h"
 #include "core/gltf/cameras_lights.h"
 #include "core/gltf/context.h"
@@ -24,8 +25,8 @@ using gltf::json;
 
 // Extensions whose meaning irad implements; any other required extension is an error.
 constexpr std::array<std::string_view, 7> kSupportedExtensions{
-    "KHR_lights_punctual",        "KHR_materials_emissive_strength", "KHR_texture_transform",
-    "KHR_mesh_quantization",      "KHR_draco_mesh_compression",      "EXT_meshopt_compression",
+    "KHR_lights_punctual",   "KHR_materials_emissive_strength", "KHR_texture_transform",
+    "KHR_mesh_quantization", "KHR_draco_mesh_compression",      "EXT_meshopt_compression",
     "EXT_texture_webp"};
 
 bool supported(const std::string& extension) {
@@ -47,8 +48,8 @@ void check_extensions(const Context& ctx) {
   ctx.use("/extensionsRequired");
   for (const std::string& name : string_list(ctx.root, "extensionsRequired")) {
     if (!supported(name)) {
-      ctx.fail("extensionsRequired", "the file requires extension '" + name +
-                                         "', which irad does not support");
+      ctx.fail("extensionsRequired",
+               "the file requires extension '" + name + "', which irad does not support");
     }
   }
   for (const std::string& name : string_list(ctx.root, "extensionsUsed")) {
@@ -85,9 +86,10 @@ std::vector<char> referenced_materials(const Context& ctx,
 // Scene-building state: the triangle soup and the lazily added default material.
 class Builder {
 public:
-  Builder(const Context& ctx, Scene& scene, std::vector<gltf::UvSets> uv,
-          const gltf::Skins& skins)
-      : ctx_(ctx), scene_(scene), uv_(std::move(uv)), skins_(skins) {}
+  Builder(const Context& ctx, Scene& scene, std::vector<gltf::UvSets> uv, const gltf::Skins& skins)
+      : ctx_(ctx), scene_(scene), uv_(std::move(uv)), skins_(skins) {
+    soup_.record_deforms = track_nodes_;
+  }
 
   void add(const gltf::NodeInstance& instance) {
     const json& n = ctx_.array("nodes")[instance.node];
@@ -108,7 +110,7 @@ public:
 
   // The triangle soup into the scene; returns where each vertex, camera and light came from.
   gltf::ContentNodes finish() {
-    gltf::finish_geometry(ctx_, std::move(soup_), scene_, &content_.vertex_node);
+    gltf::finish_geometry(ctx_, std::move(soup_), scene_, &content_.vertex_node, &content_.deforms);
     return std::move(content_);
   }
 
@@ -121,7 +123,8 @@ private:
     gltf::PrimitivePose pose;
     pose.world = instance.world;
     pose.morph_weights = gltf::morph_weights(ctx_, instance.node, mesh);
-    pose.joint_matrices = skins_.joint_matrices(ctx_, instance.node);
+    pose.node = instance.node;
+    pose.skin = skins_.skin_of(ctx_, instance.node);
     for (std::size_t p = 0; p < primitives->size(); ++p) {
       const std::string where = gltf::element("meshes", mesh) + gltf::element(".primitives", p);
       const auto [material, uv] = material_of((*primitives)[p], where);
@@ -132,8 +135,8 @@ private:
   // Scene material and uv sets of a primitive.
   std::pair<std::uint32_t, gltf::UvSets> material_of(const json& p, const std::string& where) {
     if (!gltf::member(p, "material")) return {default_material(), {}};
-    const std::size_t m = *gltf::optional_index(ctx_, p, "material", ctx_.count("materials"),
-                                                where);
+    const std::size_t m =
+        *gltf::optional_index(ctx_, p, "material", ctx_.count("materials"), where);
     return {std::uint32_t(m), uv_[m]};
   }
 
@@ -171,8 +174,8 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
     issues.add(std::move(issue));
   gltf::DecodedViews views;
   gltf::DecodedAccessors accessors;
-  const Context ctx{f.root, file, log, limits, issues, buffers, views, accessors,
-                    path.parent_path()};
+  const Context ctx{
+      f.root, file, log, limits, issues, buffers, views, accessors, path.parent_path()};
   ctx.use("/asset");
   check_extensions(ctx);
 
@@ -181,12 +184,12 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
   const std::vector<gltf::NodeInstance> instances = gltf::flatten_scene(ctx, scene_name);
   const gltf::Skins skins(ctx, instances);
   std::vector<char> decoded_images;
-  Builder builder(ctx, scene,
-                  gltf::convert_materials(ctx, referenced_materials(ctx, instances), scene,
-                                          decoded_images),
-                  skins);
+  Builder builder(
+      ctx, scene,
+      gltf::convert_materials(ctx, referenced_materials(ctx, instances), scene, decoded_images),
+      skins);
   for (const gltf::NodeInstance& instance : instances) builder.add(instance);
-  const gltf::ContentNodes content = builder.finish();
+  gltf::ContentNodes content = builder.finish();
 
   if (scene.triangles.empty()) throw Error(file, "", "no triangles");
   if (!scene.has_emitters() && scene.lights.empty()) {

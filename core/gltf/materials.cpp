@@ -6,11 +6,11 @@
 
 #include <algorithm>
 #include <array>
-#include <fmt/format.h>
-#include <optional>
 #include <cmath>
 #include <cstring>
+#include <fmt/format.h>
 #include <map>
+#include <optional>
 #include <tuple>
 #include <utility>
 
@@ -62,8 +62,8 @@ std::vector<unsigned char> image_bytes(const Context& ctx, std::size_t index) {
   const json& im = ctx.array("images")[index];
   const std::string name = element("images", index);
   if (const json* uri = member(im, "uri"); uri && uri->is_string()) {
-    return uri_bytes(uri->get<std::string>(), {"image/png", "image/jpeg", "image/webp"},
-                     ctx.folder, ctx.limits, ctx.file, name);
+    return uri_bytes(uri->get<std::string>(), {"image/png", "image/jpeg", "image/webp"}, ctx.folder,
+                     ctx.limits, ctx.file, name);
   }
   const auto view = index_member(im, "bufferView");
   if (!view) ctx.fail(name, "has neither uri nor bufferView");
@@ -132,9 +132,9 @@ glm::mat3 texture_transform(const json& t) {
   glm::mat3 translation(1.0f), rot(1.0f), sc(1.0f);
   if (offset.size() == 2) translation[2] = glm::vec3(float(offset[0]), float(offset[1]), 1.0f);
   const float c = float(std::cos(rotation)), s = float(std::sin(rotation));
-  rot[0][0] = c;  // column 0: (cos, -sin)
+  rot[0][0] = c; // column 0: (cos, -sin)
   rot[0][1] = -s;
-  rot[1][0] = s;  // column 1: (sin, cos)
+  rot[1][0] = s; // column 1: (sin, cos)
   rot[1][1] = c;
   if (scale.size() == 2) {
     sc[0][0] = float(scale[0]);
@@ -151,8 +151,7 @@ public:
 
   // Index in scene.textures of the texture referenced by textureInfo `info` at element `where`
   // (and how it is looked up, into `map`), or -1 when the texture has no image irad can use.
-  int get(const json& info, const std::string& where, bool srgb, TexCoordMap& map,
-          int& texcoord) {
+  int get(const json& info, const std::string& where, bool srgb, TexCoordMap& map, int& texcoord) {
     const std::string pointer = "/" + where;
     const auto index = index_member(info, "index");
     const json& tex = ctx_.at("textures", index.value_or(~0ull >> 1), where, "texture");
@@ -169,10 +168,10 @@ public:
       return -1;
     }
     const auto sampler_index = index_member(tex, "sampler");
-    const int sampler =
-        sampler_index ? int(checked_index(ctx_, static_cast<long long>(*sampler_index),
-                                          ctx_.count("samplers"), tname, "sampler"))
-                      : -1;
+    const int sampler = sampler_index
+                            ? int(checked_index(ctx_, static_cast<long long>(*sampler_index),
+                                                ctx_.count("samplers"), tname, "sampler"))
+                            : -1;
     if (sampler >= 0) ctx_.use("samplers", std::size_t(sampler));
     const Key key{*image, sampler, srgb};
     const auto found = index_.find(key);
@@ -274,8 +273,8 @@ Material convert(const Context& ctx, std::size_t index, TextureTable& textures, 
   const json* pbr_ptr = member(m, "pbrMetallicRoughness");
   const json& pbr = pbr_ptr ? *pbr_ptr : json::object();
   const std::string pw = where + ".pbrMetallicRoughness";
-  const glm::vec4 base = colour_factor(ctx, numbers_member(pbr, "baseColorFactor"), 4, pw,
-                                       "baseColorFactor", true);
+  const glm::vec4 base =
+      colour_factor(ctx, numbers_member(pbr, "baseColorFactor"), 4, pw, "baseColorFactor", true);
   out.base_color = glm::vec3(base);
   out.base_alpha = base.a;
   int base_set = -1, emissive_set = -1;

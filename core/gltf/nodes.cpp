@@ -189,13 +189,12 @@ std::optional<std::size_t> chosen_scene(const Context& ctx, const std::string& w
     const bool digits = wanted.find_first_not_of("0123456789") == std::string::npos;
     if (digits && wanted.size() < 10 && std::stoull(wanted) < scenes.size())
       return std::size_t(std::stoull(wanted));
-    ctx.fail("scenes", fmt::format("no scene named or numbered '{}' ({} scenes)", wanted,
-                                   scenes.size()));
+    ctx.fail("scenes",
+             fmt::format("no scene named or numbered '{}' ({} scenes)", wanted, scenes.size()));
   }
   if (const json* s = member(ctx.root, "scene")) {
     const auto i = as_index(*s);
-    return checked_index(ctx, i ? static_cast<long long>(*i) : -1, scenes.size(), "scene",
-                         "scene");
+    return checked_index(ctx, i ? static_cast<long long>(*i) : -1, scenes.size(), "scene", "scene");
   }
   if (!scenes.empty()) return 0;
   return std::nullopt;

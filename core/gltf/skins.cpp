@@ -31,7 +31,7 @@ glm::dmat4 Skins::world(const Context& ctx, std::size_t node) const {
   return m;
 }
 
-const std::vector<glm::dmat4>* Skins::joint_matrices(const Context& ctx, std::size_t node) const {
+const SkinPose* Skins::skin_of(const Context& ctx, std::size_t node) const {
   const json& n = ctx.array("nodes")[node];
   const auto skin = optional_index(ctx, n, "skin", ctx.count("skins"), element("nodes", node));
   if (!skin) return nullptr;
@@ -50,13 +50,15 @@ const std::vector<glm::dmat4>* Skins::joint_matrices(const Context& ctx, std::si
       for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) ibm[j][c][r] = double(v.data[16 * j + std::size_t(4 * c + r)]);
   }
-  std::vector<glm::dmat4> out(joints->size());
-  for (std::size_t j = 0; j < out.size(); ++j) {
+  SkinPose out;
+  for (std::size_t j = 0; j < joints->size(); ++j) {
     const auto joint = as_index((*joints)[j]);
     const std::size_t jn = checked_index(ctx, joint ? static_cast<long long>(*joint) : -1,
                                          ctx.count("nodes"), where + ".joints", "joint node");
-    out[j] = world(ctx, jn) * ibm[j];
+    out.joints.push_back(jn);
+    out.matrices.push_back(world(ctx, jn) * ibm[j]);
   }
+  out.inverse_bind = std::move(ibm);
   return &(cache_[*skin] = std::move(out));
 }
 
