@@ -121,6 +121,11 @@ double mean_albedo(const Scene& scene) {
   return area > 0.0 ? weighted / area : 0.0;
 }
 
+glm::vec3 mean_emission(const Scene& scene, std::size_t t) {
+  const Material& m = scene.material_of(t);
+  return mean_textured(scene, m.emission, m.emissive_texture, m.emissive_map);
+}
+
 float triangle_area(const Scene& scene, std::size_t t) {
   return float(0.5 * glm::length(edge_cross(scene, t)));
 }

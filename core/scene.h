@@ -143,6 +143,9 @@ bool covered(const Material& material, float coverage, float u);
 // Area-weighted mean albedo: rho_bar = sum(mean(rho_k) A_k) / sum(A_k) over all triangles, with
 // textured albedos taken at their texel mean and COLOR_0 at the triangle's centroid.
 double mean_albedo(const Scene& scene);
+// Triangle t's emission with its texture at the texel mean (emitter powers): emission_at's rule,
+// so a texture whose TEXCOORD set the scene lacks counts as absent in both.
+glm::vec3 mean_emission(const Scene& scene, std::size_t t);
 float triangle_area(const Scene& scene, std::size_t t);
 glm::vec3 geometric_normal(const Scene& scene, std::size_t t); // unit, front-facing side
 
