@@ -44,7 +44,13 @@ void copy_material_attributes() {
 // (every camera pass of a frame agrees on which surface a pixel sees), each shadow map the bits of
 // its VPL's position (so each VPL sees its own random subset of the surface). The hash is
 // deterministic and about uniform, so over many pixels or VPLs the expected image is that of a
-// surface of opacity a.
+// surface of opacity a. Known limit: with interleaved sampling (k > 1) the full-resolution
+// G-buffer and the k x k tiles hash different pixel coordinates, so a Blend pixel's albedo and its
+// irradiance are drawn independently (the product of their expectations); --interleave 1 gives
+// the exact expectation.
+// Cost: a scene with a Mask or Blend material compiles every pass with IRAD_ALPHA; its opaque
+// materials then pay one uniform branch per fragment (u_alpha_mode 0) and their coverage-only
+// passes draw material by material instead of in one call.
 constexpr const char* kFragmentGlsl = R"(in vec2 v_uv;
 #ifdef IRAD_UV1
 in vec2 v_uv1;
