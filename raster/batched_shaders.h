@@ -71,7 +71,7 @@ flat in vec4 v_origin;
 #endif
 void main() {
 #ifdef IRAD_ALPHA
-  if (material_absent(alpha_seed(v_origin.xyz))) discard;
+  if (material_absent(shadow_alpha_key(v_origin.xyz))) discard;
 #endif
   gl_FragDepth = length(v_position - v_origin.xyz) * v_origin.w;
 }
@@ -188,7 +188,7 @@ float stored_distance(vec3 q) {
 
 void main() {
 #ifdef IRAD_ALPHA
-  if (material_absent(0u)) discard;
+  if (material_absent(camera_alpha_key())) discard;
 #endif
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;

@@ -30,7 +30,7 @@ uniform vec3 u_direction;
 out float o_depth;
 void main() {
 #ifdef IRAD_ALPHA
-  if (material_absent(alpha_seed(u_direction))) discard;
+  if (material_absent(shadow_alpha_key(u_direction))) discard;
 #endif
   o_depth = dot(v_position - u_centre, u_direction);
 }
@@ -52,7 +52,7 @@ out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
 void main() {
 #ifdef IRAD_ALPHA
-  if (material_absent(0u)) discard;
+  if (material_absent(camera_alpha_key())) discard;
 #endif
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;

@@ -40,17 +40,16 @@ void copy_material_attributes() {
 //
 // Alpha (core/scene.h coverage_at, covered): a = base_alpha * texture(uv').a * COLOR_0.a. Mask:
 // the fragment is absent where a < alpha_cutoff. Blend: absent unless h < a, h in [0, 1) a hash
-// of (the fragment's pixel or shadow texel, the primitive, a seed): the camera passes use seed 0
-// (every camera pass of a frame agrees on which surface a pixel sees), each shadow map the bits of
-// its VPL's position (so each VPL sees its own random subset of the surface). The hash is
-// deterministic and about uniform, so over many pixels or VPLs the expected image is that of a
-// surface of opacity a. Known limit: with interleaved sampling (k > 1) the full-resolution
-// G-buffer and the k x k tiles hash different pixel coordinates, so a Blend pixel's albedo and its
-// irradiance are drawn independently (the product of their expectations); --interleave 1 gives
-// the exact expectation.
-// Cost: a scene with a Mask or Blend material compiles every pass with IRAD_ALPHA; its opaque
-// materials then pay one uniform branch per fragment (u_alpha_mode 0) and their coverage-only
-// passes draw material by material instead of in one call.
+// of a key. Camera passes key on the fragment's world point (its float bits less the 10 lowest
+// mantissa bits: cells of ~1e-4 of the coordinate) and the primitive, so every camera pass of a
+// frame (depth, G-buffer, emitters, each VPL's shading, and the k x k tiles of interleaved
+// sampling, which reach the same points through other matrices: all but the pixels within a
+// rounding error of a cell's edge) agrees on which surface a pixel sees. Shadow passes key on the
+// shadow texel, the primitive and the VPL's position, so each VPL sees its own random subset of the
+// surface. The hash is deterministic and about uniform, so over many pixels or VPLs the expected
+// image is that of a surface of opacity a. Cost: a scene with a Mask or Blend material compiles
+// every pass with IRAD_ALPHA; its opaque materials then pay one uniform branch per fragment
+// (u_alpha_mode 0) and their coverage-only passes draw material by material instead of in one call.
 constexpr const char* kFragmentGlsl = R"(in vec2 v_uv;
 #ifdef IRAD_UV1
 in vec2 v_uv1;
@@ -106,17 +105,22 @@ uint alpha_hash(uint x) { // a 32-bit integer mix (lowbias32)
   x ^= x >> 16; x *= 0x7feb352du; x ^= x >> 15; x *= 0x846ca68bu; x ^= x >> 16;
   return x;
 }
-uint alpha_seed(vec3 p) {
-  uvec3 b = floatBitsToUint(p);
-  return alpha_hash(b.x ^ alpha_hash(b.y ^ alpha_hash(b.z)));
+uint hash3(uvec3 b, uint h) { return alpha_hash(b.x ^ alpha_hash(b.y ^ alpha_hash(b.z ^ h))); }
+// Camera passes: the fragment's world point (its float bits without the 10 lowest mantissa bits)
+// and the primitive.
+uint camera_alpha_key() {
+  return hash3(floatBitsToUint(v_position) >> 10u, alpha_hash(uint(gl_PrimitiveID)));
 }
-bool material_absent(uint seed) {
+// Shadow passes: the shadow texel, the primitive and the VPL (the bits of its position `vpl`).
+uint shadow_alpha_key(vec3 vpl) {
+  uvec3 t = uvec3(uvec2(gl_FragCoord.xy), uint(gl_PrimitiveID));
+  return hash3(t, hash3(floatBitsToUint(vpl), 0u));
+}
+bool material_absent(uint key) {
   if (u_alpha_mode == 0) return false;
   float a = material_coverage();
   if (u_alpha_mode == 1) return a < u_alpha_cutoff;
-  uvec2 p = uvec2(gl_FragCoord.xy);
-  uint h = alpha_hash(p.x ^ alpha_hash(p.y ^ alpha_hash(uint(gl_PrimitiveID) ^ alpha_hash(seed))));
-  return !(float(h >> 8) * (1.0 / 16777216.0) < a);
+  return !(float(key >> 8) * (1.0 / 16777216.0) < a);
 }
 #endif
 )";

@@ -23,11 +23,12 @@ void main() {
 // With alpha (raster/material_glsl.h), absent fragments leave the depth of what lies behind.
 inline constexpr const char* depth_fragment = R"(#version 330 core
 #ifdef IRAD_ALPHA
+in vec3 v_position;
 #pragma irad_material_fragment
 #endif
 void main() {
 #ifdef IRAD_ALPHA
-  if (material_absent(0u)) discard;
+  if (material_absent(camera_alpha_key())) discard;
 #endif
 }
 )";
@@ -42,7 +43,7 @@ out vec4 o_color;
 void main() {
   if (!u_double_sided && !gl_FrontFacing) discard;
 #ifdef IRAD_ALPHA
-  if (material_absent(0u)) discard;
+  if (material_absent(camera_alpha_key())) discard;
 #endif
   o_color = vec4(material_emission(), 0.0);
 }
@@ -69,7 +70,7 @@ out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
 void main() {
 #ifdef IRAD_ALPHA
-  if (material_absent(0u)) discard;
+  if (material_absent(camera_alpha_key())) discard;
 #endif
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
@@ -129,7 +130,7 @@ uniform vec3 u_vpl_position;
 out float o_distance;
 void main() {
 #ifdef IRAD_ALPHA
-  if (material_absent(alpha_seed(u_vpl_position))) discard;
+  if (material_absent(shadow_alpha_key(u_vpl_position))) discard;
 #endif
   o_distance = length(v_position - u_vpl_position);
 }
@@ -146,7 +147,7 @@ layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_albedo;
 void main() {
 #ifdef IRAD_ALPHA
-  if (material_absent(0u)) discard;
+  if (material_absent(camera_alpha_key())) discard;
 #endif
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
