@@ -1,6 +1,7 @@
 #include "raster/gpu_scene.h"
 
 #include "core/animation.h"
+#include "core/error.h"
 
 #include <algorithm>
 #include <numeric>
@@ -119,6 +120,10 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(Vertex, uv)));
 
+  // The optional arrays run parallel to the positions (core/scene.h): GL must never read past one.
+  if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
+      (features_.colors && scene.colors.size() != scene.positions.size()))
+    throw Error(scene.source, "gpu scene", "TEXCOORD_1 or COLOR_0 not one per vertex");
   if (features_.uv1) uv1_ = upload_attribute(api, kUv1Attribute, scene.uvs1);
   if (features_.colors) colors_ = upload_attribute(api, kColorAttribute, scene.colors);
 
