@@ -80,7 +80,10 @@ void use_own_camera(Scene& scene, const Camera& camera) {
 
 std::pair<int, int> image_size(const Camera& camera, std::optional<std::pair<int, int>> size) {
   if (size) return *size;
-  const float aspect = camera.aspect.value_or(1.0f);
+  // An orthographic camera's rectangle fixes the aspect (xmag / ymag); a perspective one's is
+  // the file's aspectRatio, else square.
+  const float aspect = camera.orthographic && camera.ymag > 0.0f ? camera.xmag / camera.ymag
+                                                                 : camera.aspect.value_or(1.0f);
   const int width = static_cast<int>(std::lround(512.0f * aspect));
   return {std::clamp(width, 1, 16384), 512};
 }

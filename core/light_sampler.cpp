@@ -18,8 +18,7 @@ float mean3(const glm::vec3& v) {
 
 double triangle_power(const Scene& scene, std::size_t t) {
   const Material& m = scene.material_of(t);
-  glm::vec3 le = m.emission;
-  if (m.emissive_texture >= 0) le *= glm::vec3(scene.textures[m.emissive_texture].mean());
+  const glm::vec3 le = mean_emission(scene, t);
   const double sides = m.double_sided ? 2.0 : 1.0;
   return sides * pi * triangle_area(scene, t) * mean3(le);
 }

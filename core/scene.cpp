@@ -6,28 +6,52 @@ namespace irad {
 
 namespace {
 
-// Texture coordinates at barycentrics (b1, b2): (1 - b1 - b2) uv0 + b1 uv1 + b2 uv2.
-glm::vec2 uv_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
-  const glm::uvec3& tri = scene.triangles[t];
-  return (1.0f - bary.x - bary.y) * scene.uvs[tri.x] + bary.x * scene.uvs[tri.y] +
-         bary.y * scene.uvs[tri.z];
+// The texture coordinate set `set` (0: uvs, 1: uvs1), or nullptr when the scene lacks it.
+const std::vector<glm::vec2>* uv_set(const Scene& scene, int set) {
+  const std::vector<glm::vec2>& uvs = set == 1 ? scene.uvs1 : scene.uvs;
+  return (set == 0 || set == 1) && !uvs.empty() ? &uvs : nullptr;
 }
 
-// factor * texture(uv) when the texture exists and the scene has texture coordinates, else factor.
-glm::vec3 textured(const Scene& scene, std::size_t t, glm::vec2 bary, glm::vec3 factor,
-                   int texture) {
-  if (texture < 0 || std::size_t(texture) >= scene.textures.size() || scene.uvs.empty()) {
-    return factor;
+// Attribute at barycentrics (b1, b2): (1 - b1 - b2) a0 + b1 a1 + b2 a2.
+template <class T>
+T interpolate(const std::vector<T>& a, const glm::uvec3& tri, glm::vec2 bary) {
+  return (1.0f - bary.x - bary.y) * a[tri.x] + bary.x * a[tri.y] + bary.y * a[tri.z];
+}
+
+// The texel of `texture` that `map` selects at a point of triangle t: texture(M (uv_n, 1)) with
+// uv_n interpolated from the map's TEXCOORD set; nullopt when the texture or the set is absent.
+std::optional<glm::vec4> texel(const Scene& scene, std::size_t t, glm::vec2 bary, int texture,
+                               const TexCoordMap& map) {
+  const std::vector<glm::vec2>* uvs = uv_set(scene, map.texcoord);
+  if (texture < 0 || std::size_t(texture) >= scene.textures.size() || uvs == nullptr) {
+    return std::nullopt;
   }
-  return factor * glm::vec3(scene.textures[std::size_t(texture)].sample(uv_at(scene, t, bary)));
+  const glm::vec2 uv = map.apply(interpolate(*uvs, scene.triangles[t], bary));
+  return scene.textures[std::size_t(texture)].sample(uv);
 }
 
-// The same rule as textured(), with the texture replaced by its texel mean.
-glm::vec3 mean_textured(const Scene& scene, glm::vec3 factor, int texture) {
-  if (texture < 0 || std::size_t(texture) >= scene.textures.size() || scene.uvs.empty()) {
+// factor * texture(uv) when the texture exists and the scene has its texture coordinates, else
+// factor.
+glm::vec3 textured(const Scene& scene, std::size_t t, glm::vec2 bary, glm::vec3 factor, int texture,
+                   const TexCoordMap& map) {
+  const std::optional<glm::vec4> c = texel(scene, t, bary, texture, map);
+  return c ? factor * glm::vec3(*c) : factor;
+}
+
+// The same rule as textured(), with the texture replaced by its texel mean (a transform moves
+// texels around, so the mean stands for the transformed texture as well).
+glm::vec3 mean_textured(const Scene& scene, glm::vec3 factor, int texture, const TexCoordMap& map) {
+  if (texture < 0 || std::size_t(texture) >= scene.textures.size() ||
+      uv_set(scene, map.texcoord) == nullptr) {
     return factor;
   }
   return factor * glm::vec3(scene.textures[std::size_t(texture)].mean());
+}
+
+// COLOR_0 at a point of triangle t, or 1 when the scene has no vertex colours.
+glm::vec4 vertex_color(const Scene& scene, std::size_t t, glm::vec2 bary) {
+  if (scene.colors.empty()) return glm::vec4(1.0f);
+  return interpolate(scene.colors, scene.triangles[t], bary);
 }
 
 // Edge cross product (p1 - p0) x (p2 - p0): |c| = 2 A, direction = counter-clockwise normal.
@@ -55,12 +79,32 @@ bool Scene::has_specular() const {
 
 glm::vec3 albedo_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
   const Material& m = scene.material_of(t);
-  return textured(scene, t, bary, m.base_color, m.base_color_texture);
+  return textured(scene, t, bary, m.base_color, m.base_color_texture, m.base_color_map) *
+         glm::vec3(vertex_color(scene, t, bary));
 }
 
 glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
   const Material& m = scene.material_of(t);
-  return textured(scene, t, bary, m.emission, m.emissive_texture);
+  return textured(scene, t, bary, m.emission, m.emissive_texture, m.emissive_map);
+}
+
+float coverage_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
+  const Material& m = scene.material_of(t);
+  if (m.alpha_mode == AlphaMode::Opaque) return 1.0f;
+  const std::optional<glm::vec4> c = texel(scene, t, bary, m.base_color_texture, m.base_color_map);
+  return m.base_alpha * (c ? c->w : 1.0f) * vertex_color(scene, t, bary).w;
+}
+
+bool covered(const Material& material, float coverage, float u) {
+  switch (material.alpha_mode) {
+  case AlphaMode::Opaque:
+    return true;
+  case AlphaMode::Mask:
+    return coverage >= material.alpha_cutoff;
+  case AlphaMode::Blend:
+    return u < coverage;
+  }
+  return true;
 }
 
 double mean_albedo(const Scene& scene) {
@@ -68,12 +112,18 @@ double mean_albedo(const Scene& scene) {
   double area = 0.0;
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const Material& m = scene.material_of(t);
-    const glm::dvec3 rho(mean_textured(scene, m.base_color, m.base_color_texture));
+    glm::dvec3 rho(mean_textured(scene, m.base_color, m.base_color_texture, m.base_color_map));
+    if (!scene.colors.empty()) rho *= glm::dvec3(vertex_color(scene, t, glm::vec2(1.0f / 3.0f)));
     const double a = 0.5 * glm::length(edge_cross(scene, t));
     weighted += a * (rho.x + rho.y + rho.z) / 3.0;
     area += a;
   }
   return area > 0.0 ? weighted / area : 0.0;
+}
+
+glm::vec3 mean_emission(const Scene& scene, std::size_t t) {
+  const Material& m = scene.material_of(t);
+  return mean_textured(scene, m.emission, m.emissive_texture, m.emissive_map);
 }
 
 float triangle_area(const Scene& scene, std::size_t t) {

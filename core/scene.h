@@ -19,8 +19,8 @@ class Animation;
 // matrix, uv' = matrix * (u, v, 1) (glTF: translation * rotation * scale, rotation
 // counter-clockwise in uv space as the extension defines it).
 struct TexCoordMap {
-  int texcoord = 0;          // 0: Scene::uvs (TEXCOORD_0), 1: Scene::uvs1 (TEXCOORD_1)
-  glm::mat3 matrix{1.0f};    // identity without KHR_texture_transform
+  int texcoord = 0;       // 0: Scene::uvs (TEXCOORD_0), 1: Scene::uvs1 (TEXCOORD_1)
+  glm::mat3 matrix{1.0f}; // identity without KHR_texture_transform
   glm::vec2 apply(glm::vec2 uv) const { return glm::vec2(matrix * glm::vec3(uv, 1.0f)); }
 };
 
@@ -128,12 +128,24 @@ struct SurfacePoint {
 };
 SurfacePoint surface_at(const Scene& scene, std::size_t t, glm::vec2 bary);
 
-// Surface albedo and emission at a point of triangle t with barycentrics (b1, b2).
+// Surface albedo and emission at a point of triangle t with barycentrics (b1, b2): factor *
+// texture(M (uv_n, 1)) with the material's TexCoordMap (set n, matrix M); the albedo also times
+// COLOR_0's rgb (glTF: vertex colours scale the base colour, not the emission).
 glm::vec3 albedo_at(const Scene& scene, std::size_t t, glm::vec2 bary);
 glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary);
+// Coverage a(x) = base_alpha * base texture alpha (through base_color_map) * COLOR_0 alpha at a
+// point of triangle t, for Mask and Blend materials; 1 for Opaque ones (glTF ignores alpha there).
+// The one definition the walk, the CPU estimators and the raster share.
+float coverage_at(const Scene& scene, std::size_t t, glm::vec2 bary);
+// Whether a surface of `material` with coverage a is there for a ray or particle that draws
+// u in [0, 1): Opaque always; Mask iff a >= alpha_cutoff; Blend iff u < a (probability a).
+bool covered(const Material& material, float coverage, float u);
 // Area-weighted mean albedo: rho_bar = sum(mean(rho_k) A_k) / sum(A_k) over all triangles, with
-// textured albedos taken at their texel mean.
+// textured albedos taken at their texel mean and COLOR_0 at the triangle's centroid.
 double mean_albedo(const Scene& scene);
+// Triangle t's emission with its texture at the texel mean (emitter powers): emission_at's rule,
+// so a texture whose TEXCOORD set the scene lacks counts as absent in both.
+glm::vec3 mean_emission(const Scene& scene, std::size_t t);
 float triangle_area(const Scene& scene, std::size_t t);
 glm::vec3 geometric_normal(const Scene& scene, std::size_t t); // unit, front-facing side
 

@@ -22,7 +22,8 @@ std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, con
 
 BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp,
                              int requested, int batch, int resolution)
-    : requested_(requested), atlas_(api, resolution, batch, batch, scene.bounds),
+    : requested_(requested),
+      atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene)),
       shader_(api, scene, clamp, batch) {}
 
 void BatchedPasses::flush(const View& view, std::vector<Entry>& batch,

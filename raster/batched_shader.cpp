@@ -42,13 +42,15 @@ bool BatchedShader::fits(const GladGLContext& api, int batch) {
 
 BatchedShader::BatchedShader(const GladGLContext& api, const Scene& scene, float clamp, int batch)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch),
-      program_(api, "batched vpl", shaders::batched_source(shaders::batched_vpl_vertex, batch),
-               shaders::batched_source(shaders::batched_vpl_fragment, batch)),
-      view_projection_(program_.uniform("u_view_projection")), first_(program_.uniform("u_first")),
-      shadow_res_(program_.uniform("u_shadow_res")),
+      program_(api, "batched vpl",
+               material_source(shaders::batched_source(shaders::batched_vpl_vertex, batch),
+                               MaterialFeatures::of(scene)),
+               material_source(shaders::batched_source(shaders::batched_vpl_fragment, batch),
+                               MaterialFeatures::of(scene))),
+      material_(program_), view_projection_(program_.uniform("u_view_projection")),
+      first_(program_.uniform("u_first")), shadow_res_(program_.uniform("u_shadow_res")),
       shadow_half_(program_.uniform("u_shadow_half")),
-      bias_texel_(program_.uniform("u_bias_texel")), base_color_(program_.uniform("u_base_color")),
-      has_base_texture_(program_.uniform("u_has_base_texture")),
+      bias_texel_(program_.uniform("u_bias_texel")),
       apply_albedo_(program_.uniform("u_apply_albedo")), vpl_block_(make_buffer(api)),
       vpl_data_(static_cast<std::size_t>(batch) * kFloatsPerVpl, 0.0f) {
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "VplBatch");
@@ -56,7 +58,6 @@ BatchedShader::BatchedShader(const GladGLContext& api, const Scene& scene, float
   api.UniformBlockBinding(program_.get(), index, kVplBlockBinding);
   program_.use();
   api.Uniform1i(program_.uniform("u_shadow_atlas"), shadow_unit);
-  api.Uniform1i(program_.uniform("u_base_texture"), material_unit);
   // Scale-relative constants, as VplShader: the coincidence guard and the shadow bias.
   api.Uniform1f(program_.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
   api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * diagonal_);
@@ -91,13 +92,12 @@ void BatchedShader::draw(int first, int count, const glm::mat4& view_projection,
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
   api.BindTexture(GL_TEXTURE_2D, shadow.texture());
   if (!apply_albedo) {
-    gpu.draw_all_instanced(count);
+    gpu.draw_covered(count, [&](const Material& m) { material_.bind_alpha(api, gpu, m); });
     return;
   }
   gpu.draw_instanced(count, [&](const Material& m) {
     const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
-    api.Uniform3fv(base_color_, 1, glm::value_ptr(rho));
-    bind_material_texture(api, gpu, m.base_color_texture, has_base_texture_);
+    material_.bind_base(api, gpu, m, rho);
   });
 }
 

@@ -8,6 +8,7 @@
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
+#include "raster/material_glsl.h"
 #include "raster/shader_program.h"
 #include "raster/shadow_atlas.h"
 
@@ -38,8 +39,8 @@ private:
   float diagonal_, clamp_;
   int batch_;
   ShaderProgram program_;
-  GLint view_projection_, first_, shadow_res_, shadow_half_, bias_texel_, base_color_,
-      has_base_texture_, apply_albedo_;
+  MaterialUniforms material_;
+  GLint view_projection_, first_, shadow_res_, shadow_half_, bias_texel_, apply_albedo_;
   Buffer vpl_block_;
   std::vector<float> vpl_data_;
 };

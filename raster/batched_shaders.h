@@ -22,6 +22,9 @@ inline std::string batched_source(const char* body, int batch) {
 // and the atlas pixel is p + u_offset[i].
 inline constexpr const char* batched_shadow_vertex = R"(
 layout(location = 0) in vec3 a_position;
+#ifdef IRAD_ALPHA
+#pragma irad_material_vertex
+#endif
 layout(std140) uniform ShadowBatch {
   mat4 u_face_vp[6 * MAX_BATCH];
   vec4 u_rect[6 * MAX_BATCH];    // x0, y0, x1, y1 in face pixels
@@ -35,6 +38,9 @@ flat out vec4 v_origin;
 out float gl_ClipDistance[4];
 void main() {
   int i = gl_InstanceID;
+#ifdef IRAD_ALPHA
+  copy_material_attributes();
+#endif
   v_position = a_position;
   v_origin = u_origin[i / 6];
   vec4 c = u_face_vp[i] * vec4(a_position, 1.0);
@@ -55,11 +61,20 @@ void main() {
 
 // The distance |p - y| / far as the depth (the depth test keeps the nearest surface: distance
 // grows with depth along a ray from y), so the atlas is one depth texture, cleared to 1 (far:
-// never shadowed).
+// never shadowed). With alpha, absent fragments (raster/material_glsl.h) are seeded by the VPL's
+// position, as ShadowCube's.
 inline constexpr const char* batched_shadow_fragment = R"(
 in vec3 v_position;
 flat in vec4 v_origin;
-void main() { gl_FragDepth = length(v_position - v_origin.xyz) * v_origin.w; }
+#ifdef IRAD_ALPHA
+#pragma irad_material_fragment
+#endif
+void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(shadow_alpha_key(v_origin.xyz))) discard;
+#endif
+  gl_FragDepth = length(v_position - v_origin.xyz) * v_origin.w;
+}
 )";
 
 // Shading: instance i is the batch's VPL u_first + i. The draw's view-projection is the one the
@@ -70,7 +85,7 @@ void main() { gl_FragDepth = length(v_position - v_origin.xyz) * v_origin.w; }
 inline constexpr const char* batched_vpl_vertex = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv;
+#pragma irad_material_vertex
 struct BatchVpl {
   vec4 position;   // xyz
   vec4 normal;     // xyz (spot axis for spots)
@@ -85,7 +100,6 @@ uniform mat4 u_view_projection;
 uniform int u_first;
 out vec3 v_position;
 out vec3 v_normal;
-out vec2 v_uv;
 flat out int v_kind;
 flat out ivec4 v_blocks;
 flat out vec3 v_vpl_position;
@@ -97,7 +111,7 @@ invariant gl_Position;
 void main() {
   v_position = a_position;
   v_normal = a_normal;
-  v_uv = a_uv;
+  copy_material_attributes();
   BatchVpl vpl = u_vpl[u_first + gl_InstanceID];
   v_kind = vpl.info.x;
   v_blocks = vpl.blocks;
@@ -119,7 +133,7 @@ void main() {
 inline constexpr const char* batched_vpl_fragment = R"(
 in vec3 v_position;
 in vec3 v_normal;
-in vec2 v_uv;
+#pragma irad_material_fragment
 flat in int v_kind;
 flat in ivec4 v_blocks;
 flat in vec3 v_vpl_position;
@@ -133,9 +147,6 @@ uniform int u_shadow_half;       // h = R / 2 + 1 (no integer division per fragm
 uniform float u_min_dist2;       // below this the receiver coincides with the VPL
 uniform float u_bias_constant;   // scale-relative
 uniform float u_bias_texel;      // angular size of a shadow texel
-uniform vec3 u_base_color;
-uniform bool u_has_base_texture;
-uniform sampler2D u_base_texture;
 uniform bool u_apply_albedo;
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
@@ -176,6 +187,9 @@ float stored_distance(vec3 q) {
 }
 
 void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 d = v_position - v_vpl_position;
@@ -198,11 +212,7 @@ void main() {
   float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
   vec3 dp = v_position + n * (dist * u_bias_texel * sin_x) - v_vpl_position;
   if (length(dp) > stored_distance(v_frame * dp) + u_bias_constant) discard;
-  vec3 albedo = vec3(1.0);
-  if (u_apply_albedo) {
-    albedo = u_base_color;
-    if (u_has_base_texture) albedo *= texture(u_base_texture, v_uv).rgb;
-  }
+  vec3 albedo = u_apply_albedo ? material_albedo() : vec3(1.0);
   float g = e * cos_x / max(dist2, v_cone.z);
   o_color = vec4(v_vpl_intensity * (g * INV_PI) * albedo, 0.0);
 }

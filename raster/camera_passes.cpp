@@ -7,23 +7,18 @@
 
 namespace irad::gl {
 
-CameraPasses::CameraPasses(const GladGLContext& api)
-    : api_(&api), depth_(api, "depth", shaders::camera_vertex, shaders::depth_fragment),
-      gbuffer_(api, "gbuffer", shaders::camera_vertex, shaders::gbuffer_fragment),
-      emission_(api, "emission", shaders::camera_vertex, shaders::emission_fragment),
+CameraPasses::CameraPasses(const GladGLContext& api, const MaterialFeatures& features)
+    : api_(&api), depth_(api, "depth", material_source(shaders::camera_vertex, features),
+                         material_source(shaders::depth_fragment, features)),
+      gbuffer_(api, "gbuffer", material_source(shaders::camera_vertex, features),
+               material_source(shaders::gbuffer_fragment, features)),
+      emission_(api, "emission", material_source(shaders::camera_vertex, features),
+                material_source(shaders::emission_fragment, features)),
+      depth_material_(depth_), gbuffer_material_(gbuffer_), emission_material_(emission_),
       depth_vp_(depth_.uniform("u_view_projection")),
       gbuffer_vp_(gbuffer_.uniform("u_view_projection")),
-      gbuffer_base_color_(gbuffer_.uniform("u_base_color")),
-      gbuffer_has_texture_(gbuffer_.uniform("u_has_base_texture")),
       emission_vp_(emission_.uniform("u_view_projection")),
-      emission_radiance_(emission_.uniform("u_emission")),
-      emission_has_texture_(emission_.uniform("u_has_emissive_texture")),
-      emission_double_sided_(emission_.uniform("u_double_sided")) {
-  gbuffer_.use();
-  api.Uniform1i(gbuffer_.uniform("u_base_texture"), material_unit);
-  emission_.use();
-  api.Uniform1i(emission_.uniform("u_emissive_texture"), material_unit);
-}
+      emission_double_sided_(emission_.uniform("u_double_sided")) {}
 
 void CameraPasses::depth(const glm::mat4& view_projection, const GpuScene& gpu) const {
   const GladGLContext& api = *api_;
@@ -34,7 +29,7 @@ void CameraPasses::depth(const glm::mat4& view_projection, const GpuScene& gpu) 
   api.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   depth_.use();
   api.UniformMatrix4fv(depth_vp_, 1, GL_FALSE, glm::value_ptr(view_projection));
-  gpu.draw_all();
+  gpu.draw_covered(1, [&](const Material& m) { depth_material_.bind_alpha(api, gpu, m); });
   api.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -51,8 +46,7 @@ void CameraPasses::gbuffer(const glm::mat4& view_projection, const GpuScene& gpu
   api.UniformMatrix4fv(gbuffer_vp_, 1, GL_FALSE, glm::value_ptr(view_projection));
   gpu.draw([&](const Material& m) {
     const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
-    api.Uniform3fv(gbuffer_base_color_, 1, glm::value_ptr(rho));
-    bind_material_texture(api, gpu, m.base_color_texture, gbuffer_has_texture_);
+    gbuffer_material_.bind_base(api, gpu, m, rho);
   });
 }
 
@@ -69,9 +63,8 @@ void CameraPasses::emitters(const glm::mat4& view_projection, const Scene& scene
   api.UniformMatrix4fv(emission_vp_, 1, GL_FALSE, glm::value_ptr(view_projection));
   gpu.draw_if([](const Material& m) { return m.emissive(); },
               [&](const Material& m) {
-                api.Uniform3fv(emission_radiance_, 1, glm::value_ptr(m.emission));
                 api.Uniform1i(emission_double_sided_, m.double_sided ? 1 : 0);
-                bind_material_texture(api, gpu, m.emissive_texture, emission_has_texture_);
+                emission_material_.bind_emission(api, gpu, m);
               });
 }
 

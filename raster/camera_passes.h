@@ -3,6 +3,7 @@
 // VPL pass then adds to), the G-buffer for interleaved sampling, and the visible emitters' L_e.
 #include "core/scene.h"
 #include "raster/gpu_scene.h"
+#include "raster/material_glsl.h"
 #include "raster/shader_program.h"
 
 #include <glm/glm.hpp>
@@ -11,7 +12,7 @@ namespace irad::gl {
 
 class CameraPasses {
 public:
-  explicit CameraPasses(const GladGLContext& api);
+  CameraPasses(const GladGLContext& api, const MaterialFeatures& features);
   // Writes depth only (colour masked) into the bound framebuffer's viewport (clear it first:
   // glClear ignores the viewport).
   void depth(const glm::mat4& view_projection, const GpuScene& gpu) const;
@@ -25,9 +26,10 @@ public:
 private:
   const GladGLContext* api_;
   ShaderProgram depth_, gbuffer_, emission_;
+  MaterialUniforms depth_material_, gbuffer_material_, emission_material_;
   GLint depth_vp_;
-  GLint gbuffer_vp_, gbuffer_base_color_, gbuffer_has_texture_;
-  GLint emission_vp_, emission_radiance_, emission_has_texture_, emission_double_sided_;
+  GLint gbuffer_vp_;
+  GLint emission_vp_, emission_double_sided_;
 };
 
 } // namespace irad::gl

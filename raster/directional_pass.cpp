@@ -16,17 +16,16 @@ bool has_directional_light(const Scene& scene) {
 }
 
 DirectionalPass::DirectionalPass(const GladGLContext& api, const Scene& scene, int resolution)
-    : api_(&api), map_(api, resolution, scene.bounds),
-      program_(api, "directional", shaders::camera_vertex, shaders::directional_fragment),
-      view_projection_(program_.uniform("u_view_projection")),
+    : api_(&api), map_(api, resolution, scene.bounds, MaterialFeatures::of(scene)),
+      program_(api, "directional",
+               material_source(shaders::camera_vertex, MaterialFeatures::of(scene)),
+               material_source(shaders::directional_fragment, MaterialFeatures::of(scene))),
+      material_(program_), view_projection_(program_.uniform("u_view_projection")),
       direction_(program_.uniform("u_direction")), intensity_(program_.uniform("u_intensity")),
       lookup_(program_.uniform("u_light_lookup")), texel_(program_.uniform("u_texel")),
-      base_color_(program_.uniform("u_base_color")),
-      has_base_texture_(program_.uniform("u_has_base_texture")),
       apply_albedo_(program_.uniform("u_apply_albedo")) {
   program_.use();
   api.Uniform1i(program_.uniform("u_shadow"), shadow_unit);
-  api.Uniform1i(program_.uniform("u_base_texture"), material_unit);
   // Scale-relative: the same constant bias as the cube maps' (raster/vpl_shader.cpp).
   api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * scene.bounds.diagonal());
   api.Uniform1f(texel_, map_.texel());
@@ -45,13 +44,10 @@ void DirectionalPass::draw(const Vpl& vpl, const glm::mat4& view_projection, boo
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
   api.BindTexture(GL_TEXTURE_2D, map_.texture());
   if (!apply_albedo) {
-    gpu.draw_all();
+    gpu.draw_covered(1, [&](const Material& m) { material_.bind_alpha(api, gpu, m); });
     return;
   }
-  gpu.draw([&](const Material& m) {
-    api.Uniform3fv(base_color_, 1, glm::value_ptr(m.base_color));
-    bind_material_texture(api, gpu, m.base_color_texture, has_base_texture_);
-  });
+  gpu.draw([&](const Material& m) { material_.bind_base(api, gpu, m, m.base_color); });
 }
 
 } // namespace irad::gl

@@ -7,6 +7,7 @@
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
+#include "raster/material_glsl.h"
 #include "raster/ortho_shadow.h"
 #include "raster/shader_program.h"
 
@@ -31,8 +32,8 @@ private:
   const GladGLContext* api_;
   OrthoShadow map_;
   ShaderProgram program_;
-  GLint view_projection_, direction_, intensity_, lookup_, texel_, base_color_, has_base_texture_,
-      apply_albedo_;
+  MaterialUniforms material_;
+  GLint view_projection_, direction_, intensity_, lookup_, texel_, apply_albedo_;
 };
 
 bool has_directional_light(const Scene& scene);

@@ -1,6 +1,7 @@
 #include "raster/gpu_scene.h"
 
 #include "core/animation.h"
+#include "core/error.h"
 
 #include <algorithm>
 #include <numeric>
@@ -47,6 +48,19 @@ Vertex vertex_of(const Scene& scene, std::size_t i) {
   return {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}};
 }
 
+// A tightly packed float attribute array (vec2 or vec4 per vertex) at `location` of the bound
+// vertex array.
+template <class V>
+Buffer upload_attribute(const GladGLContext& api, GLuint location, const std::vector<V>& values) {
+  Buffer buffer = make_buffer(api);
+  api.BindBuffer(GL_ARRAY_BUFFER, buffer.get());
+  api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(values.size() * sizeof(V)), values.data(),
+                 GL_STATIC_DRAW);
+  api.EnableVertexAttribArray(location);
+  api.VertexAttribPointer(location, V::length(), GL_FLOAT, GL_FALSE, 0, nullptr);
+  return buffer;
+}
+
 } // namespace
 
 void GpuScene::update_vertices() {
@@ -68,7 +82,7 @@ void GpuScene::update_vertices() {
 
 GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
     : api_(&api), scene_(&scene), vao_(make_vertex_array(api)), vertices_(make_buffer(api)),
-      indices_(make_buffer(api)) {
+      indices_(make_buffer(api)), features_(MaterialFeatures::of(scene)) {
   std::vector<Vertex> vertices(scene.positions.size());
   for (std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = vertex_of(scene, i);
   // Triangles grouped by material (stable, so the file's order is kept within a material).
@@ -106,7 +120,26 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(Vertex, uv)));
 
+  // The optional arrays run parallel to the positions (core/scene.h): GL must never read past one.
+  if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
+      (features_.colors && scene.colors.size() != scene.positions.size()))
+    throw Error(scene.source, "gpu scene", "TEXCOORD_1 or COLOR_0 not one per vertex");
+  if (features_.uv1) uv1_ = upload_attribute(api, kUv1Attribute, scene.uvs1);
+  if (features_.colors) colors_ = upload_attribute(api, kColorAttribute, scene.colors);
+
   for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
+}
+
+void GpuScene::draw_covered(GLsizei instances,
+                            const std::function<void(const Material&)>& bind_alpha) const {
+  if (!features_.alpha) {
+    if (instances == 1)
+      draw_all();
+    else
+      draw_all_instanced(instances);
+    return;
+  }
+  draw_instanced(instances, bind_alpha);
 }
 
 void GpuScene::draw_range(const Range& r, GLsizei instances) const {

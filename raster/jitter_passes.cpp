@@ -26,13 +26,10 @@ void set_weighted_add(const GladGLContext& api, float weight) {
 
 } // namespace
 
-JitterPasses::JitterPasses(const GladGLContext& api)
-    : api_(&api), gbuffer_(api, "jitter albedo", shaders::camera_vertex, shaders::gbuffer_fragment),
-      vp_(gbuffer_.uniform("u_view_projection")), base_color_(gbuffer_.uniform("u_base_color")),
-      has_texture_(gbuffer_.uniform("u_has_base_texture")) {
-  gbuffer_.use();
-  api.Uniform1i(gbuffer_.uniform("u_base_texture"), material_unit);
-}
+JitterPasses::JitterPasses(const GladGLContext& api, const MaterialFeatures& features)
+    : api_(&api), gbuffer_(api, "jitter albedo", material_source(shaders::camera_vertex, features),
+                           material_source(shaders::gbuffer_fragment, features)),
+      material_(gbuffer_), vp_(gbuffer_.uniform("u_view_projection")) {}
 
 void JitterPasses::redraw_depth(const CameraPasses& camera, const glm::mat4& view_projection,
                                 const GpuScene& gpu) const {
@@ -73,10 +70,7 @@ void JitterPasses::average_albedo(const CameraPasses& camera, const View& view,
     set_weighted_add(api, 1.0f / static_cast<float>(kCameraJitterPasses));
     gbuffer_.use();
     api.UniformMatrix4fv(vp_, 1, GL_FALSE, glm::value_ptr(vp));
-    gpu.draw([&](const Material& m) {
-      api.Uniform3fv(base_color_, 1, glm::value_ptr(m.base_color));
-      bind_material_texture(api, gpu, m.base_color_texture, has_texture_);
-    });
+    gpu.draw([&](const Material& m) { material_.bind_base(api, gpu, m, m.base_color); });
   }
   api.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }

@@ -18,7 +18,7 @@ inline constexpr int kCameraJitterPasses = 16;
 
 class JitterPasses {
 public:
-  explicit JitterPasses(const GladGLContext& api);
+  JitterPasses(const GladGLContext& api, const MaterialFeatures& features);
   // Clears the depth inside the bound framebuffer's viewport (only there: a tile of the
   // interleaved atlas) and writes the scene's depth seen through view_projection.
   void redraw_depth(const CameraPasses& camera, const glm::mat4& view_projection,
@@ -35,7 +35,8 @@ public:
 private:
   const GladGLContext* api_;
   ShaderProgram gbuffer_;
-  GLint vp_, base_color_, has_texture_;
+  MaterialUniforms material_;
+  GLint vp_;
 };
 
 } // namespace irad::gl

@@ -40,11 +40,17 @@ std::string mirror_vpl_fragment(const char* vpl_fragment);
 // behind the mirror is ignored. The fragment shader is shadow_fragment.
 inline constexpr const char* mirror_shadow_vertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
+#ifdef IRAD_ALPHA
+#pragma irad_material_vertex
+#endif
 uniform mat4 u_face_view_projection;
 uniform mat4 u_reflect;
 uniform vec4 u_clip_plane;
 out vec3 v_position;
 void main() {
+#ifdef IRAD_ALPHA
+  copy_material_attributes();
+#endif
   gl_ClipDistance[0] = dot(u_clip_plane, vec4(a_position, 1.0));
   v_position = (u_reflect * vec4(a_position, 1.0)).xyz;
   gl_Position = u_face_view_projection * vec4(v_position, 1.0);

@@ -30,13 +30,15 @@ int ortho_resolution_for(int requested, int width, int height) {
   return r;
 }
 
-OrthoShadow::OrthoShadow(const GladGLContext& api, int resolution, const Bounds& bounds)
+OrthoShadow::OrthoShadow(const GladGLContext& api, int resolution, const Bounds& bounds,
+                         const MaterialFeatures& features)
     : api_(&api), resolution_(resolution), centre_(bounds.center()),
       half_width_(std::max(0.505f * bounds.diagonal(), 1e-30f)),
-      program_(api, "ortho shadow", shaders::ortho_shadow_vertex, shaders::ortho_shadow_fragment),
-      u_light_clip_(program_.uniform("u_light_clip")), u_centre_(program_.uniform("u_centre")),
-      u_direction_(program_.uniform("u_direction")), map_(make_texture(api)),
-      depth_(make_renderbuffer(api)), fbo_(make_framebuffer(api)) {
+      program_(api, "ortho shadow", material_source(shaders::ortho_shadow_vertex, features),
+               material_source(shaders::ortho_shadow_fragment, features)),
+      material_(program_), u_light_clip_(program_.uniform("u_light_clip")),
+      u_centre_(program_.uniform("u_centre")), u_direction_(program_.uniform("u_direction")),
+      map_(make_texture(api)), depth_(make_renderbuffer(api)), fbo_(make_framebuffer(api)) {
   api.BindTexture(GL_TEXTURE_2D, map_.get());
   api.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, resolution, resolution, 0, GL_RED, GL_FLOAT, nullptr);
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -72,7 +74,7 @@ bool OrthoShadow::render(const glm::vec3& d, const GpuScene& scene) {
   api_->UniformMatrix4fv(u_light_clip_, 1, GL_FALSE, glm::value_ptr(clip));
   api_->Uniform3fv(u_centre_, 1, glm::value_ptr(centre_));
   api_->Uniform3fv(u_direction_, 1, glm::value_ptr(d));
-  scene.draw_all();
+  scene.draw_covered(1, [&](const Material& m) { material_.bind_alpha(*api_, scene, m); });
   direction_ = d;
   valid_ = true;
   return true;

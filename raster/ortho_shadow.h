@@ -6,6 +6,7 @@
 #include "core/bounds.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
+#include "raster/material_glsl.h"
 #include "raster/shader_program.h"
 
 #include <glm/glm.hpp>
@@ -14,7 +15,10 @@ namespace irad::gl {
 
 class OrthoShadow {
 public:
-  OrthoShadow(const GladGLContext& api, int resolution, const Bounds& bounds);
+  // features: the scene's (raster/material_features.h); with alpha, absent fragments cast no
+  // shadow.
+  OrthoShadow(const GladGLContext& api, int resolution, const Bounds& bounds,
+              const MaterialFeatures& features);
 
   // Makes the map hold direction `d` (unit): renders it unless it already does, which changes the
   // bound framebuffer, viewport and program. Returns whether it rendered.
@@ -35,6 +39,7 @@ private:
   glm::vec3 centre_;
   float half_width_; // of the square the map covers: the bounding sphere's radius plus 1 %
   ShaderProgram program_;
+  MaterialUniforms material_;
   GLint u_light_clip_, u_centre_, u_direction_;
   Texture map_;
   Renderbuffer depth_;

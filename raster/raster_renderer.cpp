@@ -80,9 +80,9 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::ShadowCube> cache_shadow; // draws into the cached cubes
 
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
-      : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s), camera(api),
-        vpl_shader(api, s, o.clamp),
-        jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api) : nullptr) {
+      : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
+        camera(api, gpu.features()), vpl_shader(api, s, o.clamp),
+        jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr) {
     context->check("raster set-up");
   }
 
@@ -138,7 +138,7 @@ void RasterRenderer::Impl::prepare(const View& view) {
   }
   const int resolution = shadow_resolution_for(options.shadow_resolution, view.width, view.height);
   if (!shadow || shadow->resolution() != resolution)
-    shadow = std::make_unique<gl::ShadowCube>(api, resolution, scene.bounds);
+    shadow = std::make_unique<gl::ShadowCube>(api, resolution, scene.bounds, gpu.features());
   if (options.interleave > 1 && !interleaved)
     interleaved = std::make_unique<gl::Interleaved>(api, view.width, view.height,
                                                     options.interleave, target->depth());
@@ -319,7 +319,8 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
   const int resolution = shadow_resolution_for(im.options.shadow_resolution, width, height);
   if (!im.cache_shadow || im.cache_shadow->resolution() != resolution) {
     im.cache.clear(); // cubes of another resolution
-    im.cache_shadow = std::make_unique<gl::ShadowCube>(im.api, resolution, im.scene.bounds);
+    im.cache_shadow =
+        std::make_unique<gl::ShadowCube>(im.api, resolution, im.scene.bounds, im.gpu.features());
   }
   if (slot >= im.cache.size()) im.cache.resize(std::size_t(slot) + 1);
   Impl::CachedPath& path = im.cache[slot];

@@ -53,11 +53,12 @@ struct RingRenderer::Impl {
 
   Impl(const Scene& s, const RingOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
-        shadow(api, shadow_resolution_for(o.raster.shadow_resolution, o.width, o.height), s.bounds),
-        camera(api), vpl_shader(api, s, o.raster.clamp), target(api, o.width, o.height),
-        filled(o.paths, false), sum(gl::make_float_texture(api, o.width, o.height)),
-        slot_fbo(gl::make_framebuffer(api)), sum_fbo(gl::make_framebuffer(api)),
-        empty_vao(gl::make_vertex_array(api)),
+        shadow(api, shadow_resolution_for(o.raster.shadow_resolution, o.width, o.height), s.bounds,
+               gpu.features()),
+        camera(api, gpu.features()), vpl_shader(api, s, o.raster.clamp),
+        target(api, o.width, o.height), filled(o.paths, false),
+        sum(gl::make_float_texture(api, o.width, o.height)), slot_fbo(gl::make_framebuffer(api)),
+        sum_fbo(gl::make_framebuffer(api)), empty_vao(gl::make_vertex_array(api)),
         copy(api, "copy", gl::shaders::fullscreen_vertex, gl::shaders::copy_fragment) {
     for (std::uint32_t i = 0; i < o.paths; ++i)
       slots.push_back(gl::make_float_texture(api, o.width, o.height));

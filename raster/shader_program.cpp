@@ -73,4 +73,13 @@ GLint ShaderProgram::uniform(const char* uniform_name) const {
   return location;
 }
 
+GLint ShaderProgram::optional_uniform(const char* uniform_name) const {
+  return api_->GetUniformLocation(program_.get(), uniform_name);
+}
+
+void ShaderProgram::set_sampler(const char* uniform_name, GLint unit) const {
+  const GLint location = optional_uniform(uniform_name);
+  if (location >= 0) api_->Uniform1i(location, unit);
+}
+
 } // namespace irad::gl

@@ -14,6 +14,11 @@ public:
   GLuint get() const { return program_.get(); }
   // Location of a uniform that must exist (throws otherwise: a typo is a bug, not a no-op).
   GLint uniform(const char* uniform_name) const;
+  // Location of a uniform the program may have optimised away (-1 then: GL ignores calls there).
+  GLint optional_uniform(const char* uniform_name) const;
+  // Sets sampler `uniform_name` (if the program uses it) to texture unit `unit`; the program must
+  // be in use.
+  void set_sampler(const char* uniform_name, GLint unit) const;
   void use() const { api_->UseProgram(program_.get()); }
 
 private:

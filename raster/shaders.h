@@ -7,39 +7,45 @@ namespace irad::gl::shaders {
 inline constexpr const char* camera_vertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv;
+#pragma irad_material_vertex
 uniform mat4 u_view_projection;
 out vec3 v_position;
 out vec3 v_normal;
-out vec2 v_uv;
 invariant gl_Position;
 void main() {
   v_position = a_position;
   v_normal = a_normal;
-  v_uv = a_uv;
+  copy_material_attributes();
   gl_Position = u_view_projection * vec4(a_position, 1.0);
 }
 )";
 
+// With alpha (raster/material_glsl.h), absent fragments leave the depth of what lies behind.
 inline constexpr const char* depth_fragment = R"(#version 330 core
-void main() {}
+#ifdef IRAD_ALPHA
+in vec3 v_position;
+#pragma irad_material_fragment
+#endif
+void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
+}
 )";
 
 // Visible emitters: L_e(x), front face only unless double-sided.
 inline constexpr const char* emission_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;
-in vec2 v_uv;
-uniform vec3 u_emission;
-uniform bool u_has_emissive_texture;
-uniform sampler2D u_emissive_texture;
+#pragma irad_material_fragment
 uniform bool u_double_sided;
 out vec4 o_color;
 void main() {
   if (!u_double_sided && !gl_FrontFacing) discard;
-  vec3 le = u_emission;
-  if (u_has_emissive_texture) le *= texture(u_emissive_texture, v_uv).rgb;
-  o_color = vec4(le, 0.0);
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
+  o_color = vec4(material_emission(), 0.0);
 }
 )";
 
@@ -47,7 +53,7 @@ void main() {
 inline constexpr const char* vpl_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;
-in vec2 v_uv;
+#pragma irad_material_fragment
 uniform vec3 u_vpl_position;
 uniform vec3 u_vpl_normal;
 uniform vec3 u_vpl_intensity;
@@ -59,13 +65,13 @@ uniform samplerCube u_shadow;
 uniform mat3 u_shadow_frame;     // world -> the cube's frame
 uniform float u_bias_constant;   // scale-relative
 uniform float u_bias_texel;      // angular size of a shadow texel
-uniform vec3 u_base_color;
-uniform bool u_has_base_texture;
-uniform sampler2D u_base_texture;
 uniform bool u_apply_albedo;     // false: irradiance / pi only (interleaved mode multiplies later)
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
 void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   vec3 d = v_position - u_vpl_position;
@@ -91,22 +97,25 @@ void main() {
   float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
   vec3 dp = v_position + n * (dist * u_bias_texel * sin_x) - u_vpl_position;
   if (length(dp) > texture(u_shadow, u_shadow_frame * dp).r + u_bias_constant) discard;
-  vec3 albedo = vec3(1.0);
-  if (u_apply_albedo) {
-    albedo = u_base_color;
-    if (u_has_base_texture) albedo *= texture(u_base_texture, v_uv).rgb;
-  }
+  vec3 albedo = u_apply_albedo ? material_albedo() : vec3(1.0);
   float g = e * cos_x / max(dist2, u_dmin2);
   o_color = vec4(u_vpl_intensity * (g * INV_PI) * albedo, 0.0);
 }
 )";
 
-// Shadow cube faces: distance from the VPL to the nearest surface.
+// Shadow cube faces: distance from the VPL to the nearest surface (with alpha, the nearest
+// present one: raster/material_glsl.h, seeded by the VPL's position).
 inline constexpr const char* shadow_vertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
+#ifdef IRAD_ALPHA
+#pragma irad_material_vertex
+#endif
 uniform mat4 u_face_view_projection;
 out vec3 v_position;
 void main() {
+#ifdef IRAD_ALPHA
+  copy_material_attributes();
+#endif
   v_position = a_position;
   gl_Position = u_face_view_projection * vec4(a_position, 1.0);
 }
@@ -114,9 +123,17 @@ void main() {
 
 inline constexpr const char* shadow_fragment = R"(#version 330 core
 in vec3 v_position;
+#ifdef IRAD_ALPHA
+#pragma irad_material_fragment
+#endif
 uniform vec3 u_vpl_position;
 out float o_distance;
-void main() { o_distance = length(v_position - u_vpl_position); }
+void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(shadow_alpha_key(u_vpl_position))) discard;
+#endif
+  o_distance = length(v_position - u_vpl_position);
+}
 )";
 
 // G-buffer for interleaved sampling: the world position (w = 1 where there is a surface) and the
@@ -124,21 +141,19 @@ void main() { o_distance = length(v_position - u_vpl_position); }
 inline constexpr const char* gbuffer_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;
-in vec2 v_uv;
-uniform vec3 u_base_color;
-uniform bool u_has_base_texture;
-uniform sampler2D u_base_texture;
+#pragma irad_material_fragment
 layout(location = 0) out vec4 o_position;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_albedo;
 void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
   vec3 n = normalize(v_normal);
   if (!gl_FrontFacing) n = -n;
   o_position = vec4(v_position, 1.0);
   o_normal = vec4(n, 0.0);
-  vec3 albedo = u_base_color;
-  if (u_has_base_texture) albedo *= texture(u_base_texture, v_uv).rgb;
-  o_albedo = vec4(albedo, 1.0);
+  o_albedo = vec4(material_albedo(), 1.0);
 }
 )";
 

@@ -80,14 +80,17 @@ int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) 
 }
 
 ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
-                         const Bounds& bounds)
+                         const Bounds& bounds, const MaterialFeatures& features)
     : api_(&api), resolution_(resolution), batch_(batch), block_(block_size(resolution)),
       grid_(block_grid(blocks, block_)), bounds_(bounds),
-      program_(api, "batched shadow",
-               shaders::batched_source(shaders::batched_shadow_vertex, batch),
-               shaders::batched_source(shaders::batched_shadow_fragment, batch)),
-      atlas_{make_texture(api), make_texture(api)}, fbo_{make_framebuffer(api),
-                                                         make_framebuffer(api)},
+      program_(
+          api, "batched shadow",
+          material_source(shaders::batched_source(shaders::batched_shadow_vertex, batch), features),
+          material_source(shaders::batched_source(shaders::batched_shadow_fragment, batch),
+                          features)),
+      material_(program_), atlas_{make_texture(api), make_texture(api)}, fbo_{make_framebuffer(api),
+                                                                              make_framebuffer(
+                                                                                  api)},
       block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f) {
   const glm::ivec2 size = grid_ * block_;
   GLint uniform_block = 0;
@@ -174,7 +177,7 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   api.Clear(GL_DEPTH_BUFFER_BIT);
   program_.use();
   for (int k = 0; k < 4; ++k) api.Enable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
-  scene.draw_all_instanced(6 * n);
+  scene.draw_covered(6 * n, [&](const Material& m) { material_.bind_alpha(api, scene, m); });
   for (int k = 0; k < 4; ++k) api.Disable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
 }
 

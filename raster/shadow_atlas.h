@@ -15,6 +15,7 @@
 #include "core/bounds.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
+#include "raster/material_glsl.h"
 #include "raster/shader_program.h"
 
 #include <glm/glm.hpp>
@@ -26,8 +27,10 @@ class ShadowAtlas {
 public:
   // Room for `blocks` blocks of resolution^2 faces, at most `batch` VPLs per render; throws
   // irad::Error when it exceeds this GL's texture, renderbuffer or uniform-block sizes.
-  ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
-              const Bounds& bounds);
+  // features: the scene's (raster/material_features.h); with alpha, absent fragments cast no
+  // shadow.
+  ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks, const Bounds& bounds,
+              const MaterialFeatures& features);
 
   // The largest batch (<= wanted) an atlas with one block per VPL can hold on this GL: 0 or 1
   // means batching is not possible.
@@ -58,6 +61,7 @@ private:
   glm::ivec2 block_, grid_; // block size in texels; blocks per row, rows
   Bounds bounds_;
   ShaderProgram program_;
+  MaterialUniforms material_;
   // Two atlases, drawn into in turn: the next batch's shadow maps need not wait for the shading
   // passes that read the last batch's (llvmpipe waits before it renders into a texture that a
   // queued draw samples).

@@ -93,10 +93,12 @@ Texture ShadowCube::make_cube(const GladGLContext& api, int resolution) {
   return cube;
 }
 
-ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds)
-    : api_(&api), resolution_(resolution), bounds_(bounds),
-      program_(api, "shadow", shaders::shadow_vertex, shaders::shadow_fragment),
-      u_face_view_projection_(program_.uniform("u_face_view_projection")),
+ShadowCube::ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds,
+                       const MaterialFeatures& features)
+    : api_(&api), resolution_(resolution), bounds_(bounds), features_(features),
+      program_(api, "shadow", material_source(shaders::shadow_vertex, features),
+               material_source(shaders::shadow_fragment, features)),
+      material_(program_), u_face_view_projection_(program_.uniform("u_face_view_projection")),
       u_vpl_position_(program_.uniform("u_vpl_position")), cube_(make_cube(api, resolution)),
       depth_(make_renderbuffer(api)) {
   api.BindRenderbuffer(GL_RENDERBUFFER, depth_.get());
@@ -131,7 +133,7 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
   api_->Uniform3fv(u_vpl_position_, 1, glm::value_ptr(vpl.position));
   return render_faces(vpl, far_from(vpl.position), [&](const glm::mat4& vp) {
     api_->UniformMatrix4fv(u_face_view_projection_, 1, GL_FALSE, glm::value_ptr(vp));
-    scene.draw_all();
+    scene.draw_covered(1, [&](const Material& m) { material_.bind_alpha(*api_, scene, m); });
   });
 }
 
@@ -139,7 +141,7 @@ glm::mat3 ShadowCube::render_into(const Vpl& vpl, const GpuScene& scene, GLuint 
 // clipped to the lit side of the plane. The reflected scene is as far from y' as the real one
 // is from y.
 glm::mat3 ShadowCube::render_mirrored(const Vpl& vpl, const GpuScene& scene) {
-  if (!mirror_) mirror_ = std::make_unique<MirrorProgram>(*api_);
+  if (!mirror_) mirror_ = std::make_unique<MirrorProgram>(*api_, features_);
   const MirrorProgram& m = *mirror_;
   const glm::vec3 n(vpl.mirror_plane);
   // Reflection x -> x - 2 (n . x + w) n as a matrix; the clip plane moved 1e-5 of the diagonal
@@ -157,16 +159,17 @@ glm::mat3 ShadowCube::render_mirrored(const Vpl& vpl, const GpuScene& scene) {
     api_->UniformMatrix4fv(m.face_view_projection, 1, GL_FALSE, glm::value_ptr(vp));
     for (const glm::mat4& r : {glm::mat4(1.0f), reflect}) {
       api_->UniformMatrix4fv(m.reflect, 1, GL_FALSE, glm::value_ptr(r));
-      scene.draw_all();
+      scene.draw_covered(1, [&](const Material& mat) { m.material.bind_alpha(*api_, scene, mat); });
     }
   });
   api_->Disable(GL_CLIP_DISTANCE0);
   return frame;
 }
 
-ShadowCube::MirrorProgram::MirrorProgram(const GladGLContext& api)
-    : program(api, "mirror shadow", shaders::mirror_shadow_vertex, shaders::shadow_fragment),
-      face_view_projection(program.uniform("u_face_view_projection")),
+ShadowCube::MirrorProgram::MirrorProgram(const GladGLContext& api, const MaterialFeatures& features)
+    : program(api, "mirror shadow", material_source(shaders::mirror_shadow_vertex, features),
+              material_source(shaders::shadow_fragment, features)),
+      material(program), face_view_projection(program.uniform("u_face_view_projection")),
       vpl_position(program.uniform("u_vpl_position")), reflect(program.uniform("u_reflect")),
       clip_plane(program.uniform("u_clip_plane")) {}
 

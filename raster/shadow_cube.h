@@ -6,6 +6,7 @@
 #include "core/bounds.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
+#include "raster/material_glsl.h"
 #include "raster/shader_program.h"
 
 #include <array>
@@ -38,7 +39,10 @@ glm::ivec4 front_half(int f, int r);
 
 class ShadowCube {
 public:
-  ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds);
+  // features: the scene's (raster/material_features.h); with alpha, absent fragments cast no
+  // shadow.
+  ShadowCube(const GladGLContext& api, int resolution, const Bounds& bounds,
+             const MaterialFeatures& features);
 
   // Renders the cube for `vpl` (changes the bound framebuffer, viewport and program) and returns
   // the rotation world -> cube frame to use for lookups.
@@ -58,8 +62,9 @@ public:
 private:
   // The program of mirrored VPLs' cubes (raster/mirror_shaders.h), made on first use.
   struct MirrorProgram {
-    explicit MirrorProgram(const GladGLContext& api);
+    MirrorProgram(const GladGLContext& api, const MaterialFeatures& features);
     ShaderProgram program;
+    MaterialUniforms material;
     GLint face_view_projection, vpl_position, reflect, clip_plane;
   };
   float far_from(const glm::vec3& position) const;
@@ -72,7 +77,9 @@ private:
   const GladGLContext* api_;
   int resolution_;
   Bounds bounds_;
+  MaterialFeatures features_;
   ShaderProgram program_;
+  MaterialUniforms material_;
   GLint u_face_view_projection_;
   GLint u_vpl_position_;
   Texture cube_;

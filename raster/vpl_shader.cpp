@@ -18,14 +18,6 @@ void set_additive_state(const GladGLContext& api) {
   api.BlendFunc(GL_ONE, GL_ONE);
 }
 
-void bind_material_texture(const GladGLContext& api, const GpuScene& gpu, int texture,
-                           GLint has_uniform) {
-  api.Uniform1i(has_uniform, texture >= 0 ? 1 : 0);
-  if (texture < 0) return;
-  api.ActiveTexture(GL_TEXTURE0 + material_unit);
-  api.BindTexture(GL_TEXTURE_2D, gpu.texture(texture));
-}
-
 VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp)
     : VplShader(api, scene, clamp, shaders::vpl_fragment) {
   if (!scene.has_specular()) return;
@@ -52,20 +44,19 @@ void VplShader::set_mirror(const MirrorPolygon& mirror, const glm::vec4& plane) 
 VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp,
                      const std::string& fragment)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp),
-      program_(api, "vpl", shaders::camera_vertex, fragment),
-      view_projection_(program_.uniform("u_view_projection")),
+      program_(api, "vpl", material_source(shaders::camera_vertex, MaterialFeatures::of(scene)),
+               material_source(fragment, MaterialFeatures::of(scene))),
+      material_(program_), view_projection_(program_.uniform("u_view_projection")),
       position_(program_.uniform("u_vpl_position")), normal_(program_.uniform("u_vpl_normal")),
       intensity_(program_.uniform("u_vpl_intensity")), kind_(program_.uniform("u_vpl_kind")),
       spot_cos_(program_.uniform("u_spot_cos")), dmin2_(program_.uniform("u_dmin2")),
       min_dist2_(program_.uniform("u_min_dist2")), frame_(program_.uniform("u_shadow_frame")),
       bias_constant_(program_.uniform("u_bias_constant")),
-      bias_texel_(program_.uniform("u_bias_texel")), base_color_(program_.uniform("u_base_color")),
-      has_base_texture_(program_.uniform("u_has_base_texture")),
+      bias_texel_(program_.uniform("u_bias_texel")),
       apply_albedo_(program_.uniform("u_apply_albedo")) {
   // Samplers of different types may not share a unit: fix every sampler's unit once.
   program_.use();
   api.Uniform1i(program_.uniform("u_shadow"), shadow_unit);
-  api.Uniform1i(program_.uniform("u_base_texture"), material_unit);
   // Scale-relative constants: the clamp, the coincidence guard and the shadow bias.
   api.Uniform1f(min_dist2_, 1e-10f * diagonal_ * diagonal_); // 1e-5 of the diagonal, as rt-vpl
   api.Uniform1f(bias_constant_, 2e-4f * diagonal_);
@@ -104,13 +95,12 @@ void VplShader::draw_pass(const Vpl& vpl, GLuint shadow_cube, float texel_angle,
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
   api.BindTexture(GL_TEXTURE_CUBE_MAP, shadow_cube);
   if (!apply_albedo) {
-    gpu.draw_all();
+    gpu.draw_covered(1, [&](const Material& m) { material_.bind_alpha(api, gpu, m); });
     return;
   }
   gpu.draw([&](const Material& m) {
     const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
-    api.Uniform3fv(base_color_, 1, glm::value_ptr(rho));
-    bind_material_texture(api, gpu, m.base_color_texture, has_base_texture_);
+    material_.bind_base(api, gpu, m, rho);
   });
 }
 

@@ -6,6 +6,7 @@
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
+#include "raster/material_glsl.h"
 #include "raster/shader_program.h"
 #include "raster/shadow_cube.h"
 
@@ -44,18 +45,17 @@ private:
   const GladGLContext* api_;
   float diagonal_, clamp_;
   ShaderProgram program_;
+  MaterialUniforms material_;
   GLint view_projection_, position_, normal_, intensity_, kind_, spot_cos_, dmin2_, min_dist2_,
-      frame_, bias_constant_, bias_texel_, base_color_, has_base_texture_, apply_albedo_;
+      frame_, bias_constant_, bias_texel_, apply_albedo_;
 };
 
 // Texture units shared by the raster's programs.
 inline constexpr GLint shadow_unit = 0;
-inline constexpr GLint material_unit = 1;
+inline constexpr GLint material_unit = 1; // base colour texture
+inline constexpr GLint emissive_unit = 2; // emissive texture
 
 // Additive passes over an existing depth buffer: exactly the visible surface passes GL_LEQUAL.
 void set_additive_state(const GladGLContext& api);
-// Binds a material's texture (if any) on material_unit and sets the shader's has-texture flag.
-void bind_material_texture(const GladGLContext& api, const GpuScene& gpu, int texture,
-                           GLint has_uniform);
 
 } // namespace irad::gl

@@ -23,14 +23,15 @@ struct PlaneId {
 
 inline PlaneId plane_at(const Scene& scene, const RayScene& rays, const View& view, float x,
                         float y) {
-  const glm::vec3 dir = image_point_direction(view, x, y);
-  const auto hit = rays.intersect(view.eye, dir, 0.0f, std::numeric_limits<float>::infinity());
+  const CameraRay ray = image_point_ray(view, x, y);
+  const glm::vec3 dir = ray.direction;
+  const auto hit = rays.intersect(ray.origin, dir, 0.0f, std::numeric_limits<float>::infinity());
   PlaneId id;
   if (!hit) return id;
   id.hit = true;
   id.material = scene.triangle_material[hit->triangle];
   id.normal = geometric_normal(scene, hit->triangle);
-  id.offset = glm::dot(id.normal, view.eye + hit->t * dir);
+  id.offset = glm::dot(id.normal, ray.origin + hit->t * dir);
   return id;
 }
 

@@ -98,7 +98,8 @@ Images render(const Scene& s, const View& view, std::uint32_t paths = 256, std::
 // The floor point seen through pixel (x, y), if the ray meets the floor before anything of the
 // Removed scene (the light, the occluder's x < 0 half), with a 2 cm margin around both.
 std::optional<glm::dvec3> floor_point(const View& view, int x, int y) {
-  const glm::dvec3 o(view.eye), d(pixel_direction(view, x, y));
+  const CameraRay ray = pixel_ray(view, x, y);
+  const glm::dvec3 o(ray.origin), d(ray.direction);
   if (d.z >= 0.0) return std::nullopt;
   for (const double z : {1.0, 0.5}) {
     const glm::dvec3 q = o + ((z - o.z) / d.z) * d;
@@ -299,7 +300,8 @@ double umbra_mean(const Image& image, const View& view) {
   int count = 0;
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
-      const glm::dvec3 o(view.eye), d(pixel_direction(view, x, y));
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::dvec3 o(ray.origin), d(ray.direction);
       if (d.z >= 0.0) continue;
       const glm::dvec3 p = o + (-o.z / d.z) * d;
       if (std::abs(p.x) > 0.45 || std::abs(p.y) > 0.45) continue;

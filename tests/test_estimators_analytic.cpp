@@ -89,7 +89,8 @@ TEST(RtVplAnalytic, SquareLightOverPlaneMatchesLambert) {
   double sum_sq = 0.0;
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
-      const glm::dvec3 d(pixel_direction(view, x, y));
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::dvec3 d(ray.direction);
       const glm::dvec3 p = glm::dvec3(view.eye) + (-view.eye.z / d.z) * d;
       const double expected = 0.5 / std::numbers::pi * polygon_irradiance(light, p, {0, 0, 1}, 1);
       const double rel = (image.at(x, y).r - expected) / expected;

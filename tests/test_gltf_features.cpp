@@ -422,6 +422,15 @@ TEST_F(GltfFeatures, ExtensionsWarnUnlessRequired) {
   }
 }
 
+TEST_F(GltfFeatures, DataOutsideTheDeclaredBoundsIsRepairedWithAWarning) {
+  Gltf g = emissive_quad();
+  g.doc["accessors"][0]["max"][0] = 0.5; // POSITION's x reaches 1
+  const Scene s = load(g.write_gltf(dir / "bounds.gltf"));
+  EXPECT_FLOAT_EQ(s.bounds.hi.x, 1.0f);
+  EXPECT_TRUE(warned("accessors[0].max[0]: "));
+  EXPECT_TRUE(warned("irad computes the bounds itself"));
+}
+
 TEST_F(GltfFeatures, ProblemsInUnusedPartsAreOneWarningAndUsedOnesAnError) {
   Gltf g = emissive_quad();
   // Two broken accessors nobody uses, and a camera no node places.

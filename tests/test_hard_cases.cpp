@@ -365,15 +365,16 @@ Leak measure_leak(const Image& image, const RayScene& rays, const View& view) {
       ++leak.pixels;
       leak.max = std::max(leak.max, v);
       leak.sum += v;
-      const glm::vec3 dir = pixel_direction(view, x, y);
-      const auto hit = rays.intersect(view.eye, dir, 0.0f, 2.0f * view.zfar);
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::vec3 dir = ray.direction;
+      const auto hit = rays.intersect(ray.origin, dir, 0.0f, 2.0f * view.zfar);
       const std::size_t quad = hit ? hit->triangle / 2 : 0;
       if (quad < 6 || quad >= 12) { // not a wall of room B: count it as far as can be
         leak.reach = HUGE_VAL;
         continue;
       }
       const std::size_t w = quad - 6;
-      const double reach = double((view.eye + hit->t * dir).x) - 2.002;
+      const double reach = double((ray.origin + hit->t * dir).x) - 2.002;
       leak.reach = std::max(leak.reach, reach);
       ++leak.wall_pixels[w];
       leak.wall_max[w] = std::max(leak.wall_max[w], v);

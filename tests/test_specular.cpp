@@ -72,10 +72,11 @@ Compared against_analytic(const Scene& s, const RayScene& rays, const View& view
   Compared c{Image(view.width, view.height), Image(view.width, view.height)};
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
-      const glm::vec3 dir = pixel_direction(view, x, y);
-      const auto hit = rays.intersect(view.eye, dir, view.znear, 10.0f);
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::vec3 dir = ray.direction;
+      const auto hit = rays.intersect(ray.origin, dir, view.znear, 10.0f);
       if (!hit || s.triangle_material[hit->triangle] != 0) continue;
-      const glm::vec3 p = view.eye + hit->t * dir;
+      const glm::vec3 p = ray.origin + hit->t * dir;
       if (glm::max(std::abs(p.x), std::abs(p.y)) < 0.35f) continue;
       c.estimate.at(x, y) = glm::vec4(glm::vec3(image.at(x, y).r), 1.0f);
       c.analytic.at(x, y) = glm::vec4(glm::vec3(static_cast<float>(analytic_floor(p))), 1.0f);
@@ -223,10 +224,11 @@ TEST(Specular, PointLightThroughMirrorIsExact) {
   double worst_rt = 0.0, worst_gl = 0.0;
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
-      const glm::vec3 dir = pixel_direction(view, x, y);
-      const auto hit = rays.intersect(view.eye, dir, view.znear, 10.0f);
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::vec3 dir = ray.direction;
+      const auto hit = rays.intersect(ray.origin, dir, view.znear, 10.0f);
       ASSERT_TRUE(hit);
-      const glm::vec3 p = view.eye + hit->t * dir;
+      const glm::vec3 p = ray.origin + hit->t * dir;
       const auto term = [&](const glm::vec3& source, float r) {
         const glm::vec3 d = source - p;
         return r * d.z / glm::length(d) / glm::dot(d, d);
@@ -285,7 +287,8 @@ TEST(Specular, SmallMirrorAndOccluderRasterMatchesRtVpl) {
     std::size_t dark = 0, pixels = 0;
     for (int y = 0; y < 64; ++y)
       for (int x = 0; x < 64; ++x) {
-        const auto hit = rays.intersect(view.eye, pixel_direction(view, x, y), view.znear, 9.0f);
+        const auto hit = rays.intersect(pixel_ray(view, x, y).origin,
+                                        pixel_ray(view, x, y).direction, view.znear, 9.0f);
         if (!hit || s.triangle_material[hit->triangle] != 0) continue;
         a.at(x, y) = glm::vec4(glm::vec3(gl.at(x, y)) * 100.0f, 1.0f);
         b.at(x, y) = glm::vec4(glm::vec3(rt.at(x, y)) * 100.0f, 1.0f);
@@ -311,10 +314,11 @@ std::vector<int> regions(const Scene& s, const RayScene& rays, const View& view)
   std::vector<int> out(static_cast<std::size_t>(view.width * view.height), 0);
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
-      const glm::vec3 dir = pixel_direction(view, x, y);
-      const auto hit = rays.intersect(view.eye, dir, view.znear, 2.0f * view.zfar);
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::vec3 dir = ray.direction;
+      const auto hit = rays.intersect(ray.origin, dir, view.znear, 2.0f * view.zfar);
       if (!hit) continue;
-      const glm::vec3 p = view.eye + hit->t * dir;
+      const glm::vec3 p = ray.origin + hit->t * dir;
       int r = 0;
       if (s.material_of(hit->triangle).specular)
         r = 1;

@@ -65,7 +65,8 @@ std::vector<int> regions(const RayScene& rays, const View& view) {
   std::vector<int> out(static_cast<std::size_t>(view.width * view.height), -1);
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
-      const glm::vec3 d = pixel_direction(view, x, y);
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::vec3 d = ray.direction;
       const auto hit = rays.intersect(view.eye, d, 0.0f, 1e30f);
       if (!hit) continue;
       const glm::vec3 p = view.eye + hit->t * d;

@@ -4,23 +4,6 @@
 
 namespace irad {
 
-float coverage_at(const Scene& scene, std::size_t triangle, glm::vec2 bary) {
-  const Material& m = scene.material_of(triangle);
-  const glm::uvec3& tri = scene.triangles[triangle];
-  const float b0 = 1.0f - bary.x - bary.y;
-  float a = m.base_alpha;
-  const std::vector<glm::vec2>& uvs = m.base_color_map.texcoord == 1 ? scene.uvs1 : scene.uvs;
-  if (m.base_color_texture >= 0 && std::size_t(m.base_color_texture) < scene.textures.size() &&
-      !uvs.empty()) {
-    const glm::vec2 uv = b0 * uvs[tri.x] + bary.x * uvs[tri.y] + bary.y * uvs[tri.z];
-    a *= scene.textures[std::size_t(m.base_color_texture)].sample(m.base_color_map.apply(uv)).a;
-  }
-  if (!scene.colors.empty())
-    a *= b0 * scene.colors[tri.x].a + bary.x * scene.colors[tri.y].a +
-         bary.y * scene.colors[tri.z].a;
-  return a;
-}
-
 bool has_alpha(const Scene& scene) {
   return std::any_of(scene.materials.begin(), scene.materials.end(),
                      [](const Material& m) { return m.alpha_mode != AlphaMode::Opaque; });

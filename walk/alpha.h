@@ -5,8 +5,7 @@
 //   presence P(x) = 1 (Opaque), [a >= alpha_cutoff] (Mask), clamp(a, 0, 1) (Blend):
 // the probability that a ray or particle stops at x. RayScene (walk/ray_scene.h) applies it in
 // Embree filter functions; light sampling weights emitter points by it.
-// coverage_at is this worktree's copy of the core function of the same name (core/scene.h will
-// get one): keep it one small function so that it can be swapped for that one.
+// The coverage a(x) is core's coverage_at (core/scene.h), the one rule the raster shares.
 #include "core/light_sampler.h"
 #include "core/scene.h"
 
@@ -15,9 +14,6 @@
 #include <glm/glm.hpp>
 
 namespace irad {
-
-// a(x) at barycentrics (b1, b2) of triangle t, as above (not clamped).
-float coverage_at(const Scene& scene, std::size_t triangle, glm::vec2 bary);
 
 // Whether some material is Mask or Blend (only then are filter functions installed).
 bool has_alpha(const Scene& scene);

@@ -55,10 +55,11 @@ Image clamp_residual(const Scene& scene, const RayScene& rays, const View& view,
   parallel_rows(view.height, options.threads, [&](int y) {
     for (int x = 0; x < view.width; ++x) {
       glm::vec3 sum(0.0f);
-      const glm::vec3 dir = pixel_direction(view, x, y);
-      const auto hit = rays.intersect(view.eye, dir, view.znear, 2.0f * view.zfar);
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::vec3 dir = ray.direction;
+      const auto hit = rays.intersect(ray.origin, dir, view.znear, 2.0f * view.zfar);
       if (hit && dmin > 0.0f && options.samples > 0) {
-        const ShadingPoint p = shading_point(scene, *hit, view.eye, dir);
+        const ShadingPoint p = shading_point(scene, *hit, ray.origin, dir);
         Pcg32 rng(mix64(seed ^ (static_cast<std::uint64_t>(y) * view.width + x)), 0);
         for (std::uint32_t s = 0; s < options.samples; ++s) sum += residual(p, rng, 0);
         sum /= static_cast<float>(options.samples);
@@ -80,10 +81,11 @@ double clamped_fraction(const Scene& scene, const RayScene& rays, const View& vi
     for (int i = 0; i < nx; ++i) {
       const int px = (2 * i + 1) * view.width / (2 * nx);
       const int py = (2 * j + 1) * view.height / (2 * ny);
-      const glm::vec3 dir = pixel_direction(view, px, py);
-      const auto hit = rays.intersect(view.eye, dir, view.znear, 2.0f * view.zfar);
+      const CameraRay ray = pixel_ray(view, px, py);
+      const glm::vec3 dir = ray.direction;
+      const auto hit = rays.intersect(ray.origin, dir, view.znear, 2.0f * view.zfar);
       if (!hit) continue;
-      const ShadingPoint p = shading_point(scene, *hit, view.eye, dir);
+      const ShadingPoint p = shading_point(scene, *hit, ray.origin, dir);
       Pcg32 rng(mix64(static_cast<std::uint64_t>(py) * view.width + px), 1);
       glm::vec3 r(0.0f);
       for (std::uint32_t s = 0; s < samples; ++s) r += residual(p, rng, 0);

@@ -28,11 +28,12 @@ void add_mirror_pass(const Scene& scene, const RayScene& rays, const View& view,
   parallel_rows(view.height, options.threads, [&](int y) {
     for (int x = 0; x < view.width; ++x) {
       if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
-      const glm::vec3 dir = pixel_direction(view, x, y);
-      const auto hit = rays.intersect(view.eye, dir, view.znear, 2.0f * view.zfar);
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::vec3 dir = ray.direction;
+      const auto hit = rays.intersect(ray.origin, dir, view.znear, 2.0f * view.zfar);
       if (!hit || !scene.material_of(hit->triangle).specular) continue;
-      const glm::vec3 c = mirror_radiance(scene, rays, vpls, hit->triangle, view.eye + hit->t * dir,
-                                          dir, dmin * dmin, eps);
+      const glm::vec3 c = mirror_radiance(scene, rays, vpls, hit->triangle,
+                                          ray.origin + hit->t * dir, dir, dmin * dmin, eps);
       image.at(x, y) += glm::vec4(c, 0.0f);
     }
   });

@@ -197,18 +197,19 @@ Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
   auto row = [&](int y) {
     for (int x = 0; x < view.width; ++x) {
       if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
-      const glm::vec3 dir = pixel_direction(view, x, y);
+      const CameraRay ray = pixel_ray(view, x, y);
       const std::uint64_t pixel = static_cast<std::uint64_t>(y) * view.width + x;
       glm::dvec3 sum(0.0);
       for (std::uint32_t s = 0; s < options.spp; ++s) {
         Pcg32 rng(mix64(seed ^ pixel), s); // one stream per pixel and sample
-        glm::vec3 d = dir;
+        CameraRay r = ray;
         if (options.pixel_footprint) {
           const auto u = static_cast<float>(rng.next_double());
           const auto v = static_cast<float>(rng.next_double());
-          d = image_point_direction(view, static_cast<float>(x) + u, static_cast<float>(y) + v);
+          r = image_point_ray(view, static_cast<float>(x) + u, static_cast<float>(y) + v);
         }
-        const glm::vec3 l = tracer.radiance(view.eye, d, view.znear, rng, mix64(seed ^ pixel) + s);
+        const glm::vec3 l =
+            tracer.radiance(r.origin, r.direction, view.znear, rng, mix64(seed ^ pixel) + s);
         if (std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z)) sum += glm::dvec3(l);
       }
       image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), 1.0f);

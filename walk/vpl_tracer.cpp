@@ -14,10 +14,11 @@ Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, con
   parallel_rows(view.height, options.threads, [&](int y) {
     for (int x = 0; x < view.width; ++x) {
       if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
-      const glm::vec3 dir = pixel_direction(view, x, y);
+      const CameraRay ray = pixel_ray(view, x, y);
+      const glm::vec3 dir = ray.direction;
       glm::vec3 c(0.0f);
-      if (const auto hit = rays.intersect(view.eye, dir, view.znear, 2.0f * view.zfar)) {
-        const ShadingPoint p = shading_point(scene, *hit, view.eye, dir);
+      if (const auto hit = rays.intersect(ray.origin, dir, view.znear, 2.0f * view.zfar)) {
+        const ShadingPoint p = shading_point(scene, *hit, ray.origin, dir);
         c = p.emission + (scene.material_of(hit->triangle).specular
                               ? mirror_radiance(scene, rays, vpls, hit->triangle, p.position, dir,
                                                 dmin * dmin, eps)

@@ -67,8 +67,13 @@ ViewBytes placeholder_view(const Context& ctx, std::size_t v, std::size_t b, std
 } // namespace
 
 ViewBytes view_bytes(const Context& ctx, std::uint64_t view, const std::string& where) {
-  const json& bv = ctx.at("bufferViews", view, where, "bufferView");
-  const std::size_t v = std::size_t(view);
+  const std::size_t v = checked_index(ctx, view > 0x7fffffffull ? -1 : static_cast<long long>(view),
+                                      ctx.count("bufferViews"), where, "bufferView");
+  const json& bv = ctx.array("bufferViews")[v];
+  // The buffer first: a problem there explains the view's.
+  if (const auto b = index_member(bv, "buffer"); b && *b < ctx.buffers.size())
+    ctx.use("buffers", std::size_t(*b));
+  ctx.use("bufferViews", v);
   const std::string name = element("bufferViews", v);
   const std::size_t stride = index_member(bv, "byteStride").value_or(0);
   if (const json* ext = extension(bv, "EXT_meshopt_compression")) {

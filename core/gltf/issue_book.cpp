@@ -15,7 +15,10 @@ struct Repair {
   const char* code;
   const char* what;
 };
-constexpr std::array<Repair, 9> kRepairs{{
+constexpr std::array<Repair, 12> kRepairs{{
+    {"ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND", "irad computes the bounds itself"},
+    {"ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND", "irad computes the bounds itself"},
+    {"ACCESSOR_WEIGHTS_NON_NORMALIZED", "the weights are renormalised to sum 1"},
     {"ACCESSOR_INVALID_FLOAT",
      "triangles with a NaN or Inf vertex are dropped, such normals replaced"},
     {"ROTATION_NON_UNIT", "the quaternion is normalised"},

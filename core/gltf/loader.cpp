@@ -127,14 +127,18 @@ private:
     pose.skin = skins_.skin_of(ctx_, instance.node);
     for (std::size_t p = 0; p < primitives->size(); ++p) {
       const std::string where = gltf::element("meshes", mesh) + gltf::element(".primitives", p);
-      const auto [material, uv] = material_of((*primitives)[p], where);
+      const auto [material, uv] = material_of(
+          (*primitives)[p], where,
+          gltf::pointer_of("meshes", mesh) + "/primitives/" + std::to_string(p));
       gltf::append_primitive(ctx_, mesh, p, pose, material, uv, soup_);
     }
   }
 
   // Scene material and uv sets of a primitive.
-  std::pair<std::uint32_t, gltf::UvSets> material_of(const json& p, const std::string& where) {
+  std::pair<std::uint32_t, gltf::UvSets> material_of(const json& p, const std::string& where,
+                                                     const std::string& pointer) {
     if (!gltf::member(p, "material")) return {default_material(), {}};
+    ctx_.use(pointer + "/material");
     const std::size_t m =
         *gltf::optional_index(ctx_, p, "material", ctx_.count("materials"), where);
     return {std::uint32_t(m), uv_[m]};
