@@ -2,7 +2,8 @@
 """Writes a large GLB for `irad bench --load`: a displaced terrain grid of QUADS x QUADS quads
 (2 QUADS^2 triangles; --quads 1000 gives 2,000,002 triangles, the "2M" file), with POSITION,
 NORMAL (the analytic normals of the height field), TEXCOORD_0 and uint32 indices, lit by an
-emissive panel above it (a second primitive, emissiveFactor x KHR_materials_emissive_strength),
+emissive panel above it (a second primitive, emissiveFactor x KHR_materials_emissive_strength); the terrain's
+base colour is a small checkerboard PNG (so the loader keeps TEXCOORD_0),
 seen by one perspective camera. The file is written where -o says (the build tree; never commit
 it). Plain Python (no numpy): some seconds for the 2M file.
 
@@ -13,6 +14,7 @@ import math
 import json
 import pathlib
 import struct
+import zlib
 
 from array import array
 
@@ -48,6 +50,17 @@ def terrain(q):
     return pos, nrm, uv, idx
 
 
+def checker_png(side=16):
+    """An RGB PNG of side x side texels, a two-tone checkerboard (the terrain's base colour)."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    rows = b"".join(b"\x00" + b"".join(bytes((200, 190, 160) if (x // 2 + y // 2) % 2 else
+                                             (120, 140, 90)) for x in range(side))
+                    for y in range(side))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
 def panel():
     s, h = 4.0, 6.0
     pos = array("f", [-s, h, -s, s, h, -s, s, h, s, -s, h, s])
@@ -67,7 +80,8 @@ def main():
            "extensionsUsed": ["KHR_materials_emissive_strength"],
            "buffers": [], "bufferViews": [], "accessors": [], "meshes": [], "materials": [
                {"name": "terrain", "pbrMetallicRoughness": {
-                   "baseColorFactor": [0.6, 0.55, 0.45, 1], "metallicFactor": 0,
+                   "baseColorFactor": [0.9, 0.9, 0.9, 1], "baseColorTexture": {"index": 0},
+                   "metallicFactor": 0,
                    "roughnessFactor": 1}},
                {"name": "panel", "pbrMetallicRoughness": {
                    "baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
@@ -102,6 +116,11 @@ def main():
             "TEXCOORD_0": accessor(uv, 5126, "VEC2", 34962)},
             "indices": accessor(idx, 5125, "SCALAR", 34963), "material": material, "mode": 4})
     doc["meshes"].append({"name": "terrain", "primitives": prims})
+    png = array("B", checker_png())
+    doc["images"] = [{"bufferView": len(doc["bufferViews"]), "mimeType": "image/png"}]
+    view(png, None)
+    del doc["bufferViews"][-1]["target"]
+    doc["textures"] = [{"source": 0}]
     doc["cameras"] = [{"type": "perspective", "perspective": {
         "yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1, "zfar": 100}}]
     # The camera at (0, 9, 17) looking at the origin: a rotation about x by -atan(9/17).
