@@ -2,7 +2,10 @@
 // irad bench --load FILE: what loading a large scene costs. Each of `runs` runs loads FILE
 // (load_gltf: read, JSON, validation, decoding, the triangle soup), builds the Embree BVH
 // (RayScene) and uploads the scene to GL (the RasterRenderer's construction: context, shaders
-// and the GpuScene buffers); the times are medians over the runs. Memory is the resident set
+// and the GpuScene buffers; gl_context is the same construction for a one-quad scene, so
+// gl_upload - gl_context is the scene's buffers); the times are medians over the runs. The
+// stages keep what the earlier ones built, as `irad render` does: the BVH stage's memory
+// includes the scene, the upload's the scene and the BVH. Memory is the resident set
 // (/proc/self/status): VmRSS before the run, and VmHWM, the kernel's high-water mark, reset
 // before each stage by writing 5 to /proc/self/clear_refs, so each stage's peak is its own (when
 // the reset is refused, the peak is the process's since its start and says so). glibc's mmap
