@@ -1,6 +1,11 @@
 // irad bench [--quick] [-o DIR] [--scene NAME]...: speed against error (apps/bench.h).
+// irad bench --load FILE [--runs N] [-o DIR]: load, BVH and upload time and memory of one scene
+// (apps/load_bench.h).
 #include "apps/bench.h"
 #include "apps/commands.h"
+#include "apps/load_bench.h"
+
+#include <fmt/format.h>
 
 #include <memory>
 
@@ -9,6 +14,7 @@ namespace irad::apps {
 void add_bench_command(CLI::App& app, Commands& commands) {
   auto options = std::make_shared<BenchOptions>();
   auto quiet = std::make_shared<bool>(false);
+  auto load = std::make_shared<LoadBenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Speed against error: sweep N, sequence, estimator");
   cmd->add_flag("--quick", options->quick, "A smoke run (well under 2 minutes)");
   cmd->add_option("-o,--output", options->out_dir, "Output folder (CSV, plots, cached references)")
@@ -24,11 +30,28 @@ void add_bench_command(CLI::App& app, Commands& commands) {
   cmd->add_flag(
       "--no-scale", [options](std::int64_t) { options->scale = false; },
       "Skip the triangle-count study");
+  cmd->add_option("--load", load->file,
+                  "Instead of the sweep: time and peak memory of loading this glTF/GLB (load, "
+                  "BVH, GL upload); writes OUT/load.csv")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--runs", load->runs, "--load: runs (the times are medians)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag(
+      "--no-raster", [load](std::int64_t) { load->raster = false; },
+      "--load: skip the GL stages");
+  cmd->add_option("--memory-trace", load->memory_trace,
+                  "--load: CSV of the resident set every millisecond of the first run");
   cmd->add_flag("-q,--quiet", *quiet, "No progress lines");
-  cmd->callback([options, quiet, &commands] {
-    commands.selected = [options, quiet] {
+  cmd->callback([options, quiet, load, &commands] {
+    commands.selected = [options, quiet, load] {
       Log log;
       log.set_quiet(*quiet);
+      if (!load->file.empty()) {
+        load->out_dir = options->out_dir;
+        fmt::print("{}", load_table(run_load_bench(*load, log)));
+        return 0;
+      }
       run_bench(*options, log);
       return 0;
     };

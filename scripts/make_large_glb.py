@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""Writes a large GLB for `irad bench --load`: a displaced terrain grid of QUADS x QUADS quads
+(2 QUADS^2 triangles; --quads 1000 gives 2,000,002 triangles, the "2M" file), with POSITION,
+NORMAL (the analytic normals of the height field), TEXCOORD_0 and uint32 indices, lit by an
+emissive panel above it (a second primitive, emissiveFactor x KHR_materials_emissive_strength); the terrain's
+base colour is a small checkerboard PNG (so the loader keeps TEXCOORD_0),
+seen by one perspective camera. The file is written where -o says (the build tree; never commit
+it). Plain Python (no numpy): some seconds for the 2M file.
+
+  python3 scripts/make_large_glb.py -o build/large_2m.glb [--quads 1000]
+"""
+import argparse
+import math
+import json
+import pathlib
+import struct
+import zlib
+
+from array import array
+
+
+def terrain(q):
+    n = q + 1
+    # A few octaves of smooth bumps over 20 x 20 units (y up): a real-looking height field.
+    octaves = [(0.35, 0.27, 1.0), (0.9, 1.3, 0.35), (2.7, 2.1, 0.12), (7.3, 6.1, 0.03)]
+    coords = [20.0 * k / q - 10.0 for k in range(n)]
+    sx = [[(a * math.sin(fx * x), a * fx * math.cos(fx * x)) for x in coords]
+          for fx, fz, a in octaves]
+    cz = [[(math.cos(fz * z), fz * math.sin(fz * z)) for z in coords] for fx, fz, a in octaves]
+    pos, nrm, uv = array("f"), array("f"), array("f")
+    for r, z in enumerate(coords):
+        for c, x in enumerate(coords):
+            y = dx = dz = 0.0
+            for o in range(len(octaves)):
+                s, ds = sx[o][c]
+                cc, dc = cz[o][r]
+                y += s * cc
+                dx += ds * cc
+                dz -= s * dc
+            inv = 1.0 / math.sqrt(dx * dx + 1.0 + dz * dz)
+            pos.extend((x, y, z))
+            nrm.extend((-dx * inv, inv, -dz * inv))
+            uv.extend((c / q, r / q))
+    idx = array("I")
+    for r in range(q):
+        for c in range(q):
+            a = r * n + c
+            # Counter-clockwise seen from above (+y).
+            idx.extend((a, a + n, a + 1, a + 1, a + n, a + n + 1))
+    return pos, nrm, uv, idx
+
+
+def checker_png(side=16):
+    """An RGB PNG of side x side texels, a two-tone checkerboard (the terrain's base colour)."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    rows = b"".join(b"\x00" + b"".join(bytes((200, 190, 160) if (x // 2 + y // 2) % 2 else
+                                             (120, 140, 90)) for x in range(side))
+                    for y in range(side))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
+def panel():
+    s, h = 4.0, 6.0
+    pos = array("f", [-s, h, -s, s, h, -s, s, h, s, -s, h, s])
+    nrm = array("f", [0, -1, 0] * 4)
+    uv = array("f", [0, 0, 1, 0, 1, 1, 0, 1])
+    idx = array("I", [0, 1, 2, 0, 2, 3])  # counter-clockwise seen from below
+    return pos, nrm, uv, idx
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("-o", "--output", required=True)
+    p.add_argument("--quads", type=int, default=1000, help="grid side in quads (default 1000)")
+    args = p.parse_args()
+
+    doc = {"asset": {"version": "2.0", "generator": "irad scripts/make_large_glb.py"},
+           "extensionsUsed": ["KHR_materials_emissive_strength"],
+           "buffers": [], "bufferViews": [], "accessors": [], "meshes": [], "materials": [
+               {"name": "terrain", "pbrMetallicRoughness": {
+                   "baseColorFactor": [0.9, 0.9, 0.9, 1], "baseColorTexture": {"index": 0},
+                   "metallicFactor": 0,
+                   "roughnessFactor": 1}},
+               {"name": "panel", "pbrMetallicRoughness": {
+                   "baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
+                "emissiveFactor": [1, 0.95, 0.9],
+                "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}}}]}
+    blob = bytearray()
+
+    def view(arr, target):
+        while len(blob) % 4:
+            blob.append(0)
+        data = arr.tobytes()  # little-endian (x86, ARM)
+        doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data),
+                                   "target": target})
+        blob.extend(data)
+        return len(doc["bufferViews"]) - 1
+
+    def accessor(arr, ctype, kind, target, bounds=False):
+        width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[kind]
+        a = {"bufferView": view(arr, target), "componentType": ctype, "count": len(arr) // width,
+             "type": kind}
+        if bounds:
+            a["min"] = [min(arr[k::width]) for k in range(width)]
+            a["max"] = [max(arr[k::width]) for k in range(width)]
+        doc["accessors"].append(a)
+        return len(doc["accessors"]) - 1
+
+    prims = []
+    for material, (pos, nrm, uv, idx) in enumerate([terrain(args.quads), panel()]):
+        prims.append({"attributes": {
+            "POSITION": accessor(pos, 5126, "VEC3", 34962, bounds=True),
+            "NORMAL": accessor(nrm, 5126, "VEC3", 34962),
+            "TEXCOORD_0": accessor(uv, 5126, "VEC2", 34962)},
+            "indices": accessor(idx, 5125, "SCALAR", 34963), "material": material, "mode": 4})
+    doc["meshes"].append({"name": "terrain", "primitives": prims})
+    png = array("B", checker_png())
+    doc["images"] = [{"bufferView": len(doc["bufferViews"]), "mimeType": "image/png"}]
+    view(png, None)
+    del doc["bufferViews"][-1]["target"]
+    doc["textures"] = [{"source": 0}]
+    doc["cameras"] = [{"type": "perspective", "perspective": {
+        "yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1, "zfar": 100}}]
+    # The camera at (0, 9, 17) looking at the origin: a rotation about x by -atan(9/17).
+    ang = -math.atan2(9.0, 17.0) / 2.0
+    doc["nodes"] = [{"name": "terrain", "mesh": 0},
+                    {"name": "camera", "camera": 0, "translation": [0, 9, 17],
+                     "rotation": [math.sin(ang), 0, 0, math.cos(ang)]}]
+    doc["scenes"] = [{"nodes": [0, 1]}]
+    doc["scene"] = 0
+    while len(blob) % 4:
+        blob.append(0)
+    doc["buffers"].append({"byteLength": len(blob)})
+    text = json.dumps(doc, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    total = 12 + 8 + len(text) + 8 + len(blob)
+    out = pathlib.Path(args.output)
+    with open(str(out) + ".tmp", "wb") as f:
+        f.write(struct.pack("<4sII", b"glTF", 2, total))
+        f.write(struct.pack("<I4s", len(text), b"JSON") + text)
+        f.write(struct.pack("<I4s", len(blob), b"BIN\x00"))
+        f.write(blob)
+    pathlib.Path(str(out) + ".tmp").replace(out)
+    tris = 2 * args.quads * args.quads + 2
+    print(f"{out}: {tris} triangles, {(args.quads + 1) ** 2 + 4} vertices, {total} bytes")
+
+
+if __name__ == "__main__":
+    main()
