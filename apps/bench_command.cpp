@@ -38,8 +38,7 @@ void add_bench_command(CLI::App& app, Commands& commands) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_flag(
-      "--no-raster", [load](std::int64_t) { load->raster = false; },
-      "--load: skip the GL stages");
+      "--no-raster", [load](std::int64_t) { load->raster = false; }, "--load: skip the GL stages");
   cmd->add_option("--memory-trace", load->memory_trace,
                   "--load: CSV of the resident set every millisecond of the first run");
   cmd->add_flag("-q,--quiet", *quiet, "No progress lines");

@@ -87,7 +87,8 @@ private:
   std::thread thread_;
 };
 
-template <class T> T median(std::vector<T> v) {
+template <class T>
+T median(std::vector<T> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? T{} : v[v.size() / 2];
 }
@@ -103,7 +104,9 @@ Scene tiny_scene() {
   return s;
 }
 
-double mib(std::size_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); }
+double mib(std::size_t bytes) {
+  return static_cast<double>(bytes) / (1024.0 * 1024.0);
+}
 
 } // namespace
 
@@ -161,13 +164,15 @@ LoadBenchResult run_load_bench(const LoadBenchOptions& o, Log& log) {
     }
     if (sampler) sampler->write(o.memory_trace);
     log.info(fmt::format("bench: load run {}/{}: {}", run + 1, o.runs,
-                         fmt::join([&] {
-                           std::vector<std::string> parts;
-                           for (const LoadStage& s : r.stages)
-                             parts.push_back(fmt::format("{} {:.3f} s", s.name, s.seconds.back()));
-                           return parts;
-                         }(),
-                                   ", ")));
+                         fmt::join(
+                             [&] {
+                               std::vector<std::string> parts;
+                               for (const LoadStage& s : r.stages)
+                                 parts.push_back(
+                                     fmt::format("{} {:.3f} s", s.name, s.seconds.back()));
+                               return parts;
+                             }(),
+                             ", ")));
   }
   write_load_csv(r, o.out_dir + "/load.csv");
   return r;
@@ -182,9 +187,9 @@ void write_load_csv(const LoadBenchResult& r, const std::string& path) {
   for (const LoadStage& s : r.stages) {
     const std::size_t peak = median(s.peak_bytes);
     out << fmt::format("{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{},{},{},{:.3f},{}\n",
-                       std::filesystem::path(r.file).filename().string(), r.file_bytes,
-                       r.triangles, r.vertices, r.decoded_bytes, s.seconds.size(), s.name,
-                       median(s.seconds), *std::min_element(s.seconds.begin(), s.seconds.end()),
+                       std::filesystem::path(r.file).filename().string(), r.file_bytes, r.triangles,
+                       r.vertices, r.decoded_bytes, s.seconds.size(), s.name, median(s.seconds),
+                       *std::min_element(s.seconds.begin(), s.seconds.end()),
                        *std::max_element(s.seconds.begin(), s.seconds.end()), base, peak,
                        median(s.after_bytes),
                        static_cast<double>(peak - std::min(peak, base)) /
@@ -202,8 +207,7 @@ std::string load_table(const LoadBenchResult& r) {
       r.file, mib(r.file_bytes), r.triangles, r.vertices, mib(r.decoded_bytes), mib(base),
       r.stages.empty() ? 0 : r.stages[0].seconds.size());
   t += fmt::format("{:<11} {:>9} {:>15} {:>14} {:>16}\n", "stage", "seconds",
-                   r.peak_reset ? "stage peak MiB" : "peak* MiB", "after MiB",
-                   "(peak-before)/geo");
+                   r.peak_reset ? "stage peak MiB" : "peak* MiB", "after MiB", "(peak-before)/geo");
   std::size_t overall = 0;
   for (const LoadStage& s : r.stages) {
     const std::size_t peak = median(s.peak_bytes);

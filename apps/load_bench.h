@@ -22,7 +22,7 @@ struct LoadBenchOptions {
   std::string file;
   std::string out_dir = "out/bench";
   int runs = 3;
-  bool raster = true;      // the GL upload stage (off: load and BVH only)
+  bool raster = true;       // the GL upload stage (off: load and BVH only)
   std::string memory_trace; // CSV of VmRSS sampled every millisecond during the first run
 };
 

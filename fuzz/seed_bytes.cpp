@@ -50,8 +50,8 @@ int main() {
       irad::test::meshopt_encode_vertices(cube.positions.data(), n, 3 * sizeof(float));
   std::vector<float> normals4;
   for (std::size_t i = 0; i < n; ++i)
-    normals4.insert(normals4.end(), {cube.normals[3 * i], cube.normals[3 * i + 1],
-                                     cube.normals[3 * i + 2], 0.0f});
+    normals4.insert(normals4.end(),
+                    {cube.normals[3 * i], cube.normals[3 * i + 1], cube.normals[3 * i + 2], 0.0f});
   std::vector<unsigned char> oct(n * 4);
   meshopt_encodeFilterOct(oct.data(), n, 4, 8, normals4.data());
   const auto normals = irad::test::meshopt_encode_vertices(oct.data(), n, 4);
@@ -64,7 +64,8 @@ int main() {
   tri16.resize(meshopt_encodeIndexBuffer(tri16.data(), tri16.size(), idx16.data(), idx16.size()));
 
   // WebP: 2x2 RGBA, lossless.
-  const unsigned char rgba[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 128};
+  const unsigned char rgba[16] = {255, 0, 0,   255, 0,   255, 0,   255,
+                                  0,   0, 255, 255, 255, 255, 255, 128};
   std::uint8_t* webp_out = nullptr;
   const std::size_t webp_size = WebPEncodeLosslessRGBA(rgba, 2, 2, 8, &webp_out);
   const std::vector<unsigned char> webp(webp_out, webp_out + webp_size);

@@ -249,7 +249,8 @@ inline const std::vector<glm::vec3> kQuad{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1
 inline const std::vector<std::uint16_t> kQuadIndices{0, 1, 2, 0, 2, 3};
 
 inline json quad_primitive(Gltf& g, int material, const std::vector<glm::vec3>& normals) {
-  json p = {{"attributes", {{"POSITION", g.positions(kQuad)}}}, {"indices", g.indices(kQuadIndices)}};
+  json p = {{"attributes", {{"POSITION", g.positions(kQuad)}}},
+            {"indices", g.indices(kQuadIndices)}};
   if (!normals.empty()) p["attributes"]["NORMAL"] = g.vec3s(normals);
   if (material >= 0) p["material"] = material;
   return p;

@@ -59,7 +59,8 @@ json one_channel(int input, int output, int node, const char* path) {
 
 // The quad skinned to two joints (nodes 1 and 2): vertices 0 and 1 follow joint 0, vertex 2
 // joint 1, vertex 3 both (weights 0.75 and 0.25; at 0.5 each it would lie on the diagonal at
-// rest, a degenerate triangle the loader drops). Joint 1 is translated by (0, 0, 2) and turned 90 degrees about z.
+// rest, a degenerate triangle the loader drops). Joint 1 is translated by (0, 0, 2) and turned 90
+// degrees about z.
 constexpr float kH = 0.70710678f;
 
 Gltf skinned_quad(bool with_ibm) {

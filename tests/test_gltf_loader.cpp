@@ -14,8 +14,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iterator>
 #include <gtest/gtest.h>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -634,7 +634,9 @@ const BadCase kBadCases[] = {
      },
      "scenes[0].nodes[0]", "a scene's node must not have a parent"},
     {"emissive_above_one",
-     [](Gltf& g) { g.doc["materials"][0]["emissiveFactor"] = {2.0, 1.0, 1.0}; },
+     [](Gltf& g) {
+       g.doc["materials"][0]["emissiveFactor"] = {2.0, 1.0, 1.0};
+     },
      "materials[0].emissiveFactor[0]", "value 2.0 is out of range"},
     {"undeclared_extension",
      [](Gltf& g) {

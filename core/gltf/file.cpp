@@ -296,7 +296,7 @@ SceneFile read_scene_file(const std::filesystem::path& path, const std::string& 
   return f;
 }
 
-std::vector<BufferData> resolve_buffers(const SceneFile& f, const fs::path& folder,
+std::vector<BufferData> resolve_buffers(SceneFile& f, const fs::path& folder,
                                         const LoadLimits& limits, IssueBook& issues) {
   const json& buffers = root_array(f.root, "buffers");
   std::vector<BufferData> out(buffers.size());
@@ -306,8 +306,11 @@ std::vector<BufferData> resolve_buffers(const SceneFile& f, const fs::path& fold
     const json* uri = member(b, "uri");
     if (!uri) {
       if (f.binary && i == 0 && f.bin_length > 0) {
-        const auto* bin = f.bytes.data() + f.bin_offset;
-        out[i].bytes.assign(bin, bin + f.bin_length);
+        // The file's bytes become the buffer's: no second copy of the BIN chunk.
+        std::vector<unsigned char> bytes = std::move(f.bytes);
+        bytes.erase(bytes.begin(), bytes.begin() + std::ptrdiff_t(f.bin_offset));
+        bytes.resize(f.bin_length);
+        out[i].bytes = std::move(bytes);
         out[i].present = true;
       } else if (!(f.binary && i == 0)) { // (a GLB without BIN: the validator's error)
         out[i].placeholder = true;

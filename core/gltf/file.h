@@ -29,7 +29,7 @@ SceneFile read_scene_file(const std::filesystem::path& path, const std::string& 
                           const LoadLimits& limits);
 
 // The data of every buffer; what cannot be had is an issue of "/buffers/i" in `issues`.
-std::vector<BufferData> resolve_buffers(const SceneFile& f, const std::filesystem::path& folder,
+std::vector<BufferData> resolve_buffers(SceneFile& f, const std::filesystem::path& folder,
                                         const LoadLimits& limits, IssueBook& issues);
 
 // The bytes an image or buffer URI names: a base64 data URI (whose media type must be one of

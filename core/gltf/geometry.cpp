@@ -325,9 +325,20 @@ std::uint32_t push_vertex(const Context& ctx, const Attributes& a, std::size_t v
   }
   soup.positions.push_back(place_point(pl, a.positions[v]));
   soup.normals.push_back(a.normals.empty() ? glm::vec3(0.0f) : place_normal(pl, a.normals[v]));
-  soup.uvs.push_back(a.uvs.empty() ? glm::vec2(0.0f) : a.uvs[v]);
-  soup.uvs1.push_back(a.uvs1.empty() ? glm::vec2(0.0f) : a.uvs1[v]);
-  soup.colors.push_back(a.colors.empty() ? glm::vec4(1.0f) : a.colors[v]);
+  // The optional sets only from the first primitive that has them (earlier vertices filled).
+  const std::size_t i = soup.positions.size() - 1;
+  if (!a.uvs.empty() || !soup.uvs.empty()) {
+    soup.uvs.resize(i, glm::vec2(0.0f));
+    soup.uvs.push_back(a.uvs.empty() ? glm::vec2(0.0f) : a.uvs[v]);
+  }
+  if (!a.uvs1.empty() || !soup.uvs1.empty()) {
+    soup.uvs1.resize(i, glm::vec2(0.0f));
+    soup.uvs1.push_back(a.uvs1.empty() ? glm::vec2(0.0f) : a.uvs1[v]);
+  }
+  if (!a.colors.empty() || !soup.colors.empty()) {
+    soup.colors.resize(i, glm::vec4(1.0f));
+    soup.colors.push_back(a.colors.empty() ? glm::vec4(1.0f) : a.colors[v]);
+  }
   return std::uint32_t(soup.positions.size() - 1);
 }
 
@@ -568,15 +579,16 @@ void compact(Soup& s) {
     s.positions[next] = s.positions[v];
     s.normals[next] = s.normals[v];
     if (!s.vertex_node.empty()) s.vertex_node[next] = s.vertex_node[v];
-    s.uvs1[next] = s.uvs1[v];
-    s.colors[next] = s.colors[v];
-    s.uvs[next++] = s.uvs[v];
+    if (!s.uvs1.empty()) s.uvs1[next] = s.uvs1[v];
+    if (!s.colors.empty()) s.colors[next] = s.colors[v];
+    if (!s.uvs.empty()) s.uvs[next] = s.uvs[v];
+    ++next;
   }
   s.positions.resize(next);
   s.normals.resize(next);
-  s.uvs.resize(next);
-  s.uvs1.resize(next);
-  s.colors.resize(next);
+  if (!s.uvs.empty()) s.uvs.resize(next);
+  if (!s.uvs1.empty()) s.uvs1.resize(next);
+  if (!s.colors.empty()) s.colors.resize(next);
   if (!s.vertex_node.empty()) s.vertex_node.resize(next);
   for (glm::uvec3& t : s.triangles) t = {remap[t.x], remap[t.y], remap[t.z]};
   for (Soup::Deform& d : s.deforms) remap_deform(remap, used, d.part);

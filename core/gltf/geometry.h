@@ -15,10 +15,12 @@ namespace irad::gltf {
 struct Soup {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals; // unit, or 0 where unknown (filled by finish_geometry)
-  std::vector<glm::vec2> uvs;     // uv slot 0, (0, 0) for primitives without it
-  std::vector<glm::vec2> uvs1;    // uv slot 1
-  std::vector<glm::vec4> colors;  // COLOR_0, 1 for primitives without it
-  bool has_uvs = false;           // some primitive had the set of slot 0
+  // The optional sets stay empty until a primitive has them (then (0, 0), (0, 0), 1 for the
+  // vertices of the primitives without).
+  std::vector<glm::vec2> uvs;    // uv slot 0
+  std::vector<glm::vec2> uvs1;   // uv slot 1
+  std::vector<glm::vec4> colors; // COLOR_0, 1 for primitives without it
+  bool has_uvs = false;          // some primitive had the set of slot 0
   bool has_uvs1 = false;
   bool has_colors = false;
   std::vector<glm::uvec3> triangles;

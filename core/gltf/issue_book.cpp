@@ -15,7 +15,8 @@ struct Repair {
   const char* code;
   const char* what;
 };
-constexpr std::array<Repair, 12> kRepairs{{
+constexpr std::array<Repair, 13> kRepairs{{
+    {"MESH_PRIMITIVE_TOO_FEW_TEXCOORDS", "the missing texture coordinates read as (0, 0)"},
     {"ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND", "irad computes the bounds itself"},
     {"ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND", "irad computes the bounds itself"},
     {"ACCESSOR_WEIGHTS_NON_NORMALIZED", "the weights are renormalised to sum 1"},

@@ -127,9 +127,9 @@ private:
     pose.skin = skins_.skin_of(ctx_, instance.node);
     for (std::size_t p = 0; p < primitives->size(); ++p) {
       const std::string where = gltf::element("meshes", mesh) + gltf::element(".primitives", p);
-      const auto [material, uv] = material_of(
-          (*primitives)[p], where,
-          gltf::pointer_of("meshes", mesh) + "/primitives/" + std::to_string(p));
+      const auto [material, uv] =
+          material_of((*primitives)[p], where,
+                      gltf::pointer_of("meshes", mesh) + "/primitives/" + std::to_string(p));
       gltf::append_primitive(ctx_, mesh, p, pose, material, uv, soup_);
     }
   }
@@ -170,7 +170,7 @@ private:
 Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& limits,
                 const std::string& scene_name) {
   const std::string file = path.string();
-  const gltf::SceneFile f = gltf::read_scene_file(path, file, limits);
+  gltf::SceneFile f = gltf::read_scene_file(path, file, limits);
   gltf::IssueBook issues(file, {});
   const std::vector<gltf::BufferData> buffers =
       gltf::resolve_buffers(f, path.parent_path(), limits, issues);

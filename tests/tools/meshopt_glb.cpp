@@ -34,9 +34,14 @@ void align4(Bytes& b, unsigned char pad = 0) {
 }
 std::size_t component_size(int type) {
   switch (type) {
-  case 5120: case 5121: return 1;
-  case 5122: case 5123: return 2;
-  default: return 4;
+  case 5120:
+  case 5121:
+    return 1;
+  case 5122:
+  case 5123:
+    return 2;
+  default:
+    return 4;
   }
 }
 std::size_t components(const std::string& type) {
@@ -73,8 +78,8 @@ int main(int argc, char** argv) try {
   for (const json& m : doc["meshes"])
     for (const json& p : m["primitives"])
       if (p.contains("indices"))
-        index_views.insert(doc["accessors"][p["indices"].get<std::size_t>()]["bufferView"]
-                               .get<std::size_t>());
+        index_views.insert(
+            doc["accessors"][p["indices"].get<std::size_t>()]["bufferView"].get<std::size_t>());
 
   Bytes out;
   std::size_t raw = 0, packed = 0;
@@ -90,8 +95,7 @@ int main(int argc, char** argv) try {
       continue;
     }
     const std::size_t count = (*a)["count"];
-    const std::size_t element =
-        component_size((*a)["componentType"]) * components((*a)["type"]);
+    const std::size_t element = component_size((*a)["componentType"]) * components((*a)["type"]);
     const std::size_t stride = view.value("byteStride", element);
     Bytes encoded;
     std::string mode;
@@ -101,32 +105,36 @@ int main(int argc, char** argv) try {
         std::vector<std::uint32_t> idx(count);
         std::memcpy(idx.data(), data, 4 * count);
         encoded.resize(meshopt_encodeIndexBufferBound(count, 1u << 24));
-        encoded.resize(meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), idx.data(), count));
+        encoded.resize(
+            meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), idx.data(), count));
       } else {
         std::vector<std::uint16_t> idx(count);
         std::memcpy(idx.data(), data, 2 * count);
         encoded.resize(meshopt_encodeIndexBufferBound(count, 65536));
-        encoded.resize(meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), idx.data(), count));
+        encoded.resize(
+            meshopt_encodeIndexBuffer(encoded.data(), encoded.size(), idx.data(), count));
       }
     } else {
       mode = "ATTRIBUTES";
       if (stride % 4 || stride > 256) throw std::runtime_error("stride not a multiple of 4");
       encoded.resize(meshopt_encodeVertexBufferBound(count, stride));
-      encoded.resize(meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), data, count, stride));
+      encoded.resize(
+          meshopt_encodeVertexBuffer(encoded.data(), encoded.size(), data, count, stride));
     }
     if (encoded.empty()) throw std::runtime_error("meshopt encoding failed");
     view["buffer"] = 1; // the fallback: same offsets as before
     view["extensions"]["EXT_meshopt_compression"] = {
-        {"buffer", 0}, {"byteOffset", out.size()}, {"byteLength", encoded.size()},
-        {"byteStride", stride}, {"count", count}, {"mode", mode}};
+        {"buffer", 0},          {"byteOffset", out.size()}, {"byteLength", encoded.size()},
+        {"byteStride", stride}, {"count", count},           {"mode", mode}};
     out.insert(out.end(), encoded.begin(), encoded.end());
     raw += length;
     packed += encoded.size();
   }
   align4(out);
-  doc["buffers"] = json::array({{{"byteLength", out.size()}},
-                                {{"byteLength", bin_length},
-                                 {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}});
+  doc["buffers"] =
+      json::array({{{"byteLength", out.size()}},
+                   {{"byteLength", bin_length},
+                    {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}});
   for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
     if (!doc.contains(list)) doc[list] = json::array();
     doc[list].push_back("EXT_meshopt_compression");
