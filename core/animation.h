@@ -39,14 +39,14 @@ public:
     std::vector<double> weights; // morph target weights at rest (node.weights or mesh.weights)
   };
   struct Track {
-    std::uint32_t node; // index into nodes
+    std::uint32_t node = 0; // index into nodes
     Path path;
     Keyframes keys;
     std::uint32_t first_weight = 0; // Weights: keys' x y z w are weights first_weight .. + 3
   };
   // The scene vertices of one animated node's meshes, in the node's frame.
   struct MeshPart {
-    std::uint32_t node;
+    std::uint32_t node = 0;
     std::vector<std::uint32_t> vertices; // indices into Scene::positions
     std::vector<glm::vec3> positions;    // node-local
     std::vector<glm::vec3> normals;      // node-local (not unit: n_local = W3^T n_world)
@@ -58,7 +58,7 @@ public:
   // normals alike (n0 + sum_i w_i dn_i) by the cofactor of S. flat: the vertices come in
   // triples of one triangle each (the primitive had no NORMAL); their normal is the triangle's.
   struct DeformedPart {
-    std::uint32_t node;
+    std::uint32_t node = 0;
     std::vector<std::uint32_t> vertices;                  // indices into Scene::positions
     std::vector<glm::vec3> positions;                     // mesh frame, unmorphed
     std::vector<glm::vec3> normals;                       // mesh frame, unmorphed; empty when flat
