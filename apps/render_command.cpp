@@ -29,6 +29,7 @@ struct RenderArgs {
   int shadow_res = 0;
   float clamp = 0.05f;
   std::string camera;
+  std::string gltf_scene;
   LookAtArgs look;
   std::optional<float> time;
   float exposure = 0.0f;
@@ -213,6 +214,7 @@ int run_render(const RenderArgs& args) {
   request.scene_path = args.scene;
   if (!args.size.empty()) request.size = parse_size_option(args.size);
   request.camera = args.camera;
+  request.gltf_scene = args.gltf_scene;
   request.own_camera = parse_look_at(args.look, args.camera);
   request.time = args.time;
   request.walk.paths = args.paths;
@@ -298,6 +300,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Clamp distance d_min as a fraction of the scene's bounding diagonal")
       ->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index (default: the first)");
+  cmd->add_option("--scene", args->gltf_scene,
+                  "glTF scene name or index (default: the file's default scene)");
   add_look_at_options(*cmd, args->look);
   cmd->add_option("--time", args->time, "Pose the glTF animation at T seconds (default: rest)");
   cmd->add_option("--exposure", args->exposure, "PNG exposure in stops (EV)")

@@ -25,6 +25,8 @@ struct RenderRequest {
   std::string scene_path;
   std::optional<std::pair<int, int>> size; // WxH; default from the camera's aspect, 512 high
   std::string camera;                      // name or index; empty: the first camera
+  std::string gltf_scene;                  // --scene: a glTF scene by name or index (empty: the
+                                           // file's default scene)
   std::optional<Camera> own_camera; // --look-from...: replaces the file's cameras (use_own_camera)
   std::optional<float> time;        // seconds: pose the scene's glTF animation (else the rest pose)
   WalkOptions walk;

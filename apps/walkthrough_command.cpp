@@ -29,6 +29,7 @@ namespace {
 
 struct WalkthroughArgs {
   std::string scene, output, frames = "0:60", size = "256x256", mode = "auto", video, camera;
+  std::string gltf_scene; // --scene: a glTF scene by name or index
   std::string gl = "auto";
   LookAtArgs look; // the command line's own camera (replaces the file's)
   float fps = 30.0f, orbit = 0.0f;
@@ -107,7 +108,7 @@ int run_walkthrough(const WalkthroughArgs& args) {
   if (!args.window) check_pattern(args.output);
   const std::optional<Camera> own_camera = parse_look_at(args.look, args.camera);
   const std::unique_ptr<WindowViewer> viewer = open_window(args);
-  Scene scene = load_gltf(args.scene, log);
+  Scene scene = load_gltf(args.scene, log, {}, args.gltf_scene);
   if (own_camera) use_own_camera(scene, *own_camera);
   const Camera& chosen = select_camera(scene, args.camera);
   const std::size_t camera = static_cast<std::size_t>(&chosen - scene.cameras.data());
@@ -165,6 +166,7 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index");
+  cmd->add_option("--scene", args->gltf_scene, "glTF scene name or index (default: the file's)");
   add_look_at_options(*cmd, args->look);
   cmd->add_option("--orbit", args->orbit, "Camera orbit in degrees per second")
       ->capture_default_str();

@@ -183,13 +183,33 @@ TEST_F(CliErrors, NoLight) {
 TEST_F(CliErrors, ImpossibleOptions) {
   const std::string box = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf";
   for (const char* opt : {"--paths 0", "--size 0x0", "--size 12", "--clamp -1", "--shadow-res -1",
-                          "--interleave 0", "--camera 7"}) {
+                          "--interleave 0", "--camera 7", "--scene 3", "--scene nowhere"}) {
     const fs::path out = dir_ / "o.exr";
     const CliRun r = irad("render " + box + " -o '" + out.string() + "' " + std::string(opt));
     EXPECT_EQ(r.code, 1) << opt << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << opt << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << opt;
   }
+}
+
+TEST_F(CliErrors, SceneChoosesAGltfScene) {
+  // Two glTF scenes: "box" is the Cornell box, "empty" holds none of its nodes.
+  json doc = cornell_;
+  doc["scenes"] = {{{"name", "box"}, {"nodes", doc["scenes"][0]["nodes"]}},
+                   {{"name", "empty"}}};
+  doc["scene"] = 0;
+  const std::string file = scene("two.gltf", doc).string();
+  const fs::path out = dir_ / "o.exr";
+  const std::string common = " -o '" + out.string() + "' --estimator rt-vpl --paths 4 --size 8x8";
+  EXPECT_EQ(irad("render " + file + common + " --scene box").code, 0);
+  EXPECT_EQ(irad("render " + file + common + " --scene 0").code, 0);
+  const CliRun r = irad("render " + file + common + " --scene empty");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("two.gltf: no triangles"), std::string::npos) << r.err;
+  const CliRun missing = irad("render " + file + common + " --scene third");
+  EXPECT_NE(missing.err.find("two.gltf: scenes: no scene named or numbered 'third' (2 scenes)"),
+            std::string::npos)
+      << missing.err;
 }
 
 TEST_F(CliErrors, OutputFolderMissingOrBadType) {
