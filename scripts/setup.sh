@@ -12,13 +12,18 @@ packages=(
   python3-glad gnuplot-nox
   libglfw3-dev xvfb xauth # irad walkthrough --window, and its test under xvfb-run
   clang-14 libclang-rt-14-dev # the fuzzer: cmake --preset fuzz, fuzz/run.sh (libFuzzer, ASan)
-  nodejs npm # the Khronos glTF-Validator on the files we write (scripts/validate_gltf.js)
 )
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
 done
+# The Khronos glTF-Validator on the files we write (scripts/validate_gltf.js) runs on Node.js:
+# Debian's nodejs and npm unless a node with npm is there already (another nodejs package, e.g.
+# NodeSource's, which bundles npm and conflicts with Debian's npm).
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  missing+=(nodejs npm)
+fi
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing ${missing[*]}" >&2
   sudo=""
