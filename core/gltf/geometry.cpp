@@ -4,6 +4,7 @@
 #include "core/gltf/codecs.h"
 #include "core/gltf/skins.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -387,6 +388,26 @@ void push_triangle(glm::uvec3 t, bool flip, std::uint32_t material, Soup& soup) 
 
 namespace {
 
+// Capacity for n elements: exactly n the first time (one large primitive allocates no more
+// than it needs), else at least 1.5 x the capacity (many small ones grow geometrically).
+template <class T>
+void grow(std::vector<T>& v, std::size_t n) {
+  if (n <= v.capacity()) return;
+  v.reserve(v.capacity() == 0 ? n : std::max(n, v.capacity() + v.capacity() / 2));
+}
+
+// Room for `vertices` more vertices and `triangles` more triangles.
+void reserve(Soup& soup, std::size_t vertices, std::size_t triangles, const Attributes& a) {
+  const std::size_t n = soup.positions.size() + vertices;
+  grow(soup.positions, n);
+  grow(soup.normals, n);
+  if (!a.uvs.empty() || !soup.uvs.empty()) grow(soup.uvs, n);
+  if (!a.uvs1.empty() || !soup.uvs1.empty()) grow(soup.uvs1, n);
+  if (!a.colors.empty() || !soup.colors.empty()) grow(soup.colors, n);
+  grow(soup.triangles, soup.triangles.size() + triangles);
+  grow(soup.triangle_material, soup.triangle_material.size() + triangles);
+}
+
 Soup::Deform& start_deform(const RawPrimitive& raw, const PrimitivePose& pose, bool skinned,
                            bool flip, Soup& soup) {
   Soup::Deform d;
@@ -452,27 +473,32 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
   std::optional<std::vector<std::uint32_t>> draco;
   if (const json* ext = extension(p, "KHR_draco_mesh_compression"))
     draco = decode_draco(ctx, *ext, *attrs, where);
-  const RawPrimitive raw = read_primitive(ctx, p, pose, uv, where);
-  const Attributes a = posed_attributes(raw, pose);
-  const std::vector<std::uint32_t> indices =
-      draco ? std::move(*draco) : read_vertex_indices(ctx, p, a.positions.size(), where);
-  check_index_range(ctx, indices, a.positions.size(), where + ".indices");
-  check_triangle_limit(ctx, triangle_count(mode, indices.size()), soup, where);
+  RawPrimitive raw = read_primitive(ctx, p, pose, uv, where);
   const bool skinned = pose.skin && !raw.influences.joints.empty();
+  const bool deformed = skinned || !raw.targets.positions.empty();
+  // The file's attributes are kept beside the posed ones only when an animation needs them.
+  const Attributes a = deformed ? posed_attributes(raw, pose) : std::move(raw.a);
   const Placement pl = placement(skinned ? glm::dmat4(1.0) : pose.world);
-  const std::vector<glm::uvec3> local =
-      drop_non_finite(assemble(ctx, mode, indices, where), a, pl, where, soup);
+  std::vector<glm::uvec3> local;
+  { // the index list is freed before the soup grows
+    const std::vector<std::uint32_t> indices =
+        draco ? std::move(*draco) : read_vertex_indices(ctx, p, a.positions.size(), where);
+    check_index_range(ctx, indices, a.positions.size(), where + ".indices");
+    check_triangle_limit(ctx, triangle_count(mode, indices.size()), soup, where);
+    local = drop_non_finite(assemble(ctx, mode, indices, where), a, pl, where, soup);
+  }
   const std::uint64_t vertices = a.normals.empty() ? 3 * local.size() : a.positions.size();
   if (soup.positions.size() + vertices > 3 * ctx.limits.max_triangles) {
     ctx.fail(where, fmt::format("the scene would have {} vertices, over the limit of 3 x {} "
                                 "(--max-triangles)",
                                 soup.positions.size() + vertices, ctx.limits.max_triangles));
   }
+  reserve(soup, std::size_t(vertices), local.size(), a);
   soup.has_uvs = soup.has_uvs || !a.uvs.empty();
   soup.has_uvs1 = soup.has_uvs1 || !a.uvs1.empty();
   soup.has_colors = soup.has_colors || !a.colors.empty();
   Soup::Deform* deform = nullptr;
-  if (soup.record_deforms && (skinned || !raw.targets.positions.empty()))
+  if (soup.record_deforms && deformed)
     deform = &start_deform(raw, pose, skinned, a.normals.empty() && pl.flip, soup);
   if (!a.normals.empty()) {
     const std::uint32_t base = push_vertex(ctx, a, 0, pl, soup);
