@@ -195,8 +195,7 @@ TEST_F(CliErrors, ImpossibleOptions) {
 TEST_F(CliErrors, SceneChoosesAGltfScene) {
   // Two glTF scenes: "box" is the Cornell box, "empty" holds none of its nodes.
   json doc = cornell_;
-  doc["scenes"] = {{{"name", "box"}, {"nodes", doc["scenes"][0]["nodes"]}},
-                   {{"name", "empty"}}};
+  doc["scenes"] = {{{"name", "box"}, {"nodes", doc["scenes"][0]["nodes"]}}, {{"name", "empty"}}};
   doc["scene"] = 0;
   const std::string file = scene("two.gltf", doc).string();
   const fs::path out = dir_ / "o.exr";

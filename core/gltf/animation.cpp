@@ -41,19 +41,24 @@ std::vector<float> read_times(const Context& ctx, std::uint64_t accessor,
   return times;
 }
 
-// The keyframes of sampler `s` of animation `a` for `path`.
-Keyframes read_keyframes(const Context& ctx, std::size_t a, const json& channel,
-                         Animation::Path path) {
-  const json& anim = ctx.array("animations")[a];
+// The sampler of animations[a] that `channel` refers to, after use(); `where` gets its path.
+const json& sampler_of(const Context& ctx, std::size_t a, const json& channel, std::string& where) {
   const std::string owner = element("animations", a);
-  const json* samplers = member(anim, "samplers");
+  const json* samplers = member(ctx.array("animations")[a], "samplers");
   const std::size_t count = samplers && samplers->is_array() ? samplers->size() : 0;
   const auto s = index_member(channel, "sampler");
   const std::size_t si =
       checked_index(ctx, s ? static_cast<long long>(*s) : -1, count, owner, "sampler");
-  const json& sampler = (*samplers)[si];
-  const std::string where = owner + element(".samplers", si);
+  where = owner + element(".samplers", si);
   ctx.use(pointer_of("animations", a) + "/samplers/" + std::to_string(si));
+  return (*samplers)[si];
+}
+
+// The keyframes of the sampler of `channel` (of animation `a`) for `path`.
+Keyframes read_keyframes(const Context& ctx, std::size_t a, const json& channel,
+                         Animation::Path path) {
+  std::string where;
+  const json& sampler = sampler_of(ctx, a, channel, where);
   Keyframes k;
   k.interpolation = interpolation_of(ctx, string_member(sampler, "interpolation"), where);
   k.rotation = path == Animation::Path::Rotation;
@@ -123,15 +128,8 @@ void read_weight_tracks(const Context& ctx, std::size_t a, const json& channel, 
     ctx.warn(owner + ": a weights channel targets a node without morph targets; ignored");
     return;
   }
-  const json& anim = ctx.array("animations")[a];
-  const json* samplers = member(anim, "samplers");
-  const std::size_t count = samplers && samplers->is_array() ? samplers->size() : 0;
-  const auto s = index_member(channel, "sampler");
-  const std::size_t si =
-      checked_index(ctx, s ? static_cast<long long>(*s) : -1, count, owner, "sampler");
-  const json& sampler = (*samplers)[si];
-  const std::string where = owner + element(".samplers", si);
-  ctx.use(pointer_of("animations", a) + "/samplers/" + std::to_string(si));
+  std::string where;
+  const json& sampler = sampler_of(ctx, a, channel, where);
   const Interpolation interpolation =
       interpolation_of(ctx, string_member(sampler, "interpolation"), where);
   const std::vector<float> times =

@@ -164,19 +164,10 @@ std::vector<std::uint32_t> decode_draco(const Context& ctx, const json& ext, con
   const std::string ew = where + ".extensions.KHR_draco_mesh_compression";
   const auto view = index_member(ext, "bufferView");
   if (!view) ctx.fail(ew, "no bufferView");
-  const json& bv = ctx.at("bufferViews", *view, ew, "bufferView");
   const std::string vname = element("bufferViews", std::size_t(*view));
-  const std::size_t b =
-      checked_index(ctx, static_cast<long long>(index_member(bv, "buffer").value_or(~0ull >> 1)),
-                    ctx.buffers.size(), vname, "buffer");
-  ctx.use("buffers", b);
-  const BufferData& buffer = ctx.buffers[b];
-  const std::uint64_t offset = index_member(bv, "byteOffset").value_or(0);
-  const std::uint64_t length = index_member(bv, "byteLength").value_or(0);
-  if (!buffer.present || length > buffer.bytes.size() || offset > buffer.bytes.size() - length)
-    ctx.fail(vname, "exceeds its buffer's data");
+  const ViewBytes bytes = view_bytes(ctx, *view, ew);
   try {
-    const DracoMesh mesh(buffer.bytes.data() + offset, std::size_t(length));
+    const DracoMesh mesh(bytes.data, bytes.length);
     const json* ids = member(ext, "attributes");
     for (const auto& [name, value] : attrs.items()) {
       const auto accessor = as_index(value);
