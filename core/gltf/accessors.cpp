@@ -287,9 +287,15 @@ bool listed(const std::string& s, std::initializer_list<const char*> list) {
 std::string expected_text(std::initializer_list<const char*> types,
                           std::initializer_list<int> component_types, bool normalized_only) {
   std::string t;
-  for (const char* x : types) t += (t.empty() ? "" : "/") + std::string(x);
+  for (const char* x : types) {
+    if (!t.empty()) t += '/';
+    t += x;
+  }
   std::string c;
-  for (int x : component_types) c += (c.empty() ? "" : "/") + std::to_string(x);
+  for (int x : component_types) {
+    if (!c.empty()) c += '/';
+    c += std::to_string(x);
+  }
   return t + " of componentType " + c + (normalized_only ? " (integers normalized)" : "");
 }
 

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace irad::gltf {
@@ -102,6 +103,13 @@ inline std::string path_of(const std::string& pointer) {
     if (end == pointer.size()) break;
     at = end + 1;
   }
+  return out;
+}
+
+// A JSON pointer segment (RFC 6901): '~' as "~0", '/' as "~1".
+inline std::string pointer_escape(std::string_view segment) {
+  std::string out;
+  for (char c : segment) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
   return out;
 }
 

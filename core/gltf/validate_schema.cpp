@@ -3,6 +3,8 @@
 // makes it throw.
 #include "core/gltf/validate_schema_internal.h"
 
+#include "core/gltf/json_read.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -252,17 +254,7 @@ void check_extensions(const nlohmann::json& v, std::string_view location, const 
 } // namespace
 
 std::string child(const std::string& ptr, std::string_view key) {
-  std::string out = ptr;
-  out += '/';
-  for (char c : key) {
-    if (c == '~')
-      out += "~0";
-    else if (c == '/')
-      out += "~1";
-    else
-      out += c;
-  }
-  return out;
+  return ptr + '/' + pointer_escape(key);
 }
 
 std::string child(const std::string& ptr, std::size_t index) {

@@ -1,5 +1,8 @@
 #include "core/gltf/validate_semantics_read.h"
 
+#include "core/gltf/accessors.h"
+#include "core/gltf/json_read.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -90,16 +93,7 @@ bool extension_used(const json& root, std::string_view name) {
 }
 
 std::string escape(std::string_view segment) {
-  std::string out;
-  for (char c : segment) {
-    if (c == '~')
-      out += "~0";
-    else if (c == '/')
-      out += "~1";
-    else
-      out += c;
-  }
-  return out;
+  return pointer_escape(segment);
 }
 
 std::string at(const std::string& base, std::int64_t i) {
@@ -110,29 +104,13 @@ std::string at(const std::string& base, std::string_view key) {
 }
 
 int component_size(std::int64_t component_type) {
-  switch (component_type) {
-  case kByte:
-  case kUnsignedByte:
-    return 1;
-  case kShort:
-  case kUnsignedShort:
-    return 2;
-  case kUnsignedInt:
-  case kFloat:
-    return 4;
-  default:
-    return 0;
-  }
+  return component_type < 0 || component_type > 0xFFFF
+             ? 0
+             : int(gltf::component_size(int(component_type)));
 }
 
 int component_count(std::string_view type) {
-  if (type == "SCALAR") return 1;
-  if (type == "VEC2") return 2;
-  if (type == "VEC3") return 3;
-  if (type == "VEC4" || type == "MAT2") return 4;
-  if (type == "MAT3") return 9;
-  if (type == "MAT4") return 16;
-  return 0;
+  return int(gltf::component_count(std::string(type)));
 }
 
 const json& Context::list(std::string_view key) const {
