@@ -1,6 +1,7 @@
 #include "apps/options.h"
 
 #include "core/error.h"
+#include "core/scene_builder.h"
 
 #include <CLI/CLI.hpp>
 #include <cmath>
@@ -82,19 +83,13 @@ std::optional<Camera> parse_look_at(const LookAtArgs& args, const std::string& c
   const glm::vec3 up = args.up.empty() ? glm::vec3(0, 1, 0) : parse_vec3(args.up, "--up");
   const float yfov = parse_yfov_degrees(args.yfov);
   if (from == at) throw Error("", "--look-at", "equals --look-from (no view direction)");
-  const glm::vec3 z = glm::normalize(from - at);
-  const glm::vec3 side = glm::cross(up, z);
+  const glm::vec3 side = glm::cross(up, glm::normalize(from - at));
   if (!(glm::length(side) > 1e-6f * glm::length(up)))
     throw Error("", "--up",
                 fmt::format("'{}' is zero or parallel to the view direction",
                             args.up.empty() ? "0,1,0 (the default)" : args.up));
-  const glm::vec3 x = glm::normalize(side);
-  const glm::vec3 y = glm::cross(z, x);
-  Camera c;
+  Camera c = look_at(from, at, up, glm::radians(yfov)); // the checks above keep it from failing
   c.name = "--look-from";
-  c.camera_to_world =
-      glm::mat4(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(z, 0), glm::vec4(from, 1));
-  c.yfov = glm::radians(yfov);
   return c;
 }
 

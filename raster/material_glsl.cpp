@@ -75,9 +75,12 @@ vec2 material_uv(mat3 m, int set) {
 #endif
   return (m * vec3(uv, 1.0)).xy;
 }
+vec4 material_base_texel() { // the base colour texture through its uv set and transform
+  return texture(u_base_texture, material_uv(u_base_map, u_base_set));
+}
 vec3 material_albedo() {
   vec3 albedo = u_base_color;
-  if (u_has_base_texture) albedo *= texture(u_base_texture, material_uv(u_base_map, u_base_set)).rgb;
+  if (u_has_base_texture) albedo *= material_base_texel().rgb;
 #ifdef IRAD_COLOR
   albedo *= v_color.rgb;
 #endif
@@ -95,7 +98,7 @@ uniform float u_alpha_cutoff;
 uniform float u_base_alpha;
 float material_coverage() {
   float a = u_base_alpha;
-  if (u_has_base_texture) a *= texture(u_base_texture, material_uv(u_base_map, u_base_set)).a;
+  if (u_has_base_texture) a *= material_base_texel().a;
 #ifdef IRAD_COLOR
   a *= v_color.a;
 #endif
