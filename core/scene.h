@@ -80,6 +80,10 @@ struct PunctualLight {
   glm::vec3 intensity{0.0f};
   float inner_cone = 0.0f; // radians, spot only
   float outer_cone = 0.7853982f;
+  // Directional only: the angular radius r (radians) of the disk camera rays see toward the
+  // light (a sun), of uniform radiance E / (pi sin^2 r); 0: not visible. Lighting is unchanged:
+  // the light stays a delta in direction for every estimator.
+  float angular_radius = 0.0f;
 };
 
 struct Scene {
