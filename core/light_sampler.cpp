@@ -98,9 +98,15 @@ LightSampler::LightSampler(const Scene& scene, LightAllocation allocation) {
     if (p > 0.0)
       entries_.push_back({-static_cast<std::int64_t>(l) - 1, p, scene.materials.size() + l});
   }
+  const std::size_t groups = scene.materials.size() + scene.lights.size() + 1;
+  if (scene.has_environment()) {
+    environment_ = scene.environment.get();
+    const double p = pi * double(radius_) * radius_ * environment_->mean_radiance_integral();
+    if (p > 0.0) entries_.push_back({kEnvironment, p, groups - 1});
+  }
   // Selection weights: the power, or under uniform allocation the power within the light divided
   // by the light's power (every light then weighs 1).
-  std::vector<double> group_power(scene.materials.size() + scene.lights.size(), 0.0);
+  std::vector<double> group_power(groups, 0.0);
   for (const Entry& e : entries_) group_power[e.group] += e.power;
   double sum = 0.0;
   for (const Entry& e : entries_) {
@@ -110,6 +116,8 @@ LightSampler::LightSampler(const Scene& scene, LightAllocation allocation) {
   }
   for (double& c : cdf_) c /= sum;
   if (!cdf_.empty()) cdf_.back() = 1.0;
+  if (!entries_.empty() && entries_.back().triangle == kEnvironment)
+    environment_probability_ = 1.0 - (cdf_.size() > 1 ? cdf_[cdf_.size() - 2] : 0.0);
 }
 
 LightStart LightSampler::sample(const Scene& scene, double u, double v) const {
@@ -121,6 +129,7 @@ LightStart LightSampler::sample(const Scene& scene, double u, double v) const {
 
   LightStart s;
   const Entry& e = entries_[k];
+  if (e.triangle == kEnvironment) return environment(prob, u_rest, v);
   if (e.triangle >= 0) {
     const auto t = static_cast<std::size_t>(e.triangle);
     const glm::uvec3 tri = scene.triangles[t];
@@ -172,6 +181,31 @@ LightStart LightSampler::punctual(const PunctualLight& light, double prob, doubl
   return s;
 }
 
+LightStart LightSampler::environment(double prob, double u, double v) const {
+  const EnvironmentSample e = environment_->sample(u, v);
+  LightStart s;
+  s.kind = VplKind::Directional;
+  s.environment = true;
+  s.normal = -e.direction;
+  s.position = centre_ + 1.01f * radius_ * e.direction; // the disk's centre; direction() moves it
+  s.disk_area = static_cast<float>(pi * radius_ * radius_);
+  s.pdf = prob * e.pdf;
+  if (s.pdf > 0.0) s.beta = e.radiance / static_cast<float>(s.pdf);
+  return s;
+}
+
+double LightSampler::environment_pdf(const glm::vec3& w) const {
+  return environment_ ? environment_probability_ * environment_->pdf(w) : 0.0;
+}
+
+LightSampler::Powers LightSampler::powers() const {
+  Powers p;
+  for (const Entry& e : entries_)
+    (e.triangle >= 0 ? p.emitters : e.triangle == kEnvironment ? p.environment : p.punctual) +=
+        e.power;
+  return p;
+}
+
 double LightSampler::area_pdf(const Scene& scene, std::size_t t) const {
   // Triangle entries come first, in increasing triangle order.
   const auto end = entries_.begin() + static_cast<std::ptrdiff_t>(triangle_entries_);
@@ -184,19 +218,20 @@ double LightSampler::area_pdf(const Scene& scene, std::size_t t) const {
   return prob / triangle_area(scene, t);
 }
 
-LightDirection LightSampler::direction(const LightStart& start, double u, double v) {
+LightDirection LightSampler::direction(const LightStart& start, double u, double v) const {
+  const glm::vec3 o = start.position;
   switch (start.kind) {
   case VplKind::Surface:
-    return {cosine_direction(start.normal, u, v), static_cast<float>(pi)};
+    return {cosine_direction(start.normal, u, v), o, static_cast<float>(pi)};
   case VplKind::TwoSided: {
     // v < 1/2 picks the front, else the back; v is rescaled to [0,1) for the azimuth.
     const bool front = v < 0.5;
     const double v2 = front ? 2.0 * v : 2.0 * v - 1.0;
     const glm::vec3 n = front ? start.normal : -start.normal;
-    return {cosine_direction(n, u, v2), static_cast<float>(2.0 * pi)};
+    return {cosine_direction(n, u, v2), o, static_cast<float>(2.0 * pi)};
   }
   case VplKind::Point:
-    return {uniform_sphere(u, v), static_cast<float>(4.0 * pi)};
+    return {uniform_sphere(u, v), o, static_cast<float>(4.0 * pi)};
   case VplKind::Spot: {
     // Uniform in the outer cone: cos theta uniform in [cos_outer, 1]; pdf = 1 / solid angle.
     const double cos_t = 1.0 - u * (1.0 - start.cos_outer);
@@ -207,10 +242,17 @@ LightDirection LightSampler::direction(const LightStart& start, double u, double
                                                          static_cast<float>(cos_t)));
     const double solid_angle = 2.0 * pi * (1.0 - start.cos_outer);
     const float falloff = spot_falloff(static_cast<float>(cos_t), start.cos_inner, start.cos_outer);
-    return {d, static_cast<float>(solid_angle) * falloff};
+    return {d, o, static_cast<float>(solid_angle) * falloff};
   }
-  case VplKind::Directional:
-    return {start.normal, start.disk_area};
+  case VplKind::Directional: {
+    if (!start.environment) return {start.normal, o, start.disk_area};
+    glm::vec3 t, b;
+    orthonormal_basis(start.normal, t, b);
+    const double r = radius_ * std::sqrt(u), phi = 2.0 * pi * v;
+    const glm::vec3 origin = o + static_cast<float>(r * std::cos(phi)) * t +
+                             static_cast<float>(r * std::sin(phi)) * b;
+    return {start.normal, origin, start.disk_area};
+  }
   }
   return {};
 }

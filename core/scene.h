@@ -2,6 +2,7 @@
 // The scene model shared by the walk, the raster and the reference estimators: world-space
 // triangles with diffuse materials, emitters, punctual lights and cameras. glTF is one way in.
 #include "core/bounds.h"
+#include "core/environment.h"
 #include "core/texture.h"
 
 #include <cstdint>
@@ -103,6 +104,8 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<Camera> cameras;
   std::vector<PunctualLight> lights;
+  // Distant light around the scene (core/environment.h), or nullptr: none (black background).
+  std::shared_ptr<const Environment> environment;
 
   Bounds bounds; // of all triangles (over the whole animation when there is one)
 
@@ -115,6 +118,7 @@ struct Scene {
     return materials[triangle_material[triangle]];
   }
   bool has_emitters() const;
+  bool has_environment() const { return environment && !environment->black(); }
   bool has_textures() const { return !textures.empty(); }
   bool has_specular() const; // any material is a mirror
 };

@@ -68,7 +68,8 @@ QuasiRandomWalk::QuasiRandomWalk(const Scene& scene, const RayScene& rays,
       halton_(options.sequence, 2 * static_cast<std::size_t>(counts_.l_max()) + 2, options.seed),
       mirrors_(find_mirrors(scene)) {
   if (lights_.empty())
-    throw Error(scene.source, "", "no light: no emissive surface and no punctual light");
+    throw Error(scene.source, "",
+                "no light: no emissive surface, no punctual light and no environment");
   warn_capped(counts_, log, options.depth_cap);
 }
 
@@ -87,9 +88,9 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
 
   // Leave the light: beta_1 = beta_0 * profile / pdf.
   const LightDirection leave =
-      LightSampler::direction(start, halton_.sample(2, h), halton_.sample(3, h));
+      lights_.direction(start, halton_.sample(2, h), halton_.sample(3, h));
   glm::vec3 beta = start.beta * leave.factor;
-  glm::vec3 origin = start.position;
+  glm::vec3 origin = leave.origin;
   glm::vec3 dir = leave.direction;
   glm::vec3 offset_normal = start.triangle >= 0 ? start.normal : glm::vec3(0.0f);
   if (glm::dot(offset_normal, dir) < 0.0f) offset_normal = -offset_normal;

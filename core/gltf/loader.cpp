@@ -196,9 +196,6 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
   gltf::ContentNodes content = builder.finish();
 
   if (scene.triangles.empty()) throw Error(file, "", "no triangles");
-  if (!scene.has_emitters() && scene.lights.empty()) {
-    throw Error(file, "", "no light: no emissive material and no KHR_lights_punctual light");
-  }
   scene.animation = gltf::read_animation(ctx, instances, content, scene);
   if (scene.cameras.empty()) scene.cameras.push_back(gltf::default_camera(scene.bounds));
   gltf::check_unused_images(ctx, decoded_images);
