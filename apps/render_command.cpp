@@ -3,6 +3,7 @@
 // not at all: through a .tmp and a rename); with --partial the image accumulated so far goes to
 // OUT.partial.EXT instead. Then the process ends by the signal. A second signal ends it at once.
 #include "apps/commands.h"
+#include "apps/lighting_options.h"
 #include "apps/options.h"
 #include "apps/render_pipeline.h"
 #include "core/error.h"
@@ -53,6 +54,7 @@ struct RenderArgs {
   std::uint64_t max_triangles = LoadLimits{}.max_triangles;
   std::uint64_t max_file_mib = LoadLimits{}.max_file_bytes >> 20;
   int max_texture_size = LoadLimits{}.max_texture_size;
+  LightingArgs lighting;
 };
 
 // Set by SIGINT or SIGTERM during a render (lock-free, so async-signal-safe).
@@ -123,6 +125,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
             {"size", {r.view.width, r.view.height}},
             {"triangles", r.scene.triangle_count()},
             {"camera", r.camera.name},
+            {"lights", lights_json(r.scene)},
             {"seconds", seconds}};
   }
   seconds["walk"] = r.seconds.walk;
@@ -157,6 +160,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"gl", r.gl},
           {"clamped_fraction", r.clamped_fraction},
           {"bias_compensation", args.bias_compensation},
+          {"lights", lights_json(r.scene)},
           {"seconds", seconds}};
 }
 
@@ -240,6 +244,7 @@ int run_render(const RenderArgs& args) {
   request.limits.max_triangles = args.max_triangles;
   request.limits.max_file_bytes = args.max_file_mib << 20;
   request.limits.max_texture_size = args.max_texture_size;
+  request.lighting = lighting_options(args.lighting);
   if (args.max_triangles < 1) throw Error("", "--max-triangles", "must be at least 1");
   if (args.max_file_mib < 1 || args.max_file_mib > 4095)
     throw Error("", "--max-file-size", "must lie in [1, 4095] MiB");
@@ -303,6 +308,7 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--scene", args->gltf_scene,
                   "glTF scene name or index (default: the file's default scene)");
   add_look_at_options(*cmd, args->look);
+  add_lighting_options(*cmd, args->lighting);
   cmd->add_option("--time", args->time, "Pose the glTF animation at T seconds (default: rest)");
   cmd->add_option("--exposure", args->exposure, "PNG exposure in stops (EV)")
       ->capture_default_str();

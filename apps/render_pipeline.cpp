@@ -138,6 +138,7 @@ RenderResult render_scene(const RenderRequest& request, Log& log) {
   };
   const auto t0 = Clock::now();
   r.scene = load_gltf(request.scene_path, log, request.limits, request.gltf_scene);
+  light_scene(r.scene, request.lighting, log);
   if (request.time) pose_at(r.scene, *request.time, log);
   if (request.own_camera) use_own_camera(r.scene, *request.own_camera);
   r.camera = select_camera(r.scene, request.camera);

@@ -6,6 +6,7 @@
 // them from the current camera), see apps/walkthrough_engine.h. glTF animations play at
 // t = frame / fps; the camera can also orbit the scene (--orbit degrees per second).
 #include "apps/commands.h"
+#include "apps/lighting_options.h"
 #include "apps/options.h"
 #include "apps/render_pipeline.h"
 #include "apps/walkthrough_engine.h"
@@ -32,6 +33,7 @@ struct WalkthroughArgs {
   std::string gltf_scene; // --scene: a glTF scene by name or index
   std::string gl = "auto";
   LookAtArgs look; // the command line's own camera (replaces the file's)
+  LightingArgs lighting;
   float fps = 30.0f, orbit = 0.0f;
   std::uint32_t paths = 64;
   bool no_warmup = false, quiet = false;
@@ -108,7 +110,9 @@ int run_walkthrough(const WalkthroughArgs& args) {
   if (!args.window) check_pattern(args.output);
   const std::optional<Camera> own_camera = parse_look_at(args.look, args.camera);
   const std::unique_ptr<WindowViewer> viewer = open_window(args);
+  const LightingOptions lighting = lighting_options(args.lighting);
   Scene scene = load_gltf(args.scene, log, {}, args.gltf_scene);
+  light_scene(scene, lighting, log);
   if (own_camera) use_own_camera(scene, *own_camera);
   const Camera& chosen = select_camera(scene, args.camera);
   const std::size_t camera = static_cast<std::size_t>(&chosen - scene.cameras.data());
@@ -166,6 +170,7 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   cmd->add_option("--size", args->size, "Image size WIDTHxHEIGHT")->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index");
+  add_lighting_options(*cmd, args->lighting);
   cmd->add_option("--scene", args->gltf_scene, "glTF scene name or index (default: the file's)");
   add_look_at_options(*cmd, args->look);
   cmd->add_option("--orbit", args->orbit, "Camera orbit in degrees per second")

@@ -1,6 +1,7 @@
 #include "core/scene.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace irad {
 
@@ -69,6 +70,23 @@ bool Scene::has_emitters() const {
     if (material_of(t).emissive() && triangle_area(*this, t) > 0.0f) return true;
   }
   return false;
+}
+
+glm::vec3 sun_disk_radiance(const PunctualLight& light) {
+  if (light.kind != PunctualLight::Kind::Directional || !(light.angular_radius > 0.0f))
+    return glm::vec3(0.0f);
+  const float s = std::sin(light.angular_radius);
+  return light.intensity / (std::numbers::pi_v<float> * s * s);
+}
+
+glm::vec3 background_radiance(const Scene& scene, const glm::vec3& w) {
+  if (!scene.environment || !scene.environment->visible) return glm::vec3(0.0f);
+  glm::vec3 l = scene.environment->radiance(w);
+  for (const PunctualLight& light : scene.lights)
+    if (light.angular_radius > 0.0f &&
+        glm::dot(w, -light.direction) >= std::cos(light.angular_radius))
+      l += sun_disk_radiance(light);
+  return l;
 }
 
 bool Scene::has_specular() const {

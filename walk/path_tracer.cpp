@@ -67,6 +67,7 @@ private:
   glm::vec3 next_event(const Hit& x, Pcg32& rng, std::uint64_t salt) const;
   glm::vec3 directional(const Hit& x, const LightStart& s, std::uint64_t salt) const;
   float emitter_weight(const Hit& y, const glm::vec3& from, double bsdf_pdf) const;
+  glm::vec3 escaped(const glm::vec3& dir, int depth, bool specular, double bsdf_pdf) const;
 
   const Scene& scene_;
   const RayScene& rays_;
@@ -76,7 +77,9 @@ private:
 };
 
 // Light from a directional light (a delta in direction, never hit by scattering: no MIS):
-// f * E cos_x * V(x, toward the light) / P(k), with s.beta = E / P(k).
+// f * E cos_x * V(x, toward the light) / P(k), with s.beta = E / P(k). From the environment
+// (s.beta = L(w) / (P(env) p(w)), s.pdf = P(env) p(w)): the same, weighted against cosine
+// sampling, which finds the environment when a scattered ray leaves the scene.
 glm::vec3 Tracer::directional(const Hit& x, const LightStart& s, std::uint64_t salt) const {
   const glm::vec3 w = -s.normal;
   const float cos_x = glm::dot(x.ns, w);
@@ -84,7 +87,19 @@ glm::vec3 Tracer::directional(const Hit& x, const LightStart& s, std::uint64_t s
   if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, std::numeric_limits<float>::infinity(),
                      salt))
     return glm::vec3(0.0f);
-  return s.beta * cos_x * x.albedo * inv_pi;
+  const float weight = s.environment ? power_heuristic(s.pdf, cos_x * inv_pi) : 1.0f;
+  return s.beta * (cos_x * weight) * x.albedo * inv_pi;
+}
+
+// Radiance of the environment along a ray that left the scene: what a camera ray sees
+// (core/scene.h background_radiance), the map after a mirror (weight 1: no light sample
+// reaches it through the mirror), else the map weighted against the light samples (MIS).
+glm::vec3 Tracer::escaped(const glm::vec3& dir, int depth, bool specular, double bsdf_pdf) const {
+  if (depth == 0) return background_radiance(scene_, dir);
+  if (!scene_.has_environment()) return glm::vec3(0.0f);
+  const glm::vec3 l = scene_.environment->radiance(dir);
+  if (specular) return l;
+  return l * power_heuristic(bsdf_pdf, lights_.environment_pdf(dir));
 }
 
 // Light from one sampled light to x: f * L * G / p, weighted against cosine sampling (MIS). An
@@ -147,7 +162,10 @@ glm::vec3 Tracer::radiance(const glm::vec3& eye, const glm::vec3& dir0, float tm
   for (int depth = 0; depth <= options_.max_depth; ++depth) {
     const auto h = rays_.intersect(origin, dir, depth == 0 ? tmin : 0.0f,
                                    std::numeric_limits<float>::infinity(), salt);
-    if (!h) break;
+    if (!h) {
+      sum += throughput * escaped(dir, depth, specular, bsdf_pdf);
+      break;
+    }
     const Hit x = make_hit(scene_, *h, origin, dir);
     const glm::vec3 le = emitted(scene_, x);
     // After a camera ray or a mirror no light sample could have found this emitter: weight 1.

@@ -23,6 +23,8 @@ Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, con
                               ? mirror_radiance(scene, rays, vpls, hit->triangle, p.position, dir,
                                                 dmin * dmin, eps)
                               : gather_vpls(rays, p, vpls, dmin * dmin, eps));
+      } else {
+        c = background_radiance(scene, dir);
       }
       image.at(x, y) = glm::vec4(c, 1.0f);
     }
