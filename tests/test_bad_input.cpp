@@ -508,12 +508,6 @@ std::vector<Case> cases() {
                  return quad(d, "nomesh.gltf", [](Gltf& g) { g.doc["nodes"][0].erase("mesh"); });
                },
                "no triangles"});
-  c.push_back({"no_light",
-               [](const fs::path& d) {
-                 return quad(d, "dark.gltf",
-                             [](Gltf& g) { g.doc["materials"][0] = json::object(); });
-               },
-               "no light: no emissive material and no KHR_lights_punctual light"});
   // Images.
   c.push_back({"image_not_png_or_jpeg",
                [](const fs::path& d) {

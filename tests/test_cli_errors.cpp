@@ -12,9 +12,11 @@
 #include <fstream>
 #include <glm/glm.hpp>
 #include <gtest/gtest.h>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -177,7 +179,55 @@ TEST_F(CliErrors, NoLight) {
     m.erase("emissiveFactor");
     m.erase("extensions");
   }
-  expect_error(scene("dark.gltf", cornell_).string(), {"dark.gltf", "no light"});
+  // Unlit scenes get the white environment unless --env none refuses them.
+  expect_error(scene("dark.gltf", cornell_).string() + " --env none",
+               {"dark.gltf", "--env none", "no light"});
+}
+
+// Environment options (core/lighting.h, core/environment_file.h, core/sky.h): one line naming
+// the option (and the map), exit code 1, no output.
+TEST_F(CliErrors, EnvironmentOptions) {
+  const std::string box = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf";
+  const auto map = [&](const char* name, int w, int h, glm::vec4 texel) {
+    irad::Image image(w, h);
+    for (glm::vec4& p : image.pixels()) p = glm::vec4(1.0f);
+    image.at(w - 1, h - 1) = texel;
+    const fs::path path = dir_ / name;
+    irad::write_exr(path, image);
+    return path.string();
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const struct {
+    std::string args;
+    std::vector<std::string> needles;
+  } cases[] = {
+      {"--env " + (dir_ / "none.exr").string(), {"none.exr", "--env"}},
+      {"--env " + map("square.exr", 8, 8, glm::vec4(1)), {"square.exr", "--env", "8x8"}},
+      {"--env " + map("nan.exr", 8, 4, glm::vec4(nan)), {"nan.exr", "--env", "(7, 3)"}},
+      {"--env " + map("negative.exr", 8, 4, glm::vec4(-1)), {"negative.exr", "--env", "(7, 3)"}},
+      {"--env " + (dir_ / "sky.png").string(), {"sky.png", "--env"}},
+      {"--sky 91", {"--sky", "91"}},
+      {"--sky -90.5", {"--sky", "-90.5"}},
+      {"--sky 30,0,1", {"--sky", "turbidity"}},
+      {"--sky 30,0,11", {"--sky", "turbidity"}},
+      {"--sky 30,x", {"--sky"}},
+      {"--sky 30 --env-color 1,1,1", {"--env-color", "--sky"}},
+      {"--env-color 1,1", {"--env-color"}},
+      {"--env-color 1,-1,1", {"--env-color"}},
+      {"--env-strength -1 --env-color 1,1,1", {"--env-strength"}},
+  };
+  std::ofstream(dir_ / "sky.png") << "not a map";
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.args);
+    const fs::path out = dir_ / "out.png";
+    const CliRun r = irad("render " + box + " " + c.args + " -o '" + out.string() +
+                          "' --paths 4 --size 16x16");
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("irad: error: ", 0), 0u) << r.err;
+    for (const std::string& n : c.needles) EXPECT_NE(r.err.find(n), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
 }
 
 TEST_F(CliErrors, ImpossibleOptions) {

@@ -88,7 +88,6 @@ const BadCase kBadCases[] = {
      "meshes[0].primitives[0].indices", "not less than the number of vertices"},
     {"position_not_vec3", [](Gltf& g) { g.doc["accessors"][0]["type"] = "VEC2"; },
      "meshes[0].primitives[0].attributes.POSITION", "format VEC2/5126 is not allowed"},
-    {"no_light", [](Gltf& g) { g.doc["materials"][0] = json::object(); }, "", "no light"},
     {"no_triangles", [](Gltf& g) { g.doc["meshes"][0]["primitives"][0]["mode"] = 0; }, "",
      "no triangles"},
     {"node_cycle",
