@@ -3,6 +3,8 @@
 // (the paper's appendix on sunlight, Rayleigh and aerosol terms only).
 #include "core/sky.h"
 
+#include "core/environment.h"
+
 #include "core/error.h"
 #include "core/number_list.h"
 
@@ -120,15 +122,6 @@ private:
   double zenith_Y_ = 0.0, zenith_x_ = 0.0, zenith_y_ = 0.0;
 };
 
-// The map direction of texel coordinates (u, v): the inverse of core/environment.h's
-// u = 0.5 + atan2(z, x) / (2 pi), v = acos(y) / pi. Environment::map_direction's formula, here
-// until core/environment.cpp is in.
-glm::dvec3 map_direction(double u, double v) {
-  const double theta = kPi * v;
-  const double phi = 2.0 * kPi * (u - 0.5);
-  return {std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
-}
-
 // Relative optical air mass at sun zenith angle theta_s (Kasten's formula, as in the paper's
 // appendix): m = 1 / (cos theta_s + 0.15 (93.885 - theta_s in degrees)^-1.253).
 double air_mass(double theta_s) {
@@ -187,7 +180,7 @@ Image preetham_sky_map(const SkyOptions& sky, int width) {
   Image map(width, width / 2);
   for (int j = 0; j < map.height(); ++j) {
     for (int i = 0; i < width; ++i) {
-      const glm::dvec3 d = map_direction((i + 0.5) / width, (j + 0.5) / map.height());
+      const glm::dvec3 d(Environment::map_direction((i + 0.5) / width, (j + 0.5) / map.height()));
       map.at(i, j) = glm::vec4(model.radiance(d), 1.0f);
     }
   }

@@ -202,9 +202,9 @@ TEST_F(CliErrors, EnvironmentOptions) {
     std::vector<std::string> needles;
   } cases[] = {
       {"--env " + (dir_ / "none.exr").string(), {"none.exr", "--env"}},
-      {"--env " + map("square.exr", 8, 8, glm::vec4(1)), {"square.exr", "--env", "8x8"}},
-      {"--env " + map("nan.exr", 8, 4, glm::vec4(nan)), {"nan.exr", "--env", "(7, 3)"}},
-      {"--env " + map("negative.exr", 8, 4, glm::vec4(-1)), {"negative.exr", "--env", "(7, 3)"}},
+      {"--env " + map("square.exr", 8, 8, glm::vec4(1)), {"square.exr", "--env", "8 x 8"}},
+      {"--env " + map("nan.exr", 8, 4, glm::vec4(nan)), {"nan.exr", "--env", "x 7, y 3", "finite"}},
+      {"--env " + map("negative.exr", 8, 4, glm::vec4(-1)), {"negative.exr", "--env", "x 7, y 3", "negative"}},
       {"--env " + (dir_ / "sky.png").string(), {"sky.png", "--env"}},
       {"--sky 91", {"--sky", "91"}},
       {"--sky -90.5", {"--sky", "-90.5"}},

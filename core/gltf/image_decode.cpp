@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-// The only stb_image implementation irad compiles. Static, so that it cannot clash with another
-// copy (Debian's libstb, tinygltf's, the fuzz build's).
+// stb_image for PNG and JPEG (core/environment_file.cpp compiles its own, HDR only). Static, so
+// that it cannot clash with another copy (Debian's libstb, the other one, the fuzz build's).
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
 #define STBI_ONLY_PNG
