@@ -7,7 +7,7 @@ namespace irad::gl::shaders {
 
 // L(w) for a unit world direction w, nearest texel, strength applied:
 //   d = R_y(-rotation) w = (c w.x - s w.z, w.y, s w.x + c w.z), (c, s) = (cos, sin) rotation;
-//   u = 1/2 + atan(d.z, d.x) / (2 pi), v = acos(d.y) / pi;
+//   u = 1/2 + atan(d.z, d.x) / (2 pi), v = acos(d.y) / pi (computed as atan(|d.xz|, d.y) / pi);
 //   texel (clamp(floor(u W), 0, W - 1), clamp(floor(v H), 0, H - 1)), row 0 the zenith.
 // texelFetch: no filtering or wrap mode is involved.
 inline constexpr const char* environment_lookup = R"(
@@ -18,7 +18,9 @@ const float ENVIRONMENT_PI = 3.14159265358979324;
 ivec2 environment_texel(vec3 d) {
   ivec2 size = textureSize(u_environment, 0);
   float u = 0.5 + atan(d.z, d.x) / (2.0 * ENVIRONMENT_PI);
-  float v = acos(clamp(d.y, -1.0, 1.0)) / ENVIRONMENT_PI;
+  // acos(d.y) as atan(|d.xz|, d.y), equal for unit d: GLSL's acos is far less precise (on
+  // llvmpipe rows came out one off 1.2e-4 rad from their border), atan's error is the same as u's.
+  float v = atan(length(d.xz), d.y) / ENVIRONMENT_PI;
   ivec2 t = ivec2(floor(vec2(u, v) * vec2(size)));
   return clamp(t, ivec2(0), size - 1);
 }
