@@ -4,6 +4,7 @@
 #include "raster/environment_glsl.h"
 #include "raster/vpl_shader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -13,13 +14,24 @@ namespace irad::gl {
 
 namespace {
 
-constexpr GLint environment_unit = 7;
+constexpr GLint environment_unit = 7; // and the next bands - 1 units
 
-std::string fragment_source(bool map, int suns) {
+// Bands of at most 512 MiB of RGB32F (llvmpipe's limit is 1 GiB per texture), at most 4: the
+// largest map, 16384 x 8192, takes 3.
+int bands_for(const Scene& scene) {
+  if (!shows_environment_map(scene)) return 0;
+  const Image& map = scene.environment->map();
+  const std::size_t bytes = std::size_t(map.width()) * std::size_t(map.height()) * 12u;
+  const std::size_t band = std::size_t{512} << 20;
+  return static_cast<int>(std::clamp<std::size_t>((bytes + band - 1) / band, 1, 4));
+}
+
+std::string fragment_source(int bands, int suns) {
   std::string s = "#version 330 core\n";
-  if (map) s += "#define IRAD_ENVIRONMENT\n";
+  if (bands > 0)
+    s += fmt::format("#define IRAD_ENVIRONMENT\n#define IRAD_ENVIRONMENT_BANDS {}\n", bands);
   s += fmt::format("#define IRAD_SUNS {}\n", suns);
-  if (map) s += shaders::environment_lookup;
+  if (bands > 0) s += shaders::environment_lookup;
   if (suns > 0) s += shaders::sun_disks;
   return s + shaders::background_fragment;
 }
@@ -47,8 +59,8 @@ std::unique_ptr<Background> Background::make(const GladGLContext& api, const Sce
 
 Background::Background(const GladGLContext& api, const Scene& scene)
     : api_(&api), shows_map_(shows_environment_map(scene)),
-      suns_(static_cast<int>(visible_suns(scene).size())),
-      program_(api, "background", shaders::background_vertex, fragment_source(shows_map_, suns_)),
+      suns_(static_cast<int>(visible_suns(scene).size())), bands_(bands_for(scene)), band_rows_(0),
+      program_(api, "background", shaders::background_vertex, fragment_source(bands_, suns_)),
       empty_vao_(make_vertex_array(api)),
       inverse_vp_(program_.optional_uniform("u_inverse_view_projection")),
       size_(program_.optional_uniform("u_size")), eye_(program_.optional_uniform("u_eye")),
@@ -73,20 +85,28 @@ void Background::upload_map(const Environment& environment) {
                             map.width(), map.height(), max_size, max_size));
   while (api.GetError() != GL_NO_ERROR) { // the error checked below is the upload's own
   }
-  map_ = make_texture(api);
-  api.ActiveTexture(GL_TEXTURE0 + environment_unit);
-  api.BindTexture(GL_TEXTURE_2D, map_.get());
+  band_rows_ = (map.height() + bands_ - 1) / bands_;
   api.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, map.width(), map.height(), 0, GL_RGBA, GL_FLOAT,
-                 map.pixels().data());
-  // texelFetch ignores filtering; these make the texture complete without mipmaps.
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  std::vector<GLint> units;
+  for (int b = 0; b < bands_; ++b) {
+    const int first = b * band_rows_, rows = std::min(band_rows_, map.height() - first);
+    map_.push_back(make_texture(api));
+    api.ActiveTexture(GL_TEXTURE0 + environment_unit + b);
+    api.BindTexture(GL_TEXTURE_2D, map_.back().get());
+    api.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, map.width(), rows, 0, GL_RGBA, GL_FLOAT,
+                   map.pixels().data() + std::size_t(first) * std::size_t(map.width()));
+    // texelFetch ignores filtering; these make the texture complete without mipmaps.
+    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    units.push_back(environment_unit + b);
+  }
   if (const GLenum e = api.GetError(); e != GL_NO_ERROR)
     throw Error(environment.source(), "environment map",
-                fmt::format("OpenGL could not hold the {}x{} map as a texture (error 0x{:x})",
-                            map.width(), map.height(), e));
-  program_.set_sampler("u_environment", environment_unit);
+                fmt::format("OpenGL could not hold the {}x{} map as {} texture(s) (error 0x{:x})",
+                            map.width(), map.height(), bands_, e));
+  api.Uniform1iv(program_.uniform("u_environment[0]"), bands_, units.data());
+  api.Uniform2i(program_.uniform("u_environment_size"), map.width(), map.height());
+  api.Uniform1i(program_.uniform("u_environment_band_rows"), band_rows_);
   const float c = std::cos(environment.rotation()), s = std::sin(environment.rotation());
   api.Uniform2f(program_.uniform("u_environment_rotation"), c, s);
   api.Uniform1f(program_.uniform("u_environment_strength"), environment.strength());
@@ -126,9 +146,9 @@ void Background::draw(const View& view, const glm::mat4& view_projection, float 
   api.Uniform3fv(eye_, 1, glm::value_ptr(view.eye));
   api.Uniform3fv(forward_, 1, glm::value_ptr(view.forward));
   api.Uniform1i(orthographic_, view.orthographic ? 1 : 0);
-  if (shows_map_) {
-    api.ActiveTexture(GL_TEXTURE0 + environment_unit);
-    api.BindTexture(GL_TEXTURE_2D, map_.get());
+  for (int b = 0; b < bands_; ++b) {
+    api.ActiveTexture(GL_TEXTURE0 + environment_unit + b);
+    api.BindTexture(GL_TEXTURE_2D, map_[std::size_t(b)].get());
   }
   api.BindVertexArray(empty_vao_.get());
   api.DrawArrays(GL_TRIANGLES, 0, 3);

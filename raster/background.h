@@ -42,8 +42,10 @@ private:
   const GladGLContext* api_;
   bool shows_map_;
   int suns_;
+  int bands_; // textures the map is split into (raster/environment_glsl.h)
+  int band_rows_;
   ShaderProgram program_;
-  Texture map_;
+  std::vector<Texture> map_;
   VertexArray empty_vao_;
   GLint inverse_vp_, size_, eye_, forward_, orthographic_;
 };

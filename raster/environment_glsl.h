@@ -11,12 +11,17 @@ namespace irad::gl::shaders {
 //   texel (clamp(floor(u W), 0, W - 1), clamp(floor(v H), 0, H - 1)), row 0 the zenith.
 // texelFetch: no filtering or wrap mode is involved.
 inline constexpr const char* environment_lookup = R"(
-uniform sampler2D u_environment;     // the map as stored, row 0 at the top
+// The map as stored, row 0 at the top, in IRAD_ENVIRONMENT_BANDS horizontal bands of
+// u_environment_band_rows rows (the last may have fewer), top first: llvmpipe holds at most
+// 1 GiB in one texture, a 16384 x 8192 RGB32F map 1.5 GiB.
+uniform sampler2D u_environment[IRAD_ENVIRONMENT_BANDS];
+uniform ivec2 u_environment_size;
+uniform int u_environment_band_rows;
 uniform vec2 u_environment_rotation; // (cos, sin) of the rotation about +Y
 uniform float u_environment_strength;
 const float ENVIRONMENT_PI = 3.14159265358979324;
 ivec2 environment_texel(vec3 d) {
-  ivec2 size = textureSize(u_environment, 0);
+  ivec2 size = u_environment_size;
   float u = 0.5 + atan(d.z, d.x) / (2.0 * ENVIRONMENT_PI);
   // acos(d.y) as atan(|d.xz|, d.y), equal for unit d: GLSL's acos is far less precise (on
   // llvmpipe rows came out one off 1.2e-4 rad from their border), atan's error is the same as u's.
@@ -27,7 +32,20 @@ ivec2 environment_texel(vec3 d) {
 vec3 environment_radiance(vec3 w) {
   float c = u_environment_rotation.x, s = u_environment_rotation.y;
   vec3 d = vec3(c * w.x - s * w.z, w.y, s * w.x + c * w.z);
-  return u_environment_strength * texelFetch(u_environment, environment_texel(d), 0).rgb;
+  ivec2 t = environment_texel(d);
+  int band = t.y / u_environment_band_rows;
+  ivec2 local = ivec2(t.x, t.y - band * u_environment_band_rows);
+  vec3 l = texelFetch(u_environment[0], local, 0).rgb; // samplers: constant indices only (3.30)
+#if IRAD_ENVIRONMENT_BANDS > 1
+  if (band == 1) l = texelFetch(u_environment[1], local, 0).rgb;
+#endif
+#if IRAD_ENVIRONMENT_BANDS > 2
+  if (band == 2) l = texelFetch(u_environment[2], local, 0).rgb;
+#endif
+#if IRAD_ENVIRONMENT_BANDS > 3
+  if (band == 3) l = texelFetch(u_environment[3], local, 0).rgb;
+#endif
+  return u_environment_strength * l;
 }
 )";
 

@@ -6,6 +6,7 @@
 //
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
 #include "core/environment.h"
+#include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
 #include "core/scene_builder.h"
@@ -289,6 +290,39 @@ TEST(EnvironmentRaster, RingFrameShowsTheBackground) {
   for (int y = 0; y < kSize; ++y)
     for (int x = 0; x < kSize; ++x) differ += same(frame.at(x, y), raster.at(x, y)) ? 0 : 1;
   EXPECT_EQ(differ, 0);
+}
+
+// The largest map the loader takes, 16384 x 8192 (2 GiB as an Image, 1.5 GiB as the RGB32F
+// texture in 3 bands, ~8 s on llvmpipe): every background pixel is its texel (rows of two bands
+// seen), or it throws irad::Error naming the map where
+// GL_MAX_TEXTURE_SIZE is smaller. Disabled (memory and time): run with
+// --gtest_also_run_disabled_tests.
+TEST(EnvironmentRaster, DISABLED_LargestMapUploads) {
+  Scene s = small_object_scene(false);
+  Image map(16384, 8192);
+  for (int y = 0; y < map.height(); ++y) // the row index: rows of every band are checked
+    for (int x = 0; x < map.width(); ++x)
+      map.at(x, y) = glm::vec4(2.0f + float(y), 0.5f, 0.75f, 1.0f);
+  auto env = std::make_shared<Environment>(std::move(map), 1.0f, 0.0f, "large map");
+  s.environment = env;
+  const View view = make_view(s.cameras.at(0), s.bounds, 16, 16);
+  try {
+    const Image image = render(s, view, 1);
+    int checked = 0, rows_past_first_band = 0;
+    for (int y = 0; y < view.height; ++y)
+      for (int x = 0; x < view.width; ++x) {
+        const glm::vec3 w = pixel_ray(view, x, y).direction;
+        if (image.at(x, y).x == 1.0f || border_angle(*env, w) < 1e-5) continue; // the object
+        EXPECT_TRUE(same(image.at(x, y), glm::vec4(env->radiance(w), 0.0f))) << x << ", " << y;
+        ++checked;
+        rows_past_first_band += env->radiance(w).x > 2.0f + 8192.0f / 3.0f ? 1 : 0;
+      }
+    EXPECT_GT(checked, 128);
+    EXPECT_GT(rows_past_first_band, 16);
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("large map"), std::string::npos) << e.what();
+    std::printf("%s\n", e.what());
+  }
 }
 
 } // namespace
