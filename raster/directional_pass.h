@@ -3,7 +3,7 @@
 // orthographic shadow map over the scene (raster/ortho_shadow.h, shared by all VPLs of one
 // direction) and a shading pass that adds w * C(x) = I max(0, n . -d) V rho(x)/pi into whatever
 // framebuffer and viewport are bound, over a depth buffer holding the visible surface (as
-// raster/vpl_shader.h). Built only for scenes with a directional light.
+// raster/vpl_shader.h). Built only for scenes with a directional light or an environment.
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/gpu_scene.h"
@@ -36,6 +36,8 @@ private:
   GLint view_projection_, direction_, intensity_, lookup_, texel_, apply_albedo_;
 };
 
+// Whether the walk can emit directional VPLs for `scene`: it has a directional punctual light or
+// an environment that is not black (each environment VPL a direction of its own).
 bool has_directional_light(const Scene& scene);
 
 } // namespace irad::gl

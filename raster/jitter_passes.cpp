@@ -46,12 +46,14 @@ void JitterPasses::redraw_depth(const CameraPasses& camera, const glm::mat4& vie
 }
 
 void JitterPasses::emitters(const CameraPasses& camera, const View& view, const Scene& scene,
-                            const GpuScene& gpu) const {
-  if (!scene.has_emitters()) return;
+                            const GpuScene& gpu, const Background* background) const {
+  if (!scene.has_emitters() && background == nullptr) return;
+  const float weight = 1.0f / static_cast<float>(kCameraJitterPasses);
   for (int s = 0; s < kCameraJitterPasses; ++s) {
     const glm::mat4 vp = camera_pass(view, s);
     redraw_depth(camera, vp, gpu);
-    camera.emitters(vp, scene, gpu, 1.0f / static_cast<float>(kCameraJitterPasses));
+    camera.emitters(vp, scene, gpu, weight);
+    if (background) background->draw(view, vp, weight);
   }
 }
 

@@ -5,6 +5,7 @@
 // jittered passes, so the whole image is filtered with the same box over the pixel footprint.
 #include "core/scene.h"
 #include "core/view.h"
+#include "raster/background.h"
 #include "raster/camera_passes.h"
 #include "raster/gpu_scene.h"
 #include "raster/shader_program.h"
@@ -23,10 +24,12 @@ public:
   // interleaved atlas) and writes the scene's depth seen through view_projection.
   void redraw_depth(const CameraPasses& camera, const glm::mat4& view_projection,
                     const GpuScene& gpu) const;
-  // Adds L_e of the visible emitters averaged over kCameraJitterPasses jittered projections into
-  // the bound target (its depth is redrawn for each, so it is left jittered).
+  // Adds L_e of the visible emitters, and the background (when not null) where no surface is
+  // seen, averaged over kCameraJitterPasses jittered projections into the bound target (its
+  // depth is redrawn for each, so it is left jittered): both get the same offsets and weights,
+  // so the background's edges against the geometry antialias like the emitters'.
   void emitters(const CameraPasses& camera, const View& view, const Scene& scene,
-                const GpuScene& gpu) const;
+                const GpuScene& gpu, const Background* background = nullptr) const;
   // With the interleaved G-buffer bound (albedo at colour attachment 2): replaces the albedo by
   // its average over kCameraJitterPasses jittered projections; position and normal stay the
   // pixel centre's (the resolve's geometry test), the shared depth is left jittered.

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "raster/background.h"
 #include "raster/batched_passes.h"
 #include "raster/camera_passes.h"
 #include "raster/directional_pass.h"
@@ -70,6 +71,7 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::JitterPasses> jitter;         // with options.jitter
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   std::unique_ptr<gl::BatchedPasses> batched;       // options.batch > 1, no jitter
+  std::unique_ptr<gl::Background> background;       // only for scenes that show one
   // Shadow maps kept per path slot (render_cached): one cube per VPL that carries light.
   struct CachedPath {
     std::vector<Vpl> vpls;
@@ -82,7 +84,8 @@ struct RasterRenderer::Impl {
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
         camera(api, gpu.features()), vpl_shader(api, s, o.clamp),
-        jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr) {
+        jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr),
+        background(gl::Background::make(api, s)) {
     context->check("raster set-up");
   }
 
@@ -105,7 +108,7 @@ struct RasterRenderer::Impl {
   glm::mat4 bind_pass(const View& view, const Vpl& vpl, std::vector<glm::vec2>& last_offsets);
   // The orthographic shadow map of a directional VPL (shared by the VPLs of one direction).
   void directional_shadow(const Vpl& vpl) { directional->shadow(vpl, gpu); }
-  // The resolve (interleaved), the emitters and the readback.
+  // The resolve (interleaved), the emitters, the background and the readback.
   Image finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                      gl::PassTimer* timer, RasterTimings* timings);
 };
@@ -236,10 +239,12 @@ Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0,
                                          gl::PassTimer* timer, RasterTimings* timings) {
   target->bind();
   if (interleaved) interleaved->resolve();
-  if (jitter)
-    jitter->emitters(camera, view, scene, gpu);
-  else
+  if (jitter) {
+    jitter->emitters(camera, view, scene, gpu, background.get());
+  } else {
     camera.emitters(view.projection * view.view, scene, gpu);
+    if (background) background->draw(view, view.projection * view.view);
+  }
   context->check("raster passes");
   const auto t1 = Clock::now();
   Image image = target->read();

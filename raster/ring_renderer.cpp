@@ -1,6 +1,7 @@
 #include "raster/ring_renderer.h"
 
 #include "core/error.h"
+#include "raster/background.h"
 #include "raster/camera_passes.h"
 #include "raster/directional_pass.h"
 #include "raster/gl_context.h"
@@ -48,6 +49,7 @@ struct RingRenderer::Impl {
   gl::VertexArray empty_vao;
   gl::ShaderProgram copy;
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
+  std::unique_ptr<gl::Background> background;       // only for scenes that show one
   int frames_since_resum = 0;
   std::size_t passes = 0;
 
@@ -59,7 +61,8 @@ struct RingRenderer::Impl {
         target(api, o.width, o.height), filled(o.paths, false),
         sum(gl::make_float_texture(api, o.width, o.height)), slot_fbo(gl::make_framebuffer(api)),
         sum_fbo(gl::make_framebuffer(api)), empty_vao(gl::make_vertex_array(api)),
-        copy(api, "copy", gl::shaders::fullscreen_vertex, gl::shaders::copy_fragment) {
+        copy(api, "copy", gl::shaders::fullscreen_vertex, gl::shaders::copy_fragment),
+        background(gl::Background::make(api, s)) {
     for (std::uint32_t i = 0; i < o.paths; ++i)
       slots.push_back(gl::make_float_texture(api, o.width, o.height));
     api.BindFramebuffer(GL_FRAMEBUFFER, slot_fbo.get());
@@ -198,6 +201,7 @@ Image RingRenderer::frame(const View& view) {
   const glm::mat4 vp = view.projection * view.view;
   im.camera.depth(vp, im.gpu);
   im.camera.emitters(vp, im.scene, im.gpu);
+  if (im.background) im.background->draw(view, vp);
   im.context->check("ring frame");
   return im.target.read();
 }
