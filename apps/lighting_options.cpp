@@ -45,7 +45,8 @@ nlohmann::json lights_json(const Scene& scene) {
                       {"spot", s.spot},
                       {"directional", s.directional},
                       {"suns", s.suns}};
-  j["environment"] = s.environment.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.environment);
+  j["environment"] =
+      s.environment.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.environment);
   return j;
 }
 

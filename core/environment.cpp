@@ -36,16 +36,17 @@ void check_map(const Image& map, const std::string& source) {
       const glm::vec3 c(map.at(x, y));
       for (int k = 0; k < 3; ++k)
         if (!std::isfinite(c[k]) || c[k] < 0.0f)
-          throw Error(source, "",
-                      fmt::format("texel ({}, {}) is {}: radiance must be finite and >= 0", x, y,
-                                  c[k]));
+          throw Error(
+              source, "",
+              fmt::format("texel ({}, {}) is {}: radiance must be finite and >= 0", x, y, c[k]));
     }
 }
 
 } // namespace
 
 glm::vec2 Environment::map_coordinates(const glm::vec3& d) {
-  const double u = 0.5 + std::atan2(static_cast<double>(d.z), static_cast<double>(d.x)) / (2.0 * pi);
+  const double u =
+      0.5 + std::atan2(static_cast<double>(d.z), static_cast<double>(d.x)) / (2.0 * pi);
   const double v = std::acos(std::clamp(static_cast<double>(d.y), -1.0, 1.0)) / pi;
   return {static_cast<float>(u), static_cast<float>(v)};
 }

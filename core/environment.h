@@ -80,9 +80,9 @@ private:
   float strength_ = 1.0f;
   float rotation_ = 0.0f;
   std::string source_;
-  std::vector<float> luminance_;    // lum(L_ij) per texel (strength applied)
-  std::vector<double> row_cdf_;     // inclusive prefix sums of row weights / total, size height
-  std::vector<double> column_cdf_;  // per row, inclusive prefix sums / row total, width per row
+  std::vector<float> luminance_;   // lum(L_ij) per texel (strength applied)
+  std::vector<double> row_cdf_;    // inclusive prefix sums of row weights / total, size height
+  std::vector<double> column_cdf_; // per row, inclusive prefix sums / row total, width per row
   double total_luminance_ = 0.0;
   double mean_integral_ = 0.0;
 };

@@ -201,8 +201,9 @@ double LightSampler::environment_pdf(const glm::vec3& w) const {
 LightSampler::Powers LightSampler::powers() const {
   Powers p;
   for (const Entry& e : entries_)
-    (e.triangle >= 0 ? p.emitters : e.triangle == kEnvironment ? p.environment : p.punctual) +=
-        e.power;
+    (e.triangle >= 0              ? p.emitters
+     : e.triangle == kEnvironment ? p.environment
+                                  : p.punctual) += e.power;
   return p;
 }
 
@@ -249,8 +250,8 @@ LightDirection LightSampler::direction(const LightStart& start, double u, double
     glm::vec3 t, b;
     orthonormal_basis(start.normal, t, b);
     const double r = radius_ * std::sqrt(u), phi = 2.0 * pi * v;
-    const glm::vec3 origin = o + static_cast<float>(r * std::cos(phi)) * t +
-                             static_cast<float>(r * std::sin(phi)) * b;
+    const glm::vec3 origin =
+        o + static_cast<float>(r * std::cos(phi)) * t + static_cast<float>(r * std::sin(phi)) * b;
     return {start.normal, origin, start.disk_area};
   }
   }

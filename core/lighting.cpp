@@ -33,12 +33,14 @@ std::vector<std::string> chosen(const LightingOptions& o) {
 
 void check_values(const LightingOptions& o) {
   if (!std::isfinite(o.strength) || o.strength < 0.0f)
-    throw Error("", "--env-strength", fmt::format("must be a finite number >= 0, got {}", o.strength));
+    throw Error("", "--env-strength",
+                fmt::format("must be a finite number >= 0, got {}", o.strength));
   if (!std::isfinite(o.rotate_degrees))
     throw Error("", "--env-rotate", "must be a finite number of degrees");
   const std::vector<std::string> c = chosen(o);
   if (c.size() > 1)
-    throw Error("", c[1], fmt::format("cannot be combined with {}: one environment at a time", c[0]));
+    throw Error("", c[1],
+                fmt::format("cannot be combined with {}: one environment at a time", c[0]));
   if (o.env == "none" && (o.env_color || !o.sky.empty()))
     throw Error("", o.env_color ? "--env-color" : "--sky", "cannot be combined with --env none");
 }
@@ -77,14 +79,13 @@ void add_sky(Scene& scene, const LightingOptions& o, Log& log) {
 void light_scene(Scene& scene, const LightingOptions& o, Log& log) {
   check_values(o);
   if (!o.env.empty() && o.env != "none") {
-    scene.environment =
-        make_environment(read_environment_map(o.env, "--env"), o, o.env);
+    scene.environment = make_environment(read_environment_map(o.env, "--env"), o, o.env);
   } else if (o.env_color) {
     const glm::vec3 c = *o.env_color;
     Image map(2, 1);
     map.at(0, 0) = map.at(1, 0) = glm::vec4(c, 1.0f);
-    scene.environment = make_environment(std::move(map), o,
-                                         fmt::format("uniform {},{},{}", c.x, c.y, c.z));
+    scene.environment =
+        make_environment(std::move(map), o, fmt::format("uniform {},{},{}", c.x, c.y, c.z));
   } else if (!o.sky.empty()) {
     add_sky(scene, o, log);
   } else if (!has_own_light(scene) && o.env != "none") {

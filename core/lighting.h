@@ -19,13 +19,13 @@ namespace irad {
 struct SkyOptions;
 
 struct LightingOptions {
-  std::string env;                   // FILE, "none", or empty
+  std::string env;                    // FILE, "none", or empty
   std::optional<glm::vec3> env_color; // --env-color
-  std::string sky;                   // --sky text, empty: none
-  float strength = 1.0f;             // --env-strength
-  float rotate_degrees = 0.0f;       // --env-rotate
-  bool visible = true;               // --env-visible on|off
-  int sky_width = 512;               // texels across the baked sky map
+  std::string sky;                    // --sky text, empty: none
+  float strength = 1.0f;              // --env-strength
+  float rotate_degrees = 0.0f;        // --env-rotate
+  bool visible = true;                // --env-visible on|off
+  int sky_width = 512;                // texels across the baked sky map
 };
 
 // Gives `scene` its environment (and the sky's sun) as the options say. Throws irad::Error naming

@@ -80,8 +80,8 @@ glm::vec3 sun_disk_radiance(const PunctualLight& light) {
 }
 
 glm::vec3 background_radiance(const Scene& scene, const glm::vec3& w) {
-  if (!scene.environment || !scene.environment->visible) return glm::vec3(0.0f);
-  glm::vec3 l = scene.environment->radiance(w);
+  if (scene.environment && !scene.environment->visible) return glm::vec3(0.0f);
+  glm::vec3 l = scene.environment ? scene.environment->radiance(w) : glm::vec3(0.0f);
   for (const PunctualLight& light : scene.lights)
     if (light.angular_radius > 0.0f &&
         glm::dot(w, -light.direction) >= std::cos(light.angular_radius))

@@ -155,11 +155,12 @@ double mean_albedo(const Scene& scene);
 // so a texture whose TEXCOORD set the scene lacks counts as absent in both.
 glm::vec3 mean_emission(const Scene& scene, std::size_t t);
 float triangle_area(const Scene& scene, std::size_t t);
-// What a camera ray along unit w that meets no surface sees: 0 unless the scene's environment is
-// visible (Environment::visible); then L_env(w) plus the radiance E / (pi sin^2 r) of every
-// directional light of angular radius r > 0 (a sun) whose disk holds w. The one definition pt,
-// rt-vpl and the raster's background pass share. Rays after a mirror see the environment
-// whatever `visible` says, and no sun disk (it is a delta light for the lighting).
+// What a camera ray along unit w that meets no surface sees: 0 when the scene's environment is
+// not visible (Environment::visible false); else L_env(w) (0 without an environment) plus the
+// radiance E / (pi sin^2 r) of every directional light of angular radius r > 0 (a sun) whose
+// disk holds w. The one definition pt, rt-vpl and the raster's background pass
+// (raster/background.h) share. Rays after a mirror see the environment whatever `visible` says,
+// and no sun disk (it is a delta light for the lighting).
 glm::vec3 background_radiance(const Scene& scene, const glm::vec3& w);
 // Radiance of a sun's disk (PunctualLight::angular_radius > 0), 0 otherwise.
 glm::vec3 sun_disk_radiance(const PunctualLight& light);

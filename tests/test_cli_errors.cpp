@@ -204,7 +204,8 @@ TEST_F(CliErrors, EnvironmentOptions) {
       {"--env " + (dir_ / "none.exr").string(), {"none.exr", "--env"}},
       {"--env " + map("square.exr", 8, 8, glm::vec4(1)), {"square.exr", "--env", "8 x 8"}},
       {"--env " + map("nan.exr", 8, 4, glm::vec4(nan)), {"nan.exr", "--env", "x 7, y 3", "finite"}},
-      {"--env " + map("negative.exr", 8, 4, glm::vec4(-1)), {"negative.exr", "--env", "x 7, y 3", "negative"}},
+      {"--env " + map("negative.exr", 8, 4, glm::vec4(-1)),
+       {"negative.exr", "--env", "x 7, y 3", "negative"}},
       {"--env " + (dir_ / "sky.png").string(), {"sky.png", "--env"}},
       {"--sky 91", {"--sky", "91"}},
       {"--sky -90.5", {"--sky", "-90.5"}},
@@ -220,8 +221,8 @@ TEST_F(CliErrors, EnvironmentOptions) {
   for (const auto& c : cases) {
     SCOPED_TRACE(c.args);
     const fs::path out = dir_ / "out.png";
-    const CliRun r = irad("render " + box + " " + c.args + " -o '" + out.string() +
-                          "' --paths 4 --size 16x16");
+    const CliRun r =
+        irad("render " + box + " " + c.args + " -o '" + out.string() + "' --paths 4 --size 16x16");
     EXPECT_EQ(r.code, 1) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(r.err.rfind("irad: error: ", 0), 0u) << r.err;

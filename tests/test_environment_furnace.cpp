@@ -83,13 +83,27 @@ struct Furnace {
   Scene scene = furnace_scene();
   RayScene rays{scene};
   View view = make_view(scene.cameras[0], scene.bounds, 64, 64);
-  std::vector<bool> object; // pixels that see the polyhedron
+  std::vector<bool> object; // pixels whose centre ray meets the polyhedron
+  std::vector<bool> edge;   // pixels with a 4-neighbour of the other kind (silhouette)
 
   Furnace() {
     for (int y = 0; y < view.height; ++y)
       for (int x = 0; x < view.width; ++x) {
         const CameraRay r = pixel_ray(view, x, y);
         object.push_back(rays.intersect(r.origin, r.direction, view.znear, 1e30f).has_value());
+      }
+    // The raster covers a pixel where its centre lies inside the projected triangle, the ray
+    // where it meets it: at the silhouette the two may disagree about a pixel (1 of 4096 here).
+    const int w = view.width, h = view.height;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        bool e = false;
+        for (const auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+          const int u = x + dx, v = y + dy;
+          e = e || (u >= 0 && u < w && v >= 0 && v < h &&
+                    object[std::size_t(v) * w + u] != object[std::size_t(y) * w + x]);
+        }
+        edge.push_back(e);
       }
   }
   VplSet walk(std::uint32_t paths) const {
@@ -110,6 +124,7 @@ Errors measure(const Furnace& f, const Image& image) {
   std::size_t n = 0;
   for (std::size_t i = 0; i < image.pixels().size(); ++i) {
     const double v = image.pixels()[i].g;
+    if (f.edge[i]) continue;
     if (!f.object[i]) {
       e.background = std::max(e.background, std::abs(v - kSky));
       continue;
@@ -136,9 +151,9 @@ TEST(EnvironmentFurnace, PathTracer) {
   o.spp = 64;
   const Errors e = measure(f, path_trace(f.scene, f.rays, f.view, o));
   report("pt 64 spp", e);
-  // Measured: mean +0.0007, rms 0.030, max 0.11 at 64 spp. The mean of 2.2k pixels: 0.5 %.
+  // Measured: mean +0.0012, rms 0.0295, max 0.11 at 64 spp (interior pixels of the object).
   EXPECT_LT(std::abs(e.mean), 0.005);
-  EXPECT_LT(e.rms, 0.05);
+  EXPECT_LT(e.rms, 0.045);
   EXPECT_EQ(e.background, 0.0); // camera rays that leave see L exactly
 }
 
@@ -146,10 +161,23 @@ TEST(EnvironmentFurnace, RtVpl) {
   const Furnace f;
   const Errors e = measure(f, trace_vpls(f.scene, f.rays, f.view, f.walk(256), {0.05f, 0}));
   report("rt-vpl N=256", e);
-  // Measured: mean ..., rms ..., max ... with 256 paths (256 directional VPLs).
-  EXPECT_LT(std::abs(e.mean), 0.005);
-  EXPECT_LT(e.rms, 0.03);
+  // Measured: mean -0.0034, rms 0.0072, max 0.0158 with 256 paths (256 directional VPLs): the
+  // walk's quasi-Monte Carlo error over the sky's directions.
+  EXPECT_LT(std::abs(e.mean), 0.006);
+  EXPECT_LT(e.rms, 0.012);
+  EXPECT_LT(e.max, 0.03);
   EXPECT_EQ(e.background, 0.0);
+}
+
+// The raster's error bound per interleave factor k, from measurement (N = 256, 64x64).
+// k = 1 equals rt-vpl to 2e-4 (the orthographic shadow maps cost nothing on a convex object).
+// k > 1: each pixel is lit by N / k^2 directions and the resolve averages the k x k window only
+// over pixels of its own facet (normals within 18 degrees): the polyhedron's facets (about 20
+// degrees apart, ~15 pixels each) cut most windows, so the per-pixel error grows with k while
+// the mean stays exact. Measured rms 0.0072, 0.0174, 0.0465, 0.0926 and mean -0.0034, -0.0040,
+// +0.0002, -0.0026 for k = 1, 2, 4, 8.
+double rms_bound(int k) {
+  return k == 1 ? 0.012 : k == 2 ? 0.025 : k == 4 ? 0.07 : 0.14;
 }
 
 class EnvironmentFurnaceRaster : public ::testing::TestWithParam<int> {};
@@ -162,10 +190,9 @@ TEST_P(EnvironmentFurnaceRaster, EveryInterleaveFactor) {
   char what[64];
   std::snprintf(what, sizeof what, "raster k=%d N=256", GetParam());
   report(what, e);
-  // Measured: ...
-  EXPECT_LT(std::abs(e.mean), 0.01);
-  EXPECT_LT(e.rms, 0.05);
-  EXPECT_EQ(e.background, 0.0);
+  EXPECT_LT(std::abs(e.mean), 0.006);
+  EXPECT_LT(e.rms, rms_bound(GetParam()));
+  EXPECT_EQ(e.background, 0.0); // the background pass shows L exactly
 }
 
 INSTANTIATE_TEST_SUITE_P(Interleave, EnvironmentFurnaceRaster, ::testing::Values(1, 2, 4, 8));

@@ -87,8 +87,7 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
   if (depth == 0) return;
 
   // Leave the light: beta_1 = beta_0 * profile / pdf.
-  const LightDirection leave =
-      lights_.direction(start, halton_.sample(2, h), halton_.sample(3, h));
+  const LightDirection leave = lights_.direction(start, halton_.sample(2, h), halton_.sample(3, h));
   glm::vec3 beta = start.beta * leave.factor;
   glm::vec3 origin = leave.origin;
   glm::vec3 dir = leave.direction;
