@@ -98,7 +98,7 @@ struct Furnace {
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         bool e = false;
-        for (const auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+        for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
           const int u = x + dx, v = y + dy;
           e = e || (u >= 0 && u < w && v >= 0 && v < h &&
                     object[std::size_t(v) * w + u] != object[std::size_t(y) * w + x]);
