@@ -161,6 +161,16 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
   std::vector<const Vpl*> many, alone;
   for (const Vpl* v : vpls)
     (v->kind == VplKind::Directional || v->mirror >= 0 ? alone : many).push_back(v);
+  // VPLs of one direction next to each other (a directional light's, a sun's): the orthographic
+  // map is drawn once per run of equal directions (raster/ortho_shadow.h), not once per change
+  // (a sun's VPLs alternate with the sky's in path order). The sum does not depend on the order.
+  std::stable_sort(alone.begin(), alone.end(), [](const Vpl* a, const Vpl* b) {
+    const bool da = a->kind == VplKind::Directional, db = b->kind == VplKind::Directional;
+    if (da != db) return da;
+    if (!da) return false;
+    const glm::vec3 &p = a->normal, &q = b->normal;
+    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
+  });
   const int sets = interleaved ? interleaved->sets() : 1;
   const std::size_t drawn = batched->draw(
       view, many, [&](const Vpl& v) { return set_of(v.path, sets); }, interleaved.get(), *target,
