@@ -7,7 +7,8 @@
 // Orientation (Blender's equirectangular world texture, so a Cycles render of the same map
 // matches, with glTF's +Y up; Blender's (x, y, z) = glTF's (x, -z, y)): for a map direction
 // d = (x, y, z),
-//   column u = 0.5 + atan2(z, x) / (2 pi)  in [0, 1), left to right; the centre looks along +X,
+//   column u = 0.5 + atan2(z, x) / (2 pi)  in [0, 1] (1 only along -X: the last column), left to
+//                                         right; the centre looks along +X,
 //   row    v = acos(y) / pi               in [0, 1], top to bottom; the top row is the zenith +Y.
 // Rotation: the map is turned by `rotation` radians about +Y (right-handed: +Z toward +X), so
 // world direction w sees the map at d = R_y(-rotation) w; a feature of the map at d appears at
