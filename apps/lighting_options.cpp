@@ -1,6 +1,6 @@
 #include "apps/lighting_options.h"
 
-#include "core/environment_file.h"
+#include "core/environment/environment_file.h"
 
 #include <CLI/CLI.hpp>
 

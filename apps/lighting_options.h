@@ -1,8 +1,8 @@
 #pragma once
-// The environment options every rendering subcommand shares (core/lighting.h):
+// The environment options every rendering subcommand shares (core/environment/lighting.h):
 // --env FILE|none, --env-color R,G,B, --env-strength S, --env-rotate DEG,
 // --sky ELEVATION[,AZIMUTH[,TURBIDITY]], --env-visible on|off.
-#include "core/lighting.h"
+#include "core/environment/lighting.h"
 
 #include <nlohmann/json.hpp>
 #include <string>

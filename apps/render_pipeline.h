@@ -1,8 +1,8 @@
 #pragma once
 // load -> walk -> raster, the path every rendering subcommand takes, with per-stage times.
+#include "core/environment/lighting.h"
 #include "core/gltf/loader.h"
 #include "core/image.h"
-#include "core/lighting.h"
 #include "core/log.h"
 #include "core/scene.h"
 #include "core/view.h"
@@ -38,7 +38,7 @@ struct RenderRequest {
   bool clamped_fraction = false; // estimate the share of light the clamp removes
   bool progress = false;         // a progress line on stderr
   LoadLimits limits;             // scene size limits (core/gltf/loader.h)
-  LightingOptions lighting;      // the environment (core/lighting.h)
+  LightingOptions lighting;      // the environment (core/environment/lighting.h)
   // When it becomes true (a signal handler), the render stops early: no further stage starts,
   // the running one returns what it has, and the result says cancelled.
   const std::atomic<bool>* cancel = nullptr;

@@ -13,7 +13,7 @@
 // beta_0 = L_e(y0) / p(y0); a point or spot light starts with beta_0 = I / P(k); a directional
 // light starts uniformly on a disk of radius R perpendicular to d just outside the bounding sphere,
 // with beta_0 = E / P(k) (its depth-0 VPL is the light at infinity, C(x) of core/vpl.h).
-// The environment (core/environment.h) is one more entry, of power
+// The environment (core/environment/environment.h) is one more entry, of power
 //   Phi_env = pi R^2 * integral of mean(L(w)) dw   (what crosses a disk of radius R from all w):
 // its start picks w by the environment's density p(w) and is a directional start travelling
 // along d = -w with beta_0 = L(w) / (p(w) P(k)) (an irradiance: its depth-0 VPL is a directional

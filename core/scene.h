@@ -2,7 +2,7 @@
 // The scene model shared by the walk, the raster and the reference estimators: world-space
 // triangles with diffuse materials, emitters, punctual lights and cameras. glTF is one way in.
 #include "core/bounds.h"
-#include "core/environment.h"
+#include "core/environment/environment.h"
 #include "core/texture.h"
 
 #include <cstdint>
@@ -104,7 +104,8 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<Camera> cameras;
   std::vector<PunctualLight> lights;
-  // Distant light around the scene (core/environment.h), or nullptr: none (black background).
+  // Distant light around the scene (core/environment/environment.h), or nullptr: none (black
+  // background).
   std::shared_ptr<const Environment> environment;
 
   Bounds bounds; // of all triangles (over the whole animation when there is one)

@@ -1,8 +1,8 @@
 #pragma once
 // The background pass: where a camera ray sees no surface, the pixel shows the distant
-// environment's L(w) (core/environment.h, when the scene has one and it is `visible`) plus the
-// disks of the visible suns (directional lights with angular_radius > 0, core/scene.h), w the
-// ray through the pixel centre (core/view.h pixel_ray). Drawn after everything else as a
+// environment's L(w) (core/environment/environment.h, when the scene has one and it is `visible`)
+// plus the disks of the visible suns (directional lights with angular_radius > 0, core/scene.h), w
+// the ray through the pixel centre (core/view.h pixel_ray). Drawn after everything else as a
 // triangle at depth 1 with GL_LEQUAL and depth writes off, over the depth buffer of the visible
 // surface, so it adds to the pixels that no surface covers and to no other.
 // Which of the two shows: the map when environment && environment->visible && it is not black;

@@ -1,8 +1,9 @@
 #pragma once
-// GLSL of the distant environment (core/environment.h), written once: the map lookup L(w) and the
-// visible suns' disks, for every program that shows what camera rays see past the scene
-// (raster/background.h). The formulas are core/environment.cpp's (Environment::map_coordinates,
-// texel_of, to_map), so the raster's background and the CPU estimators agree texel for texel.
+// GLSL of the distant environment (core/environment/environment.h), written once: the map lookup
+// L(w) and the visible suns' disks, for every program that shows what camera rays see past the
+// scene (raster/background.h). The formulas are core/environment/environment.cpp's
+// (Environment::map_coordinates, texel_of, to_map), so the raster's background and the CPU
+// estimators agree texel for texel.
 namespace irad::gl::shaders {
 
 // L(w) for a unit world direction w, nearest texel, strength applied:

@@ -1,7 +1,7 @@
 #pragma once
 // Maps and lookups the environment tests (test_environment.cpp, test_environment_lighting.cpp)
-// share, written from the map's geometry rather than from core/environment.cpp.
-#include "core/environment.h"
+// share, written from the map's geometry rather than from core/environment/environment.cpp.
+#include "core/environment/environment.h"
 #include "core/image.h"
 
 #include <algorithm>
@@ -83,7 +83,8 @@ inline TexelAt texel_at(const glm::vec3& d, int w, int h) {
   return t;
 }
 
-// R_y(a) (right-handed about +Y: +Z toward +X), the map-to-world turn of core/environment.h.
+// R_y(a) (right-handed about +Y: +Z toward +X), the map-to-world turn of
+// core/environment/environment.h.
 inline glm::vec3 rotate_y(const glm::vec3& d, double a) {
   const double c = std::cos(a), s = std::sin(a);
   return {static_cast<float>(c * d.x + s * d.z), d.y, static_cast<float>(-s * d.x + c * d.z)};

@@ -184,8 +184,8 @@ TEST_F(CliErrors, NoLight) {
                {"dark.gltf", "--env none", "no light"});
 }
 
-// Environment options (core/lighting.h, core/environment_file.h, core/sky.h): one line naming
-// the option (and the map), exit code 1, no output.
+// Environment options (core/environment/lighting.h, core/environment/environment_file.h,
+// core/environment/sky.h): one line naming the option (and the map), exit code 1, no output.
 TEST_F(CliErrors, EnvironmentOptions) {
   const std::string box = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf";
   const auto map = [&](const char* name, int w, int h, glm::vec4 texel) {

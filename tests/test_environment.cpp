@@ -1,4 +1,5 @@
-// The distant environment (issue 12, core/environment.h) against what the test computes itself:
+// The distant environment (issue 12, core/environment/environment.h) against what the test computes
+// itself:
 //  - orientation: where a map's texels land (Blender's equirectangular world texture with +Y up:
 //    the centre column at the middle row is +X, u = 0.75 is +Z, u = 0.25 is -Z, the top row +Y),
 //    and map_coordinates / map_direction as inverses;
@@ -8,7 +9,7 @@
 //  - rotation: a map rotated by 2 pi k / W looks up what the map with its columns shifted k to
 //    the left does.
 // Rendered with the environment: test_environment_lighting.cpp.
-#include "core/environment.h"
+#include "core/environment/environment.h"
 #include "tests/environment_maps.h"
 
 #include <algorithm>
@@ -320,9 +321,9 @@ TEST(EnvironmentSampling, BlackMap) {
 
 // --- 3. Rotation ------------------------------------------------------------------------------
 
-// core/environment.h: "a rotation by 360/W degrees shifts the image one column to the left".
-// So Environment(map, 2 pi k / W) looks up, everywhere, what Environment(shift_left(map, k), 0)
-// does (the direction seen in column c of the rotated one shows column c + k of the map); the
+// core/environment/environment.h: "a rotation by 360/W degrees shifts the image one column to the
+// left". So Environment(map, 2 pi k / W) looks up, everywhere, what Environment(shift_left(map, k),
+// 0) does (the direction seen in column c of the rotated one shows column c + k of the map); the
 // opposite shift does not.
 TEST(EnvironmentRotation, RotationShiftsTheImageLeft) {
   const Image map = random_map(kW, kH, 21);

@@ -6,7 +6,7 @@
 // interleave factor, rt-vpl and pt. Its surface VPLs light nothing (no facet faces another), so
 // what is measured is the environment's direct light: the directional VPLs of the walk, the
 // light samples and escaping rays of pt, and the raster's orthographic shadow maps.
-#include "core/environment.h"
+#include "core/environment/environment.h"
 #include "core/scene_builder.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"

@@ -1,10 +1,10 @@
-// Scenes lit by the distant environment (issue 12, core/environment.h):
+// Scenes lit by the distant environment (issue 12, core/environment/environment.h):
 //  - rotation: pt images under a map rotated by 2 pi k / W and under the map with its columns
 //    shifted k to the left agree within pt's noise, and the opposite shift does not;
 //  - a map black except one texel lights a scene as the directional light of the same
 //    irradiance, for pt, rt-vpl and the raster (image-mean ratio, RMS over lit pixels, shadows).
 // With IRAD_TEST_IMAGES=DIR the compared images are written there side by side.
-#include "core/environment.h"
+#include "core/environment/environment.h"
 #include "core/scene_builder.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"

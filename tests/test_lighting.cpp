@@ -1,10 +1,11 @@
-// Which lights a scene is rendered with (core/lighting.h): the default white environment for
-// unlit scenes (one warning), --env none, one environment at a time, the sky's sun, the summary
+// Which lights a scene is rendered with (core/environment/lighting.h): the default white
+// environment for unlit scenes (one warning), --env none, one environment at a time, the sky's sun,
+// the summary
 // --stats writes.
+#include "core/environment/lighting.h"
+#include "core/environment/sky.h"
 #include "core/error.h"
-#include "core/lighting.h"
 #include "core/scene_builder.h"
-#include "core/sky.h"
 
 #include <cmath>
 #include <gtest/gtest.h>

@@ -1,10 +1,11 @@
-// The Preetham et al. 1999 clear sky (core/sky.h): option parsing, and properties of daylight the
-// model must show (not its own formulas again): a plausible zenith luminance, a sky brighter
-// toward the sun and at the horizon, darkest about 90 degrees from the sun, bluer when clear; a
-// sun that dims and reddens as it sinks; a map in core/environment.h's orientation.
-#include "core/environment.h"
+// The Preetham et al. 1999 clear sky (core/environment/sky.h): option parsing, and properties of
+// daylight the model must show (not its own formulas again): a plausible zenith luminance, a sky
+// brighter toward the sun and at the horizon, darkest about 90 degrees from the sun, bluer when
+// clear; a sun that dims and reddens as it sinks; a map in core/environment/environment.h's
+// orientation.
+#include "core/environment/environment.h"
+#include "core/environment/sky.h"
 #include "core/error.h"
-#include "core/sky.h"
 
 #include <gtest/gtest.h>
 
@@ -20,7 +21,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kLuxPerIrad = 1e5 / kPi;       // irradiance: irad units -> lux
 constexpr double kKcdPerIrad = 1e5 / kPi / 1e3; // radiance: irad units -> kcd/m^2
 
-// Unit direction at altitude `alt` and azimuth `az` (degrees; the frame of core/sky.h).
+// Unit direction at altitude `alt` and azimuth `az` (degrees; the frame of core/environment/sky.h).
 glm::vec3 direction(double alt, double az) {
   const double a = alt * kPi / 180.0, b = az * kPi / 180.0;
   return glm::vec3(glm::dvec3(std::cos(a) * std::sin(b), std::sin(a), std::cos(a) * std::cos(b)));

@@ -5,9 +5,9 @@
 // Next-event estimation toward emitters (chosen by power) and cosine-weighted scattering are
 // combined with multiple importance sampling (power heuristic); punctual lights (point, spot,
 // directional: delta lights) are reached by next-event estimation only, without MIS weight. The
-// environment (core/environment.h) is sampled by its luminance density as one more light and
-// weighted against cosine sampling, which finds it when a scattered ray leaves the scene; a
-// camera ray that leaves shows core/scene.h background_radiance (0 when the environment is not
+// environment (core/environment/environment.h) is sampled by its luminance density as one more
+// light and weighted against cosine sampling, which finds it when a scattered ray leaves the scene;
+// a camera ray that leaves shows core/scene.h background_radiance (0 when the environment is not
 // visible). Russian roulette after three bounces. No clamp: unbiased.
 // Mirrors (Material::specular) reflect perfectly: no next-event estimation there, and an emitter
 // found right after a mirror counts with weight 1 (light samples cannot reach it through the

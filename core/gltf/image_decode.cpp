@@ -7,8 +7,9 @@
 
 #include <fmt/format.h>
 
-// stb_image for PNG and JPEG (core/environment_file.cpp compiles its own, HDR only). Static, so
-// that it cannot clash with another copy (Debian's libstb, the other one, the fuzz build's).
+// stb_image for PNG and JPEG (core/environment/environment_file.cpp compiles its own, HDR only).
+// Static, so that it cannot clash with another copy (Debian's libstb, the other one, the fuzz
+// build's).
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
 #define STBI_ONLY_PNG

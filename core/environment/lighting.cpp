@@ -1,8 +1,8 @@
-#include "core/lighting.h"
+#include "core/environment/lighting.h"
 
-#include "core/environment_file.h"
+#include "core/environment/environment_file.h"
+#include "core/environment/sky.h"
 #include "core/error.h"
-#include "core/sky.h"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -1,9 +1,11 @@
 #pragma once
 // Which lights a scene is rendered with (docs/environment.md): its own emitters and
 // KHR_lights_punctual lights, plus at most one environment from the command line:
-//   --env FILE        an equirectangular radiance map (.exr or .hdr, core/environment_file.h)
+//   --env FILE        an equirectangular radiance map (.exr or .hdr,
+//   core/environment/environment_file.h)
 //   --env-color R,G,B a uniform environment
-//   --sky E[,A[,T]]   Preetham's clear sky with its sun (core/sky.h; the sun a directional light)
+//   --sky E[,A[,T]]   Preetham's clear sky with its sun (core/environment/sky.h; the sun a
+//   directional light)
 // scaled by --env-strength and turned by --env-rotate degrees about +Y. A scene with no light of
 // its own and none of these is lit by a uniform white environment of radiance 1, with one
 // warning; `--env none` makes that an error instead (and adds no environment).

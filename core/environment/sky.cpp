@@ -1,9 +1,9 @@
 // Preetham et al. 1999, "A Practical Analytic Model for Daylight": the sky's Perez distributions
 // and zenith values (the paper's Section 3.2 and Appendix A.2), and the sun's transmittance
 // (the paper's appendix on sunlight, Rayleigh and aerosol terms only).
-#include "core/sky.h"
+#include "core/environment/sky.h"
 
-#include "core/environment.h"
+#include "core/environment/environment.h"
 
 #include "core/error.h"
 #include "core/number_list.h"

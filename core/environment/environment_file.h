@@ -1,5 +1,5 @@
 #pragma once
-// Environment maps from files and the --env colour, checked: what core/environment.h's
+// Environment maps from files and the --env colour, checked: what core/environment/environment.h's
 // Environment takes (linear RGB radiance, width == 2 height, every texel finite and >= 0).
 #include "core/image.h"
 
@@ -14,11 +14,11 @@ inline constexpr int kMaxEnvironmentWidth = 16384;
 
 // An equirectangular radiance map: OpenEXR (.exr: R, G, B as float) or Radiance HDR (.hdr, .pic:
 // RGBE, "-Y H +X W" layout; EXPOSURE lines are ignored); extensions are case-insensitive.
-// Returns linear RGB with alpha 1, row 0 at the top (the zenith, core/environment.h). Throws
-// irad::Error(path, option, ...) on one line for: a file that cannot be read (saying why), an
-// unknown extension, data that does not decode, a width over kMaxEnvironmentWidth, a map that
-// is not 2:1, and the first texel (in row order) that is NaN, infinite or negative.
-// Known limit: stb_image reads a truncated flat (not run-length coded) HDR as black texels.
+// Returns linear RGB with alpha 1, row 0 at the top (the zenith, core/environment/environment.h).
+// Throws irad::Error(path, option, ...) on one line for: a file that cannot be read (saying why),
+// an unknown extension, data that does not decode, a width over kMaxEnvironmentWidth, a map that is
+// not 2:1, and the first texel (in row order) that is NaN, infinite or negative. Known limit:
+// stb_image reads a truncated flat (not run-length coded) HDR as black texels.
 Image read_environment_map(const std::filesystem::path& path, const std::string& option);
 
 // "R,G,B": a uniform environment's radiance; three finite numbers >= 0. All zero is refused

@@ -1,7 +1,7 @@
 // Environment map files: OpenEXR through core/image_io.h's read_exr (after a header check of our
 // own, so that sizes are refused before any pixel is read), Radiance HDR through stb_image.
 // Library failures become fixed phrases of ours: no library text reaches a message.
-#include "core/environment_file.h"
+#include "core/environment/environment_file.h"
 
 #include "core/error.h"
 #include "core/image_io.h"

@@ -49,8 +49,8 @@ glm::vec3 sun_direction(const SkyOptions& sky);
 glm::vec3 preetham_radiance(const SkyOptions& sky, const glm::vec3& w);
 
 // The sky as an equirectangular map of width x width / 2 texels (width even, >= 2), each texel
-// the radiance toward its centre, in core/environment.h's orientation; alpha 1. The lower half
-// (the rows below the horizon) is black.
+// the radiance toward its centre, in core/environment/environment.h's orientation; alpha 1. The
+// lower half (the rows below the horizon) is black.
 Image preetham_sky_map(const SkyOptions& sky, int width = 512);
 
 // The sun as a directional light: direction = -sun_direction (travel, into the scene),

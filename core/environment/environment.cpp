@@ -1,4 +1,4 @@
-#include "core/environment.h"
+#include "core/environment/environment.h"
 
 #include "core/error.h"
 
