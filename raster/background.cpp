@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "raster/environment_glsl.h"
+#include "raster/shaders.h"
 #include "raster/vpl_shader.h"
 
 #include <algorithm>
@@ -60,13 +61,15 @@ std::unique_ptr<Background> Background::make(const GladGLContext& api, const Sce
 Background::Background(const GladGLContext& api, const Scene& scene)
     : api_(&api), shows_map_(shows_environment_map(scene)),
       suns_(static_cast<int>(visible_suns(scene).size())), bands_(bands_for(scene)), band_rows_(0),
-      program_(api, "background", shaders::background_vertex, fragment_source(bands_, suns_)),
+      program_(api, "background", shaders::fullscreen_vertex, fragment_source(bands_, suns_)),
       empty_vao_(make_vertex_array(api)),
       inverse_vp_(program_.optional_uniform("u_inverse_view_projection")),
       size_(program_.optional_uniform("u_size")), eye_(program_.optional_uniform("u_eye")),
       forward_(program_.optional_uniform("u_forward")),
       orthographic_(program_.uniform("u_orthographic")) {
   program_.use();
+  // At the far plane: GL_LEQUAL then keeps exactly the pixels where no surface was drawn.
+  api.Uniform1f(program_.uniform("u_depth"), 1.0f);
   if (shows_map_) upload_map(*scene.environment);
   if (suns_ > 0) set_suns(scene);
 }

@@ -65,15 +65,6 @@ vec3 sun_radiance(vec3 w) {
 }
 )";
 
-// The background: a triangle covering the viewport at depth 1 (the far plane, what the depth
-// buffer is cleared to), so GL_LEQUAL keeps exactly the pixels where no surface was drawn.
-inline constexpr const char* background_vertex = R"(#version 330 core
-void main() {
-  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
-  gl_Position = vec4(p, 1.0, 1.0);
-}
-)";
-
 // What the camera ray through the pixel centre sees past the scene: L_env(w) (IRAD_ENVIRONMENT)
 // plus the sun disks (IRAD_SUNS > 0). The ray is core/view.cpp's image_point_ray at the pixel
 // centre, (x, y) in image pixels with y down, through u_inverse_view_projection (jittered: the

@@ -157,11 +157,13 @@ void main() {
 }
 )";
 
-// A triangle covering the viewport (no vertex buffer: gl_VertexID).
+// A triangle covering the viewport (no vertex buffer: gl_VertexID) at clip depth u_depth (0
+// unless set; the background pass sets 1, the far plane the depth buffer is cleared to).
 inline constexpr const char* fullscreen_vertex = R"(#version 330 core
+uniform float u_depth;
 void main() {
   vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
-  gl_Position = vec4(p, 0.0, 1.0);
+  gl_Position = vec4(p, u_depth, 1.0);
 }
 )";
 
