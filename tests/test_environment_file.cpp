@@ -159,6 +159,27 @@ TEST_F(EnvironmentFile, RefusesDataThatDoesNotDecode) {
                  "the OpenEXR pixels do not decode (corrupt or truncated file)");
 }
 
+TEST_F(EnvironmentFile, RefusesTruncatedHdrPixels) {
+  const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 4\n";
+  // Flat (width 4 < 8): exactly 4 bytes per texel; 31 of the 32 bytes are not enough.
+  const std::string texels(32, char(0x80));
+  EXPECT_EQ(read_error(write_bytes("whole.hdr", header + texels)), "");
+  expect_message(write_bytes("cut.hdr", header + texels.substr(0, 31)),
+                 "the Radiance HDR file is truncated: 4 x 2 texels need at least 32 bytes of "
+                 "pixels, it holds 31");
+  // A few bytes that name the largest size: refused before anything is allocated.
+  expect_message(write_bytes("huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X "
+                                         "16384\n\x02\x02\x40"),
+                 "16384 x 8192 texels need at least 8552448 bytes of pixels, it holds 3");
+  // Run-length coded (stb_image_write, width 16): cut to half its pixels.
+  write_hdr("rle.hdr", test_map(16, 8));
+  std::ifstream in(file("rle.hdr"), std::ios::binary);
+  const std::string rle((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t pixels = rle.find("+X 16\n") + 6;
+  expect_message(write_bytes("rle_cut.hdr", rle.substr(0, pixels + 20)),
+                 "the Radiance HDR file is truncated");
+}
+
 TEST_F(EnvironmentFile, RefusesMapsThatAreNotTwoToOneOrTooWide) {
   irad::write_exr(file("square.exr"), test_map(4, 4));
   expect_message(file("square.exr"),

@@ -180,6 +180,36 @@ struct StbFloats {
   ~StbFloats() { stbi_image_free(data); }
 };
 
+// Where the pixels of a Radiance HDR file start: after the header's empty line and the
+// resolution line that follows it; bytes.size() when the file has no such lines.
+std::size_t hdr_pixel_offset(const std::vector<unsigned char>& bytes) {
+  static constexpr unsigned char kEnd[] = {'\n', '\n'};
+  const auto header_end = std::search(bytes.begin(), bytes.end(), kEnd, kEnd + 2);
+  if (header_end == bytes.end()) return bytes.size();
+  const auto line_end = std::find(header_end + 2, bytes.end(), '\n');
+  return line_end == bytes.end() ? bytes.size()
+                                 : static_cast<std::size_t>(line_end - bytes.begin()) + 1;
+}
+
+// stb_image reads missing pixel bytes as zeros, without an error, so a truncated file would
+// decode as black texels (and a few bytes naming 16384 x 8192 texels would cost 3.5 GiB): the
+// pixels must be long enough. Flat scanlines (width < 8 or > 32767, or a first scanline without
+// the run-length marker 2, 2) hold exactly 4 bytes per texel; a run-length scanline at least its
+// 4-byte marker and, per channel, 2 bytes per run of at most 127 texels.
+void check_hdr_length(const std::vector<unsigned char>& bytes, int width, int height,
+                      const MapError& fail) {
+  const std::size_t offset = hdr_pixel_offset(bytes);
+  const std::size_t have = bytes.size() - offset;
+  const auto w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height);
+  const bool run_length =
+      width >= 8 && width < 32768 && have >= 2 && bytes[offset] == 2 && bytes[offset + 1] == 2;
+  const std::size_t need = run_length ? h * (4 + 4 * 2 * ((w + 126) / 127)) : 4 * w * h;
+  if (have < need)
+    fail(fmt::format("the Radiance HDR file is truncated: {} x {} texels need at least {} bytes "
+                     "of pixels, it holds {}",
+                     width, height, need, have));
+}
+
 // Radiance HDR: the header's size is checked before the pixels are decoded (as RGB floats).
 Image read_hdr_map(const fs::path& path, const MapError& fail) {
   constexpr std::size_t kMaxBytes = INT_MAX; // stb_image's limit
@@ -197,6 +227,7 @@ Image read_hdr_map(const fs::path& path, const MapError& fail) {
     fail(hdr_reason());
   }
   check_size(width, height, fail);
+  check_hdr_length(bytes, width, height, fail);
   const StbFloats pixels{
       stbi_loadf_from_memory(bytes.data(), length, &width, &height, &channels, 3)};
   if (pixels.data == nullptr) fail(hdr_reason());

@@ -17,8 +17,10 @@ inline constexpr int kMaxEnvironmentWidth = 16384;
 // Returns linear RGB with alpha 1, row 0 at the top (the zenith, core/environment/environment.h).
 // Throws irad::Error(path, option, ...) on one line for: a file that cannot be read (saying why),
 // an unknown extension, data that does not decode, a width over kMaxEnvironmentWidth, a map that is
-// not 2:1, and the first texel (in row order) that is NaN, infinite or negative. Known limit:
-// stb_image reads a truncated flat (not run-length coded) HDR as black texels.
+// not 2:1, an HDR file whose pixels are shorter than its size needs, and the first texel (in row
+// order) that is NaN, infinite or negative. Known limit: a run-length coded HDR file cut short,
+// but still longer than the shortest coding of its size, reads its missing texels as black
+// (stb_image reports no error).
 Image read_environment_map(const std::filesystem::path& path, const std::string& option);
 
 // "R,G,B": a uniform environment's radiance; three finite numbers >= 0. All zero is refused
