@@ -85,6 +85,42 @@ TEST(PathTracer, SquareLightOverPlaneMatchesLambert) {
   EXPECT_LT(rel_rms, 0.025);
 }
 
+// The same far from the light: the plane 2 to 5 units off its axis, where the light leaves the
+// emitter 63 to 79 degrees from its normal. A light sample's shadow ray must not meet the
+// emitter it aims at (it did, once: aimed from the receiver but started at its offset point,
+// it crossed the light's plane beside the sample at grazing angles, and pt showed 0 beyond
+// about 2 units).
+TEST(PathTracer, SquareLightSeenAtGrazingAnglesMatchesLambert) {
+  const float albedo = 0.5f;
+  Scene s = square_light_over_plane(1.0f, 1.0f, 1.0f, 12.0f, albedo);
+  const RayScene rays(s);
+  const Camera camera = look_at({3.5f, 0.0f, 3.0f}, {3.5f, 0.0f, 0.0f}, {0, 1, 0}, 0.9f);
+  const View view = make_view(camera, s.bounds, 24, 24);
+  const Image image = path_trace(s, rays, view, {256, 1, 0, 1000});
+  const std::vector<glm::dvec3> light = {
+      {-0.5, -0.5, 1}, {-0.5, 0.5, 1}, {0.5, 0.5, 1}, {0.5, -0.5, 1}};
+  double sum = 0.0, sum_expected = 0.0, sum_sq = 0.0;
+  for (int y = 0; y < view.height; ++y)
+    for (int x = 0; x < view.width; ++x) {
+      const CameraRay r = pixel_ray(view, x, y);
+      const glm::dvec3 o(r.origin), d(r.direction);
+      const glm::dvec3 p = o + (-o.z / d.z) * d;
+      const double expected =
+          albedo / std::numbers::pi * polygon_irradiance(light, p, {0, 0, 1}, 1.0);
+      const double rel = (image.at(x, y).r - expected) / expected;
+      sum += image.at(x, y).r;
+      sum_expected += expected;
+      sum_sq += rel * rel;
+    }
+  const double rel_rms = std::sqrt(sum_sq / (view.width * view.height));
+  std::printf("pt square light at grazing angles: mean ratio %.5f, relative RMS %.5f\n",
+              sum / sum_expected, rel_rms);
+  // Measured: mean ratio 0.99925, relative RMS 0.0157 at 256 spp (before the fix: mean ratio
+  // 0.0126, relative RMS 0.996).
+  EXPECT_NEAR(sum / sum_expected, 1.0, 0.01);
+  EXPECT_LT(rel_rms, 0.03);
+}
+
 // Raster and rt-vpl evaluate the same VPLs; they differ by shadow-map error (and by edge pixels,
 // where rasterization and the pixel-centre ray can see different surfaces).
 TEST(RasterVsRtVpl, CornellBoxSameVpls) {

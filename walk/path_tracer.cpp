@@ -109,7 +109,12 @@ glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng, std::uint64_t salt) const
   LightStart s = lights_.sample(scene_, rng.next_double(), rng.next_double());
   s.beta *= light_presence(scene_, s);
   if (s.kind == VplKind::Directional) return directional(x, s, salt);
-  const glm::vec3 d = s.position - x.position;
+  // The shadow ray leaves from the offset point and aims at the sample itself, stopping short of
+  // it: a segment toward a point of the emitter's plane meets that plane only at its end, also
+  // at grazing angles (aimed from x but started eps above it, it crossed the plane beside the
+  // sample and hit the emitter).
+  const glm::vec3 from = x.position + eps_ * x.ng;
+  const glm::vec3 d = s.position - from;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > eps_ * eps_)) return glm::vec3(0.0f);
   const float dist = std::sqrt(dist2);
@@ -133,8 +138,7 @@ glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng, std::uint64_t salt) const
     break;
   }
   if (profile <= 0.0f) return glm::vec3(0.0f);
-  if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, dist - 2.0f * eps_, salt))
-    return glm::vec3(0.0f);
+  if (rays_.occluded(from, w, 0.0f, dist - eps_, salt)) return glm::vec3(0.0f);
   float weight = 1.0f; // punctual lights cannot be hit by scattering
   if (s.triangle >= 0) {
     const double light_pdf = s.pdf * dist2 / profile; // solid angle at x
