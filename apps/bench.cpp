@@ -1,4 +1,5 @@
 #include "apps/bench.h"
+#include "apps/bench_real_scenes.h"
 
 #include "core/analytic_scenes.h"
 #include "core/error.h"
@@ -35,15 +36,27 @@ struct Sweep {
   std::vector<std::uint32_t> rt_paths; // rt-vpl, Halton
   std::vector<std::uint32_t> spp;      // pt
   int large_levels;                    // 32 * 4^levels triangles
+  bool every_sequence = true;          // raster: every sequence (false: Halton only)
+  std::uint32_t raster_max = ~0u;      // raster: only the N up to this
+  std::uint32_t k1_max = ~0u;          // raster-k1: only the N up to this
 };
 
-Sweep sweep_for(const BenchOptions& o) {
+// The sweep of scene `name`. Real scenes (58k-64k triangles): every raster pass draws all of
+// them on llvmpipe, so they take a smaller image, fewer N and a cheaper reference.
+Sweep sweep_for(const BenchOptions& o, const std::string& name) {
   Sweep s =
       o.quick
           ? Sweep{64, 256, {16, 64}, {16}, {4, 16}, 7}
           : Sweep{
                 256, 4096, {16, 32, 64, 128, 256, 512, 1024}, {16, 64, 256}, {4, 16, 64, 256, 1024},
                 7};
+  if (name == "large") s.raster_max = o.quick ? 16u : 64u;
+  if (is_real_scene(name)) {
+    s = o.quick ? Sweep{64, 256, {16}, {16}, {4, 16}, 0}
+                : Sweep{128, 1024, {16, 64}, {16, 64}, {4, 16, 64, 256}, 0};
+    s.every_sequence = false;
+    s.k1_max = 16;
+  }
   if (o.size > 0) s.size = o.size;
   if (o.reference_spp > 0) s.reference_spp = o.reference_spp;
   return s;
@@ -58,7 +71,9 @@ struct BenchScene {
 BenchScene make_scene(const std::string& name, const BenchOptions& o, const Sweep& sw, Log& log) {
   const auto t0 = Clock::now();
   Scene s;
-  if (name == "cornell") {
+  if (is_real_scene(name)) {
+    s = load_real_scene(name, o.shared, log);
+  } else if (name == "cornell") {
     s = load_gltf(o.cornell, log);
   } else if (name == "sphere") {
     s = integrating_sphere(1.0, 0.7, o.quick ? 2 : 3).scene;
@@ -67,7 +82,8 @@ BenchScene make_scene(const std::string& name, const BenchOptions& o, const Swee
     subdivide(s, sw.large_levels);
     s.source = "cornell_subdivided";
   } else {
-    throw Error("", "--scene", "unknown bench scene '" + name + "' (cornell, sphere, large)");
+    throw Error("", "--scene",
+                "unknown bench scene '" + name + "' (cornell, sphere, large, zdm2, godot)");
   }
   return {name, std::move(s), since(t0)};
 }
@@ -93,108 +109,155 @@ void score(BenchRow& row, const Image& image, const Image& ref) {
   row.height = image.height();
 }
 
-BenchRow base_row(const BenchScene& b, const char* estimator) {
+BenchRow base_row(const BenchScene& b, double bvh, const char* estimator) {
   BenchRow row;
   row.scene = b.name;
   row.triangles = b.scene.triangle_count();
   row.estimator = estimator;
   row.load = b.load_seconds;
+  row.bvh = bvh;
   return row;
 }
 
+// One line per row; rows with VPLs add the cost per VPL (1 / vpls_per_second) and, for the
+// raster, its split into the shadow and shading passes' GPU time per VPL.
 void log_row(const BenchRow& r, Log& log) {
-  log.info(fmt::format("bench: {:8} {:7} {:16} N {:5} spp {:5} {:6.2f} s  relMSE {:.3e}", r.scene,
-                       r.estimator, r.sequence, r.paths, r.spp, r.total, r.relmse));
+  std::string line =
+      fmt::format("bench: {:8} {:9} {:16} N {:5} spp {:5} {:7.2f} s  relMSE {:.3e}", r.scene,
+                  r.estimator, r.sequence, r.paths, r.spp, r.total, r.relmse);
+  if (r.vpls > 0 && r.vpls_per_second > 0)
+    line += fmt::format("  {} VPLs {:.3f} ms/VPL", r.vpls, 1e3 / r.vpls_per_second);
+  const double vpls = static_cast<double>(r.vpls);
+  if (r.vpls > 0 && r.shadow >= 0 && r.shading >= 0)
+    line += fmt::format(" (shadow {:.3f}, shading {:.3f})", 1e3 * r.shadow / vpls,
+                        1e3 * r.shading / vpls);
+  log.info(line);
 }
 
-void bench_scene(const BenchScene& b, const Sweep& sw, const BenchOptions& o,
-                 std::vector<BenchRow>& rows, Log& log) {
-  const RayScene rays(b.scene);
-  const View view = make_view(b.scene.cameras.at(0), b.scene.bounds, sw.size, sw.size);
-  const Image ref = reference(b, rays, view, sw.reference_spp, o.out_dir, log);
+// The raster's N for one interleave factor (k = 1: the reference mode).
+std::vector<std::uint32_t> raster_paths(const Sweep& sw, int interleave) {
+  const std::uint32_t max = interleave == 1 ? std::min(sw.raster_max, sw.k1_max) : sw.raster_max;
+  std::vector<std::uint32_t> paths;
+  for (std::uint32_t n : sw.paths)
+    if (n <= max) paths.push_back(n);
+  return paths;
+}
 
-  // The default raster (interleaved, k = 4) over every sequence, and the reference mode (every
-  // VPL shades every pixel) with Halton, so both meet the other estimators on one plot.
-  std::vector<std::uint32_t> paths = sw.paths;
-  // The large scene's raster passes are slow on a CPU: a quick run takes only the first N there.
-  if (b.name == "large")
-    paths.erase(std::remove_if(paths.begin(), paths.end(),
-                               [&](std::uint32_t n) { return n > (o.quick ? 16u : 64u); }),
-                paths.end());
+// What every estimator of one scene's sweep is scored against.
+struct Target {
+  const BenchScene& b;
+  const RayScene& rays;
+  View view;
+  Image ref;
+  double bvh; // seconds to build `rays`
+};
+
+// The default raster (interleaved, k = 4) over every sequence (or Halton only), and the
+// reference mode (every VPL shades every pixel) with Halton, so both meet the other estimators
+// on one plot. The large and real scenes' raster passes are slow on a CPU: they take fewer N.
+void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
   for (int interleave : {4, 1}) {
+    const std::vector<std::uint32_t> paths = raster_paths(sw, interleave);
+    if (paths.empty()) continue;
     RasterOptions raster_options;
     raster_options.gpu_timers = true;
     raster_options.interleave = interleave;
-    RasterRenderer raster(b.scene, raster_options);
+    RasterRenderer raster(g.b.scene, raster_options);
     const char* estimator = interleave == 1 ? "raster-k1" : "raster";
     for (SequenceKind seq :
          {SequenceKind::Halton, SequenceKind::ScrambledHalton, SequenceKind::Random}) {
-      if (interleave == 1 && seq != SequenceKind::Halton) continue;
+      if ((interleave == 1 || !sw.every_sequence) && seq != SequenceKind::Halton) continue;
       for (std::uint32_t n : paths) {
-        BenchRow row = base_row(b, estimator);
+        BenchRow row = base_row(g.b, g.bvh, estimator);
         row.sequence = sequence_name(seq);
         row.paths = n;
         const auto t0 = Clock::now();
-        const VplSet vpls = quasi_random_walk(b.scene, rays, {n, 64, seq, 1}, log);
+        const VplSet vpls = quasi_random_walk(g.b.scene, g.rays, {n, 64, seq, 1}, log);
         row.walk = since(t0);
         RasterTimings t;
-        const Image image = raster.render(view, vpls, &t);
+        const Image image = raster.render(g.view, vpls, &t);
         row.total = since(t0);
         row.vpls = t.passes;
         row.shadow = t.shadow_gpu;
         row.shading = t.shading_gpu;
         row.readback = t.readback;
         row.vpls_per_second = static_cast<double>(t.passes) / (t.passes_seconds + t.readback);
-        score(row, image, ref);
+        score(row, image, g.ref);
         log_row(row, log);
         rows.push_back(row);
       }
     }
   }
+}
+
+// The same Halton VPLs with ray-traced visibility.
+void bench_rt_vpl(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
   for (std::uint32_t n : sw.rt_paths) {
-    BenchRow row = base_row(b, "rt-vpl");
+    BenchRow row = base_row(g.b, g.bvh, "rt-vpl");
     row.sequence = "halton";
     row.paths = n;
     const auto t0 = Clock::now();
-    const VplSet vpls = quasi_random_walk(b.scene, rays, {n, 64}, log);
+    const VplSet vpls = quasi_random_walk(g.b.scene, g.rays, {n, 64}, log);
     row.walk = since(t0);
     const auto t1 = Clock::now();
-    const Image image = trace_vpls(b.scene, rays, view, vpls, {0.05f, 0});
+    const Image image = trace_vpls(g.b.scene, g.rays, g.view, vpls, {0.05f, 0});
     row.trace = since(t1);
     row.total = since(t0);
     row.vpls = vpls.vpls.size();
     row.vpls_per_second = static_cast<double>(row.vpls) / row.trace;
-    score(row, image, ref);
+    score(row, image, g.ref);
     log_row(row, log);
     rows.push_back(row);
   }
+}
+
+// The path tracer with another seed than the reference's.
+void bench_pt(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
   for (std::uint32_t spp : sw.spp) {
-    BenchRow row = base_row(b, "pt");
+    BenchRow row = base_row(g.b, g.bvh, "pt");
     row.spp = spp;
     const auto t0 = Clock::now();
-    const Image image = path_trace(b.scene, rays, view, {spp, 1, 0, 1000});
+    const Image image = path_trace(g.b.scene, g.rays, g.view, {spp, 1, 0, 1000});
     row.trace = row.total = since(t0);
-    score(row, image, ref);
+    score(row, image, g.ref);
     log_row(row, log);
     rows.push_back(row);
   }
+}
+
+void bench_scene(const BenchScene& b, const Sweep& sw, const BenchOptions& o,
+                 std::vector<BenchRow>& rows, Log& log) {
+  const auto t0 = Clock::now();
+  const RayScene rays(b.scene);
+  const double bvh = since(t0);
+  log.info(fmt::format("bench: {}: {} triangles, load {:.3f} s, BVH {:.3f} s", b.name,
+                       b.scene.triangle_count(), b.load_seconds, bvh));
+  const View view = make_view(b.scene.cameras.at(0), b.scene.bounds, sw.size, sw.size);
+  const Target g{b, rays, view, reference(b, rays, view, sw.reference_spp, o.out_dir, log), bvh};
+  bench_raster(g, sw, rows, log);
+  bench_rt_vpl(g, sw, rows, log);
+  bench_pt(g, sw, rows, log);
 }
 
 } // namespace
 
 std::vector<BenchRow> run_bench(const BenchOptions& o, Log& log) {
   std::filesystem::create_directories(o.out_dir);
-  const Sweep sw = sweep_for(o);
   const std::vector<std::string> names =
       o.scenes.empty() ? std::vector<std::string>{"cornell", "sphere", "large"} : o.scenes;
   std::vector<BenchRow> rows;
   for (const std::string& name : names) {
+    const Sweep sw = sweep_for(o, name);
     const BenchScene b = make_scene(name, o, sw, log);
+    if (is_real_scene(name))
+      log.info("bench: wrote the lit copy " + write_lit_copy(b.scene, name, o.out_dir));
     bench_scene(b, sw, o, rows, log);
     write_bench_csv(rows, o.out_dir + "/bench.csv"); // after every scene: a long run keeps its rows
   }
   if (o.plots) write_bench_plots(rows, o.out_dir, log);
-  if (o.scale) run_scale_study(o, log);
+  // The Cornell box's triangle-count study: not for a run of real scenes only.
+  const bool only_real = !names.empty() && std::all_of(names.begin(), names.end(), is_real_scene);
+  if (o.scale && !only_real) run_scale_study(o, log);
   return rows;
 }
 
@@ -238,13 +301,13 @@ void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path)
   std::ofstream out(path);
   out << "scene,triangles,estimator,sequence,paths,spp,vpls,width,height,seconds_load,"
          "seconds_walk,seconds_shadow_gpu,seconds_shading_gpu,seconds_readback,seconds_trace,"
-         "seconds_total,vpls_per_second,rmse,relmse,mean_ratio\n";
+         "seconds_total,vpls_per_second,rmse,relmse,mean_ratio,seconds_bvh\n";
   for (const BenchRow& r : rows)
     out << fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f}\n",
+                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f}\n",
                        r.scene, r.triangles, r.estimator, r.sequence, r.paths, r.spp, r.vpls,
                        r.width, r.height, r.load, r.walk, r.shadow, r.shading, r.readback, r.trace,
-                       r.total, r.vpls_per_second, r.rmse, r.relmse, r.mean_ratio);
+                       r.total, r.vpls_per_second, r.rmse, r.relmse, r.mean_ratio, r.bvh);
   if (!out) throw Error(path, "", "cannot write");
 }
 

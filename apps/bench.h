@@ -15,11 +15,14 @@ struct BenchOptions {
   bool quick = false; // a smoke run in well under 2 minutes
   std::string out_dir = "out/bench";
   std::string cornell = "data/cornell_box.gltf";
-  std::vector<std::string> scenes; // subset of cornell, sphere, large (empty: all)
-  int size = 0;                    // image side; 0: 64 quick, 256 full
-  std::uint32_t reference_spp = 0; // 0: 256 quick, 4096 full
+  // The third-party scenes zdm2 and godot (apps/bench_real_scenes.h) are read from here.
+  std::string shared = "../shared/scenes";
+  // Any of cornell, sphere, large, zdm2, godot (empty: cornell, sphere, large).
+  std::vector<std::string> scenes;
+  int size = 0;                    // image side; 0: 64 quick, 256 full (zdm2, godot: 128)
+  std::uint32_t reference_spp = 0; // 0: 256 quick, 4096 full (zdm2, godot: 1024)
   bool plots = true;
-  bool scale = true; // the triangle-count study: OUT/scale.csv
+  bool scale = true; // the triangle-count study: OUT/scale.csv (never when only zdm2, godot run)
 };
 
 struct BenchRow {
@@ -30,12 +33,14 @@ struct BenchRow {
   std::uint32_t paths = 0, spp = 0;
   std::size_t vpls = 0;
   int width = 0, height = 0;
-  double load = 0, walk = 0, shadow = -1, shading = -1, readback = 0, trace = 0, total = 0;
+  double load = 0, bvh = 0, walk = 0, shadow = -1, shading = -1, readback = 0, trace = 0, total = 0;
   double vpls_per_second = 0;
   double rmse = 0, relmse = 0, mean_ratio = 0;
 };
 
-// Runs the sweep, writes OUT/bench.csv (and plots), returns the rows.
+// Runs the sweep, writes OUT/bench.csv (and plots), returns the rows. zdm2 and godot run a
+// smaller sweep (raster with Halton only, N in {16, 64}; pt up to 256 spp) and leave their lit
+// copy in OUT (lit_NAME.gltf).
 std::vector<BenchRow> run_bench(const BenchOptions& options, Log& log);
 
 void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path);

@@ -1,4 +1,5 @@
-// irad bench [--quick] [-o DIR] [--scene NAME]...: speed against error (apps/bench.h).
+// irad bench [--quick] [-o DIR] [--scene NAME,...] [--shared DIR]: speed against error
+// (apps/bench.h).
 // irad bench --load FILE [--runs N] [-o DIR]: load, BVH and upload time and memory of one scene
 // (apps/load_bench.h).
 #include "apps/bench.h"
@@ -20,16 +21,23 @@ void add_bench_command(CLI::App& app, Commands& commands) {
   cmd->add_option("-o,--output", options->out_dir, "Output folder (CSV, plots, cached references)")
       ->capture_default_str();
   cmd->add_option("--cornell", options->cornell, "The Cornell box glTF")->capture_default_str();
-  cmd->add_option("--scene", options->scenes, "Only these scenes: cornell, sphere, large")
-      ->check(CLI::IsMember({"cornell", "sphere", "large"}));
-  cmd->add_option("--size", options->size, "Image side (default 64 quick, 256 full)");
+  cmd->add_option("--scene", options->scenes,
+                  "Only these scenes, comma-separated: cornell, sphere, large (the default set), "
+                  "zdm2, godot (third-party levels from --shared, with a light and camera added)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"cornell", "sphere", "large", "zdm2", "godot"}));
+  cmd->add_option("--shared", options->shared, "Folder of the third-party scenes (zdm2, godot)")
+      ->capture_default_str();
+  cmd->add_option("--size", options->size,
+                  "Image side (default 64 quick, 256 full, 128 for zdm2 and godot)");
   cmd->add_option("--reference-spp", options->reference_spp,
-                  "Path-traced reference samples per pixel (default 256 quick, 4096 full)");
+                  "Path-traced reference samples per pixel (default 256 quick, 4096 full, 1024 for "
+                  "zdm2 and godot)");
   cmd->add_flag(
       "--no-plots", [options](std::int64_t) { options->plots = false; }, "Write the CSV only");
   cmd->add_flag(
       "--no-scale", [options](std::int64_t) { options->scale = false; },
-      "Skip the triangle-count study");
+      "Skip the triangle-count study (skipped anyway when only zdm2 and godot run)");
   cmd->add_option("--load", load->file,
                   "Instead of the sweep: time and peak memory of loading this glTF/GLB (load, "
                   "BVH, GL upload); writes OUT/load.csv")
