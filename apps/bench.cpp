@@ -95,7 +95,9 @@ Image reference(const BenchScene& b, const RayScene& rays, const View& view, std
       fmt::format("{}/ref_{}_{}x{}_spp{}_seed0.exr", out_dir, b.name, view.width, view.height, spp);
   if (std::filesystem::exists(path)) return read_exr(path);
   log.info(fmt::format("bench: path-tracing the {} reference ({} spp)", b.name, spp));
+  const auto t0 = Clock::now();
   const Image image = path_trace(b.scene, rays, view, {spp, 0, 0, 1000});
+  log.info(fmt::format("bench: the {} reference took {:.1f} s", b.name, since(t0)));
   write_exr(path, image);
   return image;
 }
