@@ -49,14 +49,9 @@ const RealScene& find(const std::string& name) {
 
 } // namespace
 
-const std::vector<std::string>& real_scene_names() {
-  static const std::vector<std::string> names{"zdm2", "godot"};
-  return names;
-}
-
 bool is_real_scene(const std::string& name) {
-  const std::vector<std::string>& names = real_scene_names();
-  return std::find(names.begin(), names.end(), name) != names.end();
+  return std::any_of(kScenes.begin(), kScenes.end(),
+                     [&](const RealScene& s) { return name == s.name; });
 }
 
 Scene load_real_scene(const std::string& name, const std::string& shared_dir, Log& log) {

@@ -6,13 +6,11 @@
 #include "core/scene.h"
 
 #include <string>
-#include <vector>
 
 namespace irad::apps {
 
-// zdm2 (zdm2/zdm2.glb, 58k triangles, no materials: albedo 1) and godot
+// Whether `name` is one: zdm2 (zdm2/zdm2.glb, 58k triangles, no materials: albedo 1) or godot
 // (godot_occlusion_room/room.glb, 64k triangles, 17 meshes).
-const std::vector<std::string>& real_scene_names();
 bool is_real_scene(const std::string& name);
 
 // Loads real scene `name` from shared_dir and adds its light and camera (the scene's only ones).
