@@ -1,5 +1,6 @@
 #include "core/light_sampler.h"
 
+#include "core/cdf.h"
 #include "core/error.h"
 
 #include <algorithm>
@@ -48,6 +49,17 @@ glm::vec3 uniform_sphere(double u, double v) {
   const double phi = 2.0 * pi * v;
   return {static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)),
           static_cast<float>(z)};
+}
+
+// The point of the disk of radius `radius` around `centre`, perpendicular to unit d, at (u, v):
+// uniform in area (r = radius sqrt(u), phi = 2 pi v).
+glm::vec3 disk_point(const glm::vec3& centre, const glm::vec3& d, float radius, double u,
+                     double v) {
+  glm::vec3 t, b;
+  orthonormal_basis(d, t, b);
+  const double r = radius * std::sqrt(u), phi = 2.0 * pi * v;
+  return centre + static_cast<float>(r * std::cos(phi)) * t +
+         static_cast<float>(r * std::sin(phi)) * b;
 }
 
 glm::vec3 to_world(const glm::vec3& n, const glm::vec3& local) {
@@ -100,9 +112,11 @@ LightSampler::LightSampler(const Scene& scene, LightAllocation allocation) {
   }
   const std::size_t groups = scene.materials.size() + scene.lights.size() + 1;
   if (scene.has_environment()) {
-    environment_ = scene.environment.get();
-    const double p = pi * double(radius_) * radius_ * environment_->mean_radiance_integral();
-    if (p > 0.0) entries_.push_back({kEnvironment, p, groups - 1});
+    const double p = pi * double(radius_) * radius_ * scene.environment->mean_radiance_integral();
+    if (p > 0.0) {
+      entries_.push_back({kEnvironment, p, groups - 1});
+      environment_ = scene.environment.get();
+    }
   }
   // Selection weights: the power, or under uniform allocation the power within the light divided
   // by the light's power (every light then weighs 1).
@@ -116,16 +130,12 @@ LightSampler::LightSampler(const Scene& scene, LightAllocation allocation) {
   }
   for (double& c : cdf_) c /= sum;
   if (!cdf_.empty()) cdf_.back() = 1.0;
-  if (!entries_.empty() && entries_.back().triangle == kEnvironment)
-    environment_probability_ = 1.0 - (cdf_.size() > 1 ? cdf_[cdf_.size() - 2] : 0.0);
 }
 
 LightStart LightSampler::sample(const Scene& scene, double u, double v) const {
-  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-  const std::size_t k = std::min<std::size_t>(it - cdf_.begin(), cdf_.size() - 1);
-  const double lo = k == 0 ? 0.0 : cdf_[k - 1];
-  const double prob = cdf_[k] - lo;
-  const double u_rest = std::clamp((u - lo) / prob, 0.0, std::nextafter(1.0, 0.0));
+  double u_rest = 0.0;
+  const std::size_t k = pick_from_cdf(cdf_.data(), cdf_.size(), u, u_rest);
+  const double prob = probability(k);
 
   LightStart s;
   const Entry& e = entries_[k];
@@ -168,12 +178,8 @@ LightStart LightSampler::punctual(const PunctualLight& light, double prob, doubl
     // Uniform on the disk of radius R perpendicular to d whose rays along d cover the bounding
     // sphere; the disk lies 1 % of R upstream of the sphere (area density 1 / (pi R^2)).
     s.kind = VplKind::Directional;
-    glm::vec3 t, b;
-    orthonormal_basis(light.direction, t, b);
-    const double r = radius_ * std::sqrt(u), phi = 2.0 * pi * v;
-    s.position = centre_ - 1.01f * radius_ * light.direction +
-                 static_cast<float>(r * std::cos(phi)) * t +
-                 static_cast<float>(r * std::sin(phi)) * b;
+    s.position =
+        disk_point(centre_ - 1.01f * radius_ * light.direction, light.direction, radius_, u, v);
     s.disk_area = static_cast<float>(pi * radius_ * radius_);
     break;
   }
@@ -195,16 +201,7 @@ LightStart LightSampler::environment(double prob, double u, double v) const {
 }
 
 double LightSampler::environment_pdf(const glm::vec3& w) const {
-  return environment_ ? environment_probability_ * environment_->pdf(w) : 0.0;
-}
-
-LightSampler::Powers LightSampler::powers() const {
-  Powers p;
-  for (const Entry& e : entries_)
-    (e.triangle >= 0              ? p.emitters
-     : e.triangle == kEnvironment ? p.environment
-                                  : p.punctual) += e.power;
-  return p;
+  return environment_ ? probability(cdf_.size() - 1) * environment_->pdf(w) : 0.0;
 }
 
 double LightSampler::area_pdf(const Scene& scene, std::size_t t) const {
@@ -214,9 +211,7 @@ double LightSampler::area_pdf(const Scene& scene, std::size_t t) const {
       std::lower_bound(entries_.begin(), end, static_cast<std::int64_t>(t),
                        [](const Entry& e, std::int64_t key) { return e.triangle < key; });
   if (it == end || it->triangle != static_cast<std::int64_t>(t)) return 0.0;
-  const std::size_t k = static_cast<std::size_t>(it - entries_.begin());
-  const double prob = cdf_[k] - (k == 0 ? 0.0 : cdf_[k - 1]);
-  return prob / triangle_area(scene, t);
+  return probability(static_cast<std::size_t>(it - entries_.begin())) / triangle_area(scene, t);
 }
 
 LightDirection LightSampler::direction(const LightStart& start, double u, double v) const {
@@ -247,12 +242,7 @@ LightDirection LightSampler::direction(const LightStart& start, double u, double
   }
   case VplKind::Directional: {
     if (!start.environment) return {start.normal, o, start.disk_area};
-    glm::vec3 t, b;
-    orthonormal_basis(start.normal, t, b);
-    const double r = radius_ * std::sqrt(u), phi = 2.0 * pi * v;
-    const glm::vec3 origin =
-        o + static_cast<float>(r * std::cos(phi)) * t + static_cast<float>(r * std::sin(phi)) * b;
-    return {start.normal, origin, start.disk_area};
+    return {start.normal, disk_point(o, start.normal, radius_, u, v), start.disk_area};
   }
   }
   return {};

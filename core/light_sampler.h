@@ -76,13 +76,6 @@ public:
   // P(env) p(w): the solid-angle density with which sample() gives an environment start toward
   // the sky along unit w (0 without an environment), for multiple importance sampling.
   double environment_pdf(const glm::vec3& w) const;
-  // The probability that sample() picks the environment, and the power of each kind of light
-  // (for --stats).
-  double environment_probability() const { return environment_probability_; }
-  struct Powers {
-    double emitters = 0.0, punctual = 0.0, environment = 0.0;
-  };
-  Powers powers() const;
 
 private:
   static constexpr std::int64_t kEnvironment = std::numeric_limits<std::int64_t>::min();
@@ -93,6 +86,7 @@ private:
   };
   LightStart punctual(const PunctualLight& light, double prob, double u, double v) const;
   LightStart environment(double prob, double u, double v) const;
+  double probability(std::size_t k) const { return cdf_[k] - (k == 0 ? 0.0 : cdf_[k - 1]); }
 
   std::vector<Entry> entries_; // emissive triangles (increasing index), then punctual lights
   std::size_t triangle_entries_ = 0;
@@ -100,8 +94,7 @@ private:
   double total_power_ = 0.0;
   glm::vec3 centre_{0.0f}; // bounding sphere of the scene (directional lights)
   float radius_ = 0.0f;
-  const Environment* environment_ = nullptr; // the scene's, when it carries light
-  double environment_probability_ = 0.0;
+  const Environment* environment_ = nullptr; // the scene's when it is an entry (the last one)
 };
 
 // Cosine-distributed unit direction around n: theta = asin(sqrt(u)), phi = 2 pi v (pdf cos/pi).

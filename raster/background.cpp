@@ -9,7 +9,6 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <glm/gtc/type_ptr.hpp>
-#include <numbers>
 
 namespace irad::gl {
 
@@ -122,10 +121,9 @@ void Background::set_suns(const Scene& scene) const {
   std::vector<glm::vec3> toward, radiance;
   std::vector<float> cosines;
   for (const PunctualLight* l : visible_suns(scene)) {
-    const float s = std::sin(l->angular_radius);
     toward.push_back(-glm::normalize(l->direction));
     cosines.push_back(std::cos(l->angular_radius));
-    radiance.push_back(l->intensity / (std::numbers::pi_v<float> * s * s));
+    radiance.push_back(sun_disk_radiance(*l)); // core/scene.h, the CPU estimators' value
   }
   api.Uniform3fv(program_.uniform("u_sun_toward"), suns_, glm::value_ptr(toward.front()));
   api.Uniform1fv(program_.uniform("u_sun_cos"), suns_, cosines.data());

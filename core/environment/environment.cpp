@@ -1,5 +1,6 @@
 #include "core/environment/environment.h"
 
+#include "core/cdf.h"
 #include "core/error.h"
 
 #include <algorithm>
@@ -13,33 +14,19 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// Index of the first entry of the inclusive CDF [first, first + n) above u, and u rescaled to
-// [0, 1) within it.
-std::size_t pick(const double* cdf, std::size_t n, double u, double& rest) {
-  const double* it = std::upper_bound(cdf, cdf + n, u);
-  std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - cdf), n - 1);
-  // Skip zero-width entries at the end (u at or above the last positive step).
-  while (k > 0 && cdf[k] == cdf[k - 1] && !(u < cdf[k])) --k;
-  const double lo = k == 0 ? 0.0 : cdf[k - 1];
-  const double width = cdf[k] - lo;
-  rest = width > 0.0 ? std::clamp((u - lo) / width, 0.0, std::nextafter(1.0, 0.0)) : 0.5;
-  return k;
-}
-
-void check_map(const Image& map, const std::string& source) {
+void check_aspect(const Image& map, const std::string& source) {
   if (map.width() < 2 || map.width() != 2 * map.height())
     throw Error(source, "",
                 fmt::format("an equirectangular map is twice as wide as high, got {}x{}",
                             map.width(), map.height()));
-  for (int y = 0; y < map.height(); ++y)
-    for (int x = 0; x < map.width(); ++x) {
-      const glm::vec3 c(map.at(x, y));
-      for (int k = 0; k < 3; ++k)
-        if (!std::isfinite(c[k]) || c[k] < 0.0f)
-          throw Error(
-              source, "",
-              fmt::format("texel ({}, {}) is {}: radiance must be finite and >= 0", x, y, c[k]));
-    }
+}
+
+void check_texel(const glm::vec3& c, std::size_t x, std::size_t y, const std::string& source) {
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(c[k]) || c[k] < 0.0f)
+      throw Error(
+          source, "",
+          fmt::format("texel ({}, {}) is {}: radiance must be finite and >= 0", x, y, c[k]));
 }
 
 } // namespace
@@ -62,10 +49,10 @@ glm::vec3 Environment::map_direction(double u, double v) {
 }
 
 Environment::Environment(Image map, float strength, float rotation, std::string source)
-    : map_(std::move(map)), strength_(strength), rotation_(rotation), source_(std::move(source)) {
-  check_map(map_, source_);
-  if (!(strength_ >= 0.0f) || !std::isfinite(strength_))
-    throw Error(source_, "--env-strength", "must be a finite number >= 0");
+    : map_(std::move(map)), strength_(strength), rotation_(rotation),
+      cos_rotation_(std::cos(rotation)), sin_rotation_(std::sin(rotation)),
+      source_(std::move(source)) {
+  check_aspect(map_, source_);
   const std::size_t w = static_cast<std::size_t>(map_.width());
   const std::size_t h = static_cast<std::size_t>(map_.height());
   luminance_.resize(w * h);
@@ -78,7 +65,9 @@ Environment::Environment(Image map, float strength, float rotation, std::string 
                           std::cos(pi * static_cast<double>(i + 1) / static_cast<double>(h)));
     double row = 0.0;
     for (std::size_t j = 0; j < w; ++j) {
-      const glm::vec3 l = strength_ * glm::vec3(map_.at(static_cast<int>(j), static_cast<int>(i)));
+      const glm::vec3 texel(map_.at(static_cast<int>(j), static_cast<int>(i)));
+      check_texel(texel, j, i, source_); // in row order, before anything uses it
+      const glm::vec3 l = strength_ * texel;
       luminance_[i * w + j] = luminance(l);
       row += static_cast<double>(luminance_[i * w + j]) * omega;
       column_cdf_[i * w + j] = row;
@@ -94,22 +83,28 @@ Environment::Environment(Image map, float strength, float rotation, std::string 
   mean_integral_ = mean;
   for (double& c : row_cdf_) c = rows > 0.0 ? c / rows : 0.0;
   if (rows > 0.0) row_cdf_.back() = 1.0;
+  if (!(strength_ >= 0.0f) || !std::isfinite(strength_))
+    throw Error(source_, "--env-strength", "must be a finite number >= 0");
+}
+
+Image Environment::uniform_map(const glm::vec3& radiance) {
+  Image map(2, 1);
+  map.at(0, 0) = map.at(1, 0) = glm::vec4(radiance, 1.0f);
+  return map;
 }
 
 Environment Environment::uniform(const glm::vec3& radiance, std::string source) {
-  Image map(2, 1);
-  map.at(0, 0) = map.at(1, 0) = glm::vec4(radiance, 1.0f);
-  return Environment(std::move(map), 1.0f, 0.0f, std::move(source));
+  return Environment(uniform_map(radiance), 1.0f, 0.0f, std::move(source));
 }
 
 glm::vec3 Environment::to_map(const glm::vec3& w) const {
-  const float c = std::cos(rotation_), s = std::sin(rotation_);
+  const float c = cos_rotation_, s = sin_rotation_;
   // R_y(-a): x' = c x - s z, z' = s x + c z (R_y(a) takes +Z toward +X: x' = c x + s z).
   return {c * w.x - s * w.z, w.y, s * w.x + c * w.z};
 }
 
 glm::vec3 Environment::to_world(const glm::vec3& d) const {
-  const float c = std::cos(rotation_), s = std::sin(rotation_);
+  const float c = cos_rotation_, s = sin_rotation_;
   return {c * d.x + s * d.z, d.y, -s * d.x + c * d.z};
 }
 
@@ -137,8 +132,8 @@ EnvironmentSample Environment::sample(double u, double v) const {
   const std::size_t w = static_cast<std::size_t>(map_.width());
   const std::size_t h = static_cast<std::size_t>(map_.height());
   double u_rest = 0.0, v_rest = 0.0;
-  const std::size_t i = pick(row_cdf_.data(), h, u, u_rest);
-  const std::size_t j = pick(column_cdf_.data() + i * w, w, v, v_rest);
+  const std::size_t i = pick_from_cdf(row_cdf_.data(), h, u, u_rest);
+  const std::size_t j = pick_from_cdf(column_cdf_.data() + i * w, w, v, v_rest);
   // Uniform in solid angle within the texel: cos theta uniform between the row's edges, phi
   // uniform across the column.
   const double c0 = std::cos(pi * static_cast<double>(i) / static_cast<double>(h));

@@ -41,9 +41,14 @@ public:
   // >= 0 (the loader checks; here a violation throws irad::Error naming `source`). strength scales
   // the radiance; rotation in radians about +Y.
   Environment(Image map, float strength, float rotation, std::string source);
-  // A uniform environment of radiance `radiance` (a 2 x 1 map).
+  // A uniform environment of radiance `radiance`: uniform_map(radiance), strength 1, no rotation.
   static Environment uniform(const glm::vec3& radiance, std::string source);
+  // The 2 x 1 map of a uniform environment.
+  static Image uniform_map(const glm::vec3& radiance);
 
+  // Where the map's direction d lies in the world: R_y(rotation) d (what turns with the map, as
+  // the sky's sun does).
+  glm::vec3 to_world(const glm::vec3& d) const;
   // L(w) for a unit world direction (nearest texel, strength applied).
   glm::vec3 radiance(const glm::vec3& w) const;
   // A direction from (u, v) in [0, 1)^2 with the density above: u picks the row and then (rescaled)
@@ -73,13 +78,13 @@ public:
   static glm::vec3 map_direction(double u, double v);
 
 private:
-  glm::vec3 to_map(const glm::vec3& w) const;   // R_y(-rotation) w
-  glm::vec3 to_world(const glm::vec3& d) const; // R_y(rotation) d
+  glm::vec3 to_map(const glm::vec3& w) const; // R_y(-rotation) w
   std::size_t texel_of(const glm::vec3& d) const;
 
   Image map_;
   float strength_ = 1.0f;
   float rotation_ = 0.0f;
+  float cos_rotation_ = 1.0f, sin_rotation_ = 0.0f; // of rotation_, once (every lookup turns)
   std::string source_;
   std::vector<float> luminance_;   // lum(L_ij) per texel (strength applied)
   std::vector<double> row_cdf_;    // inclusive prefix sums of row weights / total, size height

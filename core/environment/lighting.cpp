@@ -63,9 +63,7 @@ void add_sky(Scene& scene, const LightingOptions& o, Log& log) {
   if (std::optional<PunctualLight> sun = preetham_sun(sky)) {
     sun->intensity *= o.strength;
     // The sun turns with the map (--env-rotate), as its sky does.
-    const float a = radians(o.rotate_degrees), c = std::cos(a), s = std::sin(a);
-    const glm::vec3 d = sun->direction;
-    sun->direction = glm::normalize(glm::vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z));
+    sun->direction = glm::normalize(scene.environment->to_world(sun->direction));
     scene.lights.push_back(*sun);
   } else {
     log.warn(fmt::format("--sky: the sun is at or below the horizon (elevation {}): the clear-sky "
@@ -82,19 +80,16 @@ void light_scene(Scene& scene, const LightingOptions& o, Log& log) {
     scene.environment = make_environment(read_environment_map(o.env, "--env"), o, o.env);
   } else if (o.env_color) {
     const glm::vec3 c = *o.env_color;
-    Image map(2, 1);
-    map.at(0, 0) = map.at(1, 0) = glm::vec4(c, 1.0f);
-    scene.environment =
-        make_environment(std::move(map), o, fmt::format("uniform {},{},{}", c.x, c.y, c.z));
+    scene.environment = make_environment(Environment::uniform_map(c), o,
+                                         fmt::format("uniform {},{},{}", c.x, c.y, c.z));
   } else if (!o.sky.empty()) {
     add_sky(scene, o, log);
   } else if (!has_own_light(scene) && o.env != "none") {
     log.warn(scene.source + ": the scene has no light of its own (no emissive material, no "
                             "KHR_lights_punctual light): lit by a uniform white environment of "
                             "radiance 1 (--env none refuses such scenes)");
-    Image map(2, 1);
-    map.at(0, 0) = map.at(1, 0) = glm::vec4(1.0f);
-    scene.environment = make_environment(std::move(map), o, "uniform 1,1,1 (default)");
+    scene.environment =
+        make_environment(Environment::uniform_map(glm::vec3(1.0f)), o, "uniform 1,1,1 (default)");
   }
   if (!has_own_light(scene) && !scene.has_environment())
     throw Error(scene.source, o.env == "none" ? "--env none" : "",
