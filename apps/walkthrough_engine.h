@@ -12,7 +12,7 @@
 // traced: the lighting lags the motion by up to N frames.
 #include "core/log.h"
 #include "core/scene.h"
-#include "raster/gl_backend.h"
+#include "raster/context/gl_backend.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "walk/quasi_random_walk.h"

@@ -2,19 +2,19 @@
 
 #include "core/error.h"
 #include "core/rng.h"
-#include "raster/background.h"
-#include "raster/batched_passes.h"
-#include "raster/camera_passes.h"
-#include "raster/directional_pass.h"
-#include "raster/gl_context.h"
-#include "raster/gpu_scene.h"
-#include "raster/interleaved.h"
-#include "raster/jitter_passes.h"
-#include "raster/pass_timer.h"
-#include "raster/pixel_jitter.h"
-#include "raster/shadow_cube.h"
-#include "raster/target.h"
-#include "raster/vpl_shader.h"
+#include "raster/passes/background.h"
+#include "raster/passes/batched_passes.h"
+#include "raster/passes/camera_passes.h"
+#include "raster/passes/directional_pass.h"
+#include "raster/context/gl_context.h"
+#include "raster/scene/gpu_scene.h"
+#include "raster/image/interleaved.h"
+#include "raster/image/jitter_passes.h"
+#include "raster/context/pass_timer.h"
+#include "raster/image/pixel_jitter.h"
+#include "raster/shadow/shadow_cube.h"
+#include "raster/image/target.h"
+#include "raster/passes/vpl_shader.h"
 
 #include <algorithm>
 #include <chrono>
@@ -100,7 +100,7 @@ struct RasterRenderer::Impl {
   std::size_t vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
                          const ShadowFor& shadow_for, float texel_angle, gl::PassTimer* timer,
                          const Progress& progress);
-  // vpl_passes with the VPLs drawn in batches (raster/batched_passes.h), directional ones alone.
+  // vpl_passes with the VPLs drawn in batches (raster/passes/batched_passes.h), directional ones alone.
   std::size_t batched_passes(const View& view, const std::vector<const Vpl*>& vpls,
                              gl::PassTimer* timer, const Progress& progress);
   // Binds the VPL's framebuffer and viewport and returns the view-projection it is shaded with;
@@ -162,7 +162,7 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
   for (const Vpl* v : vpls)
     (v->kind == VplKind::Directional || v->mirror >= 0 ? alone : many).push_back(v);
   // VPLs of one direction next to each other (a directional light's, a sun's): the orthographic
-  // map is drawn once per run of equal directions (raster/ortho_shadow.h), not once per change
+  // map is drawn once per run of equal directions (raster/shadow/ortho_shadow.h), not once per change
   // (a sun's VPLs alternate with the sky's in path order). The sum does not depend on the order.
   std::stable_sort(alone.begin(), alone.end(), [](const Vpl* a, const Vpl* b) {
     const bool da = a->kind == VplKind::Directional, db = b->kind == VplKind::Directional;

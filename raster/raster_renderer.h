@@ -6,7 +6,7 @@
 #include "core/scene.h"
 #include "core/view.h"
 #include "core/vpl.h"
-#include "raster/gl_backend.h"
+#include "raster/context/gl_backend.h"
 
 #include <atomic>
 #include <functional>
@@ -26,10 +26,10 @@ struct RasterOptions {
   // geometry-aware k x k resolve. 4 is the default: at equal time it wins on error against the
   // path tracer (docs/performance.md).
   int interleave = 4;
-  // Jittered low-discrepancy sampling (raster/pixel_jitter.h): every VPL pass, and the emitters,
+  // Jittered low-discrepancy sampling (raster/image/pixel_jitter.h): every VPL pass, and the emitters,
   // at a sub-pixel offset, so the accumulation antialiases geometric edges.
   bool jitter = false;
-  // VPLs per batch (raster/batched_passes.h): their shadow cubes in one atlas by one instanced
+  // VPLs per batch (raster/passes/batched_passes.h): their shadow cubes in one atlas by one instanced
   // draw, their shading by one instanced draw per interleaved set. 1: one shadow cube and one
   // shading pass per VPL (the reference, the same image). 16 was the fastest of 8..64 at 512x512
   // (docs/performance.md). Jitter, directional VPLs and render_cached take the per-VPL passes.

@@ -1,15 +1,15 @@
 #include "raster/ring_renderer.h"
 
 #include "core/error.h"
-#include "raster/background.h"
-#include "raster/camera_passes.h"
-#include "raster/directional_pass.h"
-#include "raster/gl_context.h"
-#include "raster/gpu_scene.h"
-#include "raster/shaders.h"
-#include "raster/shadow_cube.h"
-#include "raster/target.h"
-#include "raster/vpl_shader.h"
+#include "raster/passes/background.h"
+#include "raster/passes/camera_passes.h"
+#include "raster/passes/directional_pass.h"
+#include "raster/context/gl_context.h"
+#include "raster/scene/gpu_scene.h"
+#include "raster/glsl/shaders.h"
+#include "raster/shadow/shadow_cube.h"
+#include "raster/image/target.h"
+#include "raster/passes/vpl_shader.h"
 
 #include <fmt/format.h>
 

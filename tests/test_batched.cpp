@@ -1,4 +1,4 @@
-// Batched VPL passes (RasterOptions::batch > 1, raster/batched_passes.h) against the per-VPL
+// Batched VPL passes (RasterOptions::batch > 1, raster/passes/batched_passes.h) against the per-VPL
 // passes (batch = 1, the reference) with the same VPLs, and against Lambert's formula.
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
 #include "core/gltf/loader.h"

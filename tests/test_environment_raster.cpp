@@ -1,8 +1,8 @@
-// The raster's background (raster/background.h): pixels that see no surface show the distant
+// The raster's background (raster/passes/background.h): pixels that see no surface show the distant
 // environment's L(w) for the ray through the pixel centre (core/environment/environment.h, the same
 // texel as Environment::radiance) and the disks of visible suns; `visible = false` shows nothing
 // there and changes no lit pixel. The environment also lights the scene through directional VPLs
-// (raster/directional_pass.h).
+// (raster/passes/directional_pass.h).
 //
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
 #include "core/environment/environment.h"

@@ -4,10 +4,10 @@
 #include "core/gltf/loader.h"
 #include "core/image_metrics.h"
 #include "core/view.h"
-#include "raster/gl_context.h"
+#include "raster/context/gl_context.h"
 #include "raster/raster_renderer.h"
-#include "raster/shader_program.h"
-#include "raster/target.h"
+#include "raster/context/shader_program.h"
+#include "raster/image/target.h"
 #include "walk/quasi_random_walk.h"
 
 #include <gtest/gtest.h>

@@ -8,10 +8,10 @@
 #include "core/radical_inverse.h"
 #include "core/scene_builder.h"
 #include "core/view.h"
-#include "raster/gl_context.h"
+#include "raster/context/gl_context.h"
 #include "raster/raster_renderer.h"
-#include "raster/shader_program.h"
-#include "raster/target.h"
+#include "raster/context/shader_program.h"
+#include "raster/image/target.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
@@ -450,7 +450,7 @@ TEST(HardCases, NoLightLeaksThroughATwoMillimetreWall) {
 // The receiver-slope term of the former shadow bias, dist * texel * (1 + min(tan_x, 8)) with
 // texel = 2/256, was up to 0.07 m at 1 m from the VPL: far thicker than the wall, so B's surfaces
 // near the wall passed the shadow test (265 lit pixels, up to 0.149 m from the wall). The
-// normal-offset lookup (raster/shaders.h) moves the receiver by dist * texel * sin_x along its
+// normal-offset lookup (raster/glsl/shaders.h) moves the receiver by dist * texel * sin_x along its
 // normal and keeps only the constant bias. Measured: 4 seam pixels within 2 mm of the wall
 // (max 0.021) at 256^2; this bound asks for that: light in B only at the seams.
 TEST(HardCases, RasterShadowsHoldAtATwoMillimetreWall) {

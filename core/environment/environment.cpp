@@ -35,7 +35,7 @@ glm::vec2 Environment::map_coordinates(const glm::vec3& d) {
   const double u =
       0.5 + std::atan2(static_cast<double>(d.z), static_cast<double>(d.x)) / (2.0 * pi);
   // acos(y) as atan2(|(x, z)|, y): the same for unit d, exact near the poles, and the formula
-  // the raster's GLSL uses (raster/environment_glsl.h; GLSL's acos is imprecise on llvmpipe).
+  // the raster's GLSL uses (raster/glsl/environment_glsl.h; GLSL's acos is imprecise on llvmpipe).
   const double x = d.x, z = d.z;
   const double v = std::atan2(std::sqrt(x * x + z * z), static_cast<double>(d.y)) / pi;
   return {static_cast<float>(u), static_cast<float>(v)};

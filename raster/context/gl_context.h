@@ -1,0 +1,90 @@
+#pragma once
+// A current OpenGL 3.3+ core context with its glad function table. The renderer draws only into
+// framebuffer objects, so no backend needs a window. Backends: OSMesa (llvmpipe on the CPU, the
+// embedded default) and EGL (a GPU through EGL_EXT_platform_device, or Mesa's surfaceless
+// platform).
+// Internal to raster/: the GL types stay out of the public headers.
+#include "raster/context/gl_backend.h"
+
+#include <exception>
+#include <functional>
+#include <glad/gl.h>
+#include <memory>
+#include <string>
+
+namespace irad::gl {
+
+class Context {
+public:
+  virtual ~Context() = default;
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  const GladGLContext& api() const { return api_; }
+  virtual std::string backend() const = 0;
+  // Makes this context current on the calling thread (another context may have been made
+  // current since this one was created).
+  virtual void make_current() = 0;
+  // Makes no context current on the calling thread.
+  virtual void release() noexcept = 0;
+  std::string renderer() const; // GL_RENDERER and GL_VERSION
+
+  // Throws irad::Error naming `where` when glGetError reports an error.
+  void check(const char* where) const;
+
+  // Routes the driver's KHR_debug messages (where the extension exists) to `sink`, one line each,
+  // synchronously on the rendering thread; notifications are left out. The sink must outlive
+  // the context or be replaced.
+  void route_debug_messages(std::function<void(const std::string&)> sink);
+
+protected:
+  Context() = default;
+  GladGLContext api_{};
+
+private:
+  friend class CurrentScope;
+  std::function<void(const std::string&)> debug_sink_;
+  int scopes_ = 0; // CurrentScope nesting depth
+};
+
+// The context current for a scope, then none. The renderers' public calls hold one, so they
+// leave no context current: another API's context can then be made current on the same thread
+// between calls (the walkthrough window's GLX context, apps/window_viewer.cpp; libglvnd refuses a
+// GLX context while an EGL one is current: X error BadAccess). Nested scopes of one context keep
+// it current until the outermost ends.
+class CurrentScope {
+public:
+  explicit CurrentScope(Context& context) : context_(context) {
+    if (context_.scopes_ == 0) context_.make_current();
+    ++context_.scopes_;
+  }
+  ~CurrentScope() {
+    if (--context_.scopes_ == 0) context_.release();
+  }
+  CurrentScope(const CurrentScope&) = delete;
+  CurrentScope& operator=(const CurrentScope&) = delete;
+
+private:
+  Context& context_;
+};
+
+// For a renderer's destructor: makes `context` current so that the GL objects destroyed next are
+// deleted in their own context; if that fails they go with the context itself. Never throws.
+inline void make_current_for_teardown(Context& context) noexcept {
+  try {
+    context.make_current();
+  } catch (const std::exception&) {
+  }
+}
+
+// Auto: an EGL hardware device when there is one (or `device` >= 0 asks for one), else OSMesa,
+// else EGL surfaceless. Throws irad::Error naming the backend when it cannot be had.
+std::unique_ptr<Context> create_context(GlBackend backend, int device = -1);
+
+std::unique_ptr<Context> create_osmesa_context();
+bool osmesa_available();
+// device < 0: the first hardware device, else Mesa's surfaceless platform.
+std::unique_ptr<Context> create_egl_context(int device = -1);
+bool egl_has_hardware_device();
+
+} // namespace irad::gl

@@ -1,0 +1,230 @@
+#pragma once
+// GLSL 3.30 core sources of the raster's passes.
+namespace irad::gl::shaders {
+
+// Camera passes share one vertex shader; `invariant` makes the depth pre-pass and the shading
+// passes produce bit-identical depths, so GL_LEQUAL selects exactly the visible surface.
+inline constexpr const char* camera_vertex = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+#pragma irad_material_vertex
+uniform mat4 u_view_projection;
+out vec3 v_position;
+out vec3 v_normal;
+invariant gl_Position;
+void main() {
+  v_position = a_position;
+  v_normal = a_normal;
+  copy_material_attributes();
+  gl_Position = u_view_projection * vec4(a_position, 1.0);
+}
+)";
+
+// With alpha (raster/scene/material_glsl.h), absent fragments leave the depth of what lies behind.
+inline constexpr const char* depth_fragment = R"(#version 330 core
+#ifdef IRAD_ALPHA
+in vec3 v_position;
+#pragma irad_material_fragment
+#endif
+void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
+}
+)";
+
+// Visible emitters: L_e(x), front face only unless double-sided.
+inline constexpr const char* emission_fragment = R"(#version 330 core
+in vec3 v_position;
+in vec3 v_normal;
+#pragma irad_material_fragment
+uniform bool u_double_sided;
+out vec4 o_color;
+void main() {
+  if (!u_double_sided && !gl_FrontFacing) discard;
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
+  o_color = vec4(material_emission(), 0.0);
+}
+)";
+
+// One VPL's contribution w * C(x) (core/vpl.h), added by blending.
+inline constexpr const char* vpl_fragment = R"(#version 330 core
+in vec3 v_position;
+in vec3 v_normal;
+#pragma irad_material_fragment
+uniform vec3 u_vpl_position;
+uniform vec3 u_vpl_normal;
+uniform vec3 u_vpl_intensity;
+uniform int u_vpl_kind;          // 0 surface, 1 two-sided, 2 point, 3 spot
+uniform vec2 u_spot_cos;         // cos inner, cos outer
+uniform float u_dmin2;           // squared clamp distance (0 for punctual lights)
+uniform float u_min_dist2;       // below this the receiver coincides with the VPL
+uniform samplerCube u_shadow;
+uniform mat3 u_shadow_frame;     // world -> the cube's frame
+uniform float u_bias_constant;   // scale-relative
+uniform float u_bias_texel;      // angular size of a shadow texel
+uniform bool u_apply_albedo;     // false: irradiance / pi only (interleaved mode multiplies later)
+out vec4 o_color;
+const float INV_PI = 0.31830988618379067;
+void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 d = v_position - u_vpl_position;
+  float dist2 = dot(d, d);
+  if (!(dist2 > u_min_dist2)) discard;
+  float dist = sqrt(dist2);
+  vec3 w = d / dist;
+  float cos_x = dot(n, -w);
+  if (cos_x <= 0.0) discard;
+  float cos_y = dot(u_vpl_normal, w);
+  float e = 1.0;
+  if (u_vpl_kind == 0) e = max(cos_y, 0.0);
+  else if (u_vpl_kind == 1) e = abs(cos_y);
+  else if (u_vpl_kind == 3) {
+    float t = clamp((cos_y - u_spot_cos.y) / max(1e-3, u_spot_cos.x - u_spot_cos.y), 0.0, 1.0);
+    e = t * t;
+  }
+  if (e <= 0.0) discard;
+  // Normal-offset lookup: the receiver is moved off its surface by the footprint of a shadow
+  // texel there (dist * texel angle * sin theta_x), so its own surface never shadows it, while a
+  // wall between it and the VPL still does (a slope-scaled depth bias let light through walls
+  // thinner than the bias: 7 cm at 1 m with 256^2 faces).
+  float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
+  vec3 dp = v_position + n * (dist * u_bias_texel * sin_x) - u_vpl_position;
+  if (length(dp) > texture(u_shadow, u_shadow_frame * dp).r + u_bias_constant) discard;
+  vec3 albedo = u_apply_albedo ? material_albedo() : vec3(1.0);
+  float g = e * cos_x / max(dist2, u_dmin2);
+  o_color = vec4(u_vpl_intensity * (g * INV_PI) * albedo, 0.0);
+}
+)";
+
+// Shadow cube faces: distance from the VPL to the nearest surface (with alpha, the nearest
+// present one: raster/scene/material_glsl.h, seeded by the VPL's position).
+inline constexpr const char* shadow_vertex = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+#ifdef IRAD_ALPHA
+#pragma irad_material_vertex
+#endif
+uniform mat4 u_face_view_projection;
+out vec3 v_position;
+void main() {
+#ifdef IRAD_ALPHA
+  copy_material_attributes();
+#endif
+  v_position = a_position;
+  gl_Position = u_face_view_projection * vec4(a_position, 1.0);
+}
+)";
+
+inline constexpr const char* shadow_fragment = R"(#version 330 core
+in vec3 v_position;
+#ifdef IRAD_ALPHA
+#pragma irad_material_fragment
+#endif
+uniform vec3 u_vpl_position;
+out float o_distance;
+void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(shadow_alpha_key(u_vpl_position))) discard;
+#endif
+  o_distance = length(v_position - u_vpl_position);
+}
+)";
+
+// G-buffer for interleaved sampling: the world position (w = 1 where there is a surface) and the
+// normal facing the camera (w = albedo's mean is not needed: albedo has its own target).
+inline constexpr const char* gbuffer_fragment = R"(#version 330 core
+in vec3 v_position;
+in vec3 v_normal;
+#pragma irad_material_fragment
+layout(location = 0) out vec4 o_position;
+layout(location = 1) out vec4 o_normal;
+layout(location = 2) out vec4 o_albedo;
+void main() {
+#ifdef IRAD_ALPHA
+  if (material_absent(camera_alpha_key())) discard;
+#endif
+  vec3 n = normalize(v_normal);
+  if (!gl_FrontFacing) n = -n;
+  o_position = vec4(v_position, 1.0);
+  o_normal = vec4(n, 0.0);
+  o_albedo = vec4(material_albedo(), 1.0);
+}
+)";
+
+// A triangle covering the viewport (no vertex buffer: gl_VertexID) at clip depth u_depth (0
+// unless set; the background pass sets 1, the far plane the depth buffer is cleared to).
+inline constexpr const char* fullscreen_vertex = R"(#version 330 core
+uniform float u_depth;
+void main() {
+  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
+  gl_Position = vec4(p, u_depth, 1.0);
+}
+)";
+
+// Interleaved sampling's resolve (Keller & Heidrich 2001): pixel p of a k x k tile was lit by VPL
+// set (p.x mod k, p.y mod k) only, its value stored de-interleaved in the atlas. Each set, scaled
+// by k^2, estimates the whole sum; p averages the sets of the k x k window around it over the
+// pixels on its own surface: q counts when it lies on p's tangent plane (the segment p-q within ~3
+// degrees of it, whatever the viewing angle) and their normals agree within 18 degrees. At
+// discontinuities fewer sets are averaged: still an estimate of the whole sum, only noisier. Then
+// p's albedo.
+inline constexpr const char* resolve_fragment = R"(#version 330 core
+uniform sampler2D u_atlas;
+uniform sampler2D u_position;
+uniform sampler2D u_normal;
+uniform sampler2D u_albedo;
+uniform int u_k;
+uniform ivec2 u_tile;   // tile size in the atlas
+uniform ivec2 u_size;   // full image size
+out vec4 o_color;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 xp = texelFetch(u_position, p, 0);
+  if (xp.w <= 0.0) { o_color = vec4(0.0); return; }
+  vec3 np = texelFetch(u_normal, p, 0).xyz;
+  // A window centred on p in which every set has total weight 1: offsets -h..h with h = k/2, the
+  // outer rows and columns at half weight when k is even (offsets -h and +h are the same set), so
+  // the filter has no half-pixel shift.
+  vec3 sum = vec3(0.0);
+  float weight = 0.0;
+  int h = u_k / 2;
+  // q's set and tile coordinates (q % k, q / k) from p's without a division per tap (an integer
+  // division per tap and lane made this pass cost as much as 150 VPL passes on llvmpipe).
+  ivec2 pm = p % u_k, pd = p / u_k;
+  bool even = (u_k % 2) == 0;
+  for (int dy = -h; dy <= h; ++dy)
+    for (int dx = -h; dx <= h; ++dx) {
+      if (!even && (abs(dx) > (u_k - 1) / 2 || abs(dy) > (u_k - 1) / 2)) continue;
+      ivec2 q = p + ivec2(dx, dy);
+      if (q.x < 0 || q.y < 0 || q.x >= u_size.x || q.y >= u_size.y) continue;
+      vec4 xq = texelFetch(u_position, q, 0);
+      if (xq.w <= 0.0) continue;
+      vec3 d = xq.xyz - xp.xyz;
+      if (abs(dot(np, d)) > 0.05 * length(d)) continue;
+      if (dot(texelFetch(u_normal, q, 0).xyz, np) < 0.95) continue;
+      float w = (even && abs(dx) == h ? 0.5 : 1.0) * (even && abs(dy) == h ? 0.5 : 1.0);
+      ivec2 m = pm + ivec2(dx, dy); // in (-k, 2k): one wrap at most
+      ivec2 below = ivec2(lessThan(m, ivec2(0))), above = ivec2(greaterThanEqual(m, ivec2(u_k)));
+      m += (below - above) * u_k;
+      sum += w * texelFetch(u_atlas, m * u_tile + pd - below + above, 0).rgb;
+      weight += w;
+    }
+  vec3 albedo = texelFetch(u_albedo, p, 0).rgb;
+  o_color = vec4(albedo * sum * (float(u_k * u_k) / max(weight, 0.25)), 0.0);
+}
+)";
+
+// Copies a same-size texture into the bound framebuffer (with blending: adds or subtracts it).
+inline constexpr const char* copy_fragment = R"(#version 330 core
+uniform sampler2D u_source;
+out vec4 o_color;
+void main() { o_color = texelFetch(u_source, ivec2(gl_FragCoord.xy), 0); }
+)";
+
+} // namespace irad::gl::shaders

@@ -1,0 +1,99 @@
+#include "raster/image/interleaved.h"
+
+#include "core/error.h"
+#include "raster/glsl/shaders.h"
+
+namespace irad::gl {
+
+namespace {
+
+constexpr GLint atlas_unit = 2, position_unit = 3, normal_unit = 4, albedo_unit = 5;
+
+} // namespace
+
+Interleaved::Interleaved(const GladGLContext& api, int width, int height, int k, GLuint depth)
+    : api_(&api), width_(width), height_(height), k_(k), tile_w_((width + k - 1) / k),
+      tile_h_((height + k - 1) / k), position_(make_float_texture(api, width, height)),
+      normal_(make_float_texture(api, width, height)),
+      albedo_(make_float_texture(api, width, height)),
+      atlas_(make_float_texture(api, k * tile_w_, k * tile_h_)),
+      atlas_depth_(make_renderbuffer(api)), gbuffer_fbo_(make_framebuffer(api)),
+      atlas_fbo_(make_framebuffer(api)), empty_vao_(make_vertex_array(api)),
+      resolve_(api, "resolve", shaders::fullscreen_vertex, shaders::resolve_fragment) {
+  if (k < 1) throw Error("", "--interleave", "must be at least 1");
+  api.BindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_.get());
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, position_.get(), 0);
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normal_.get(), 0);
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, albedo_.get(), 0);
+  api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  api.DrawBuffers(3, buffers);
+  check_framebuffer(api, "G-buffer framebuffer");
+
+  api.BindRenderbuffer(GL_RENDERBUFFER, atlas_depth_.get());
+  api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, k * tile_w_, k * tile_h_);
+  api.BindFramebuffer(GL_FRAMEBUFFER, atlas_fbo_.get());
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, atlas_.get(), 0);
+  api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                              atlas_depth_.get());
+  check_framebuffer(api, "interleaved atlas framebuffer");
+
+  resolve_.use();
+  api.Uniform1i(resolve_.uniform("u_atlas"), atlas_unit);
+  api.Uniform1i(resolve_.uniform("u_position"), position_unit);
+  api.Uniform1i(resolve_.uniform("u_normal"), normal_unit);
+  api.Uniform1i(resolve_.uniform("u_albedo"), albedo_unit);
+  api.Uniform1i(resolve_.uniform("u_k"), k);
+  api.Uniform2i(resolve_.uniform("u_tile"), tile_w_, tile_h_);
+  api.Uniform2i(resolve_.uniform("u_size"), width, height);
+}
+
+void Interleaved::bind_gbuffer() const {
+  api_->BindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_.get());
+  api_->Viewport(0, 0, width_, height_);
+}
+
+void Interleaved::bind_tile(int set) const {
+  api_->BindFramebuffer(GL_FRAMEBUFFER, atlas_fbo_.get());
+  api_->Viewport((set % k_) * tile_w_, (set / k_) * tile_h_, tile_w_, tile_h_);
+}
+
+void Interleaved::bind_atlas() const {
+  api_->BindFramebuffer(GL_FRAMEBUFFER, atlas_fbo_.get());
+  api_->Viewport(0, 0, k_ * tile_w_, k_ * tile_h_);
+}
+
+glm::mat4 Interleaved::tile_projection(int set, const glm::mat4& projection) const {
+  // Tile coordinate X maps to image coordinate g = k X + c with c = d + 1/2 - k/2 (pixel units),
+  // so image NDC n and tile NDC m satisfy m = a n + b with a = W / (k w), b = (1 - 2c/W) a - 1.
+  const auto axis = [&](int d, int size, int tile) {
+    const double c = d + 0.5 - 0.5 * k_;
+    const double a = static_cast<double>(size) / (static_cast<double>(k_) * tile);
+    return glm::vec2(static_cast<float>(a), static_cast<float>((1.0 - 2.0 * c / size) * a - 1.0));
+  };
+  const glm::vec2 x = axis(set % k_, width_, tile_w_), y = axis(set / k_, height_, tile_h_);
+  glm::mat4 shift(1.0f);
+  shift[0][0] = x.x;
+  shift[3][0] = x.y;
+  shift[1][1] = y.x;
+  shift[3][1] = y.y;
+  return shift * projection;
+}
+
+void Interleaved::resolve() const {
+  api_->Disable(GL_DEPTH_TEST);
+  api_->Disable(GL_BLEND);
+  resolve_.use();
+  api_->ActiveTexture(GL_TEXTURE0 + atlas_unit);
+  api_->BindTexture(GL_TEXTURE_2D, atlas_.get());
+  api_->ActiveTexture(GL_TEXTURE0 + position_unit);
+  api_->BindTexture(GL_TEXTURE_2D, position_.get());
+  api_->ActiveTexture(GL_TEXTURE0 + normal_unit);
+  api_->BindTexture(GL_TEXTURE_2D, normal_.get());
+  api_->ActiveTexture(GL_TEXTURE0 + albedo_unit);
+  api_->BindTexture(GL_TEXTURE_2D, albedo_.get());
+  api_->BindVertexArray(empty_vao_.get());
+  api_->DrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+} // namespace irad::gl

@@ -1,0 +1,107 @@
+#include "raster/passes/vpl_shader.h"
+
+#include "raster/glsl/mirror_shaders.h"
+#include "raster/glsl/shaders.h"
+
+#include <algorithm>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace irad::gl {
+
+void set_additive_state(const GladGLContext& api) {
+  api.Enable(GL_DEPTH_TEST);
+  api.DepthFunc(GL_LEQUAL);
+  api.DepthMask(GL_FALSE);
+  api.Enable(GL_BLEND);
+  api.BlendEquation(GL_FUNC_ADD);
+  api.BlendFunc(GL_ONE, GL_ONE);
+}
+
+VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp)
+    : VplShader(api, scene, clamp, shaders::vpl_fragment) {
+  if (!scene.has_specular()) return;
+  mirrors_ = find_mirrors(scene);
+  mirrored_.reset(
+      new VplShader(api, scene, clamp, shaders::mirror_vpl_fragment(shaders::vpl_fragment)));
+  const ShaderProgram& p = mirrored_->program_;
+  mirrored_->mirror_plane_ = p.uniform("u_mirror_plane");
+  mirrored_->mirror_triangles_ = p.uniform("u_mirror_triangles");
+  mirrored_->mirror_corners_ = p.uniform("u_mirror_corners");
+}
+
+VplShader::~VplShader() = default;
+
+void VplShader::set_mirror(const MirrorPolygon& mirror, const glm::vec4& plane) const {
+  program_.use();
+  api_->Uniform4fv(mirror_plane_, 1, glm::value_ptr(plane));
+  const std::size_t triangles = std::min(mirror.triangles.size() / 3, MirrorPolygon::max_triangles);
+  api_->Uniform1i(mirror_triangles_, static_cast<GLint>(triangles));
+  api_->Uniform3fv(mirror_corners_, static_cast<GLsizei>(3 * triangles),
+                   glm::value_ptr(mirror.triangles.front()));
+}
+
+VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp,
+                     const std::string& fragment)
+    : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp),
+      program_(api, "vpl", material_source(shaders::camera_vertex, MaterialFeatures::of(scene)),
+               material_source(fragment, MaterialFeatures::of(scene))),
+      material_(program_), view_projection_(program_.uniform("u_view_projection")),
+      position_(program_.uniform("u_vpl_position")), normal_(program_.uniform("u_vpl_normal")),
+      intensity_(program_.uniform("u_vpl_intensity")), kind_(program_.uniform("u_vpl_kind")),
+      spot_cos_(program_.uniform("u_spot_cos")), dmin2_(program_.uniform("u_dmin2")),
+      min_dist2_(program_.uniform("u_min_dist2")), frame_(program_.uniform("u_shadow_frame")),
+      bias_constant_(program_.uniform("u_bias_constant")),
+      bias_texel_(program_.uniform("u_bias_texel")),
+      apply_albedo_(program_.uniform("u_apply_albedo")) {
+  // Samplers of different types may not share a unit: fix every sampler's unit once.
+  program_.use();
+  api.Uniform1i(program_.uniform("u_shadow"), shadow_unit);
+  // Scale-relative constants: the clamp, the coincidence guard and the shadow bias.
+  api.Uniform1f(min_dist2_, 1e-10f * diagonal_ * diagonal_); // 1e-5 of the diagonal, as rt-vpl
+  api.Uniform1f(bias_constant_, 2e-4f * diagonal_);
+}
+
+void VplShader::draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,
+                     const glm::mat4& view_projection, bool apply_albedo,
+                     const GpuScene& gpu) const {
+  if (vpl.mirror >= 0) { // a mirrored VPL: the pyramid program (nothing if the scene has none)
+    const auto k = static_cast<std::size_t>(vpl.mirror);
+    if (!mirrored_ || k >= mirrors_.size()) return;
+    mirrored_->set_mirror(mirrors_[k], vpl.mirror_plane);
+    mirrored_->draw_pass(vpl, shadow_cube, texel_angle, frame, view_projection, apply_albedo, gpu);
+    return;
+  }
+  draw_pass(vpl, shadow_cube, texel_angle, frame, view_projection, apply_albedo, gpu);
+}
+
+void VplShader::draw_pass(const Vpl& vpl, GLuint shadow_cube, float texel_angle,
+                          const glm::mat3& frame, const glm::mat4& view_projection,
+                          bool apply_albedo, const GpuScene& gpu) const {
+  const GladGLContext& api = *api_;
+  set_additive_state(api);
+  program_.use();
+  const float dmin = vpl.clamped() ? clamp_ * diagonal_ : 0.0f;
+  api.UniformMatrix4fv(view_projection_, 1, GL_FALSE, glm::value_ptr(view_projection));
+  api.Uniform3fv(position_, 1, glm::value_ptr(vpl.position));
+  api.Uniform3fv(normal_, 1, glm::value_ptr(vpl.normal));
+  api.Uniform3fv(intensity_, 1, glm::value_ptr(vpl.intensity));
+  api.Uniform1i(kind_, static_cast<GLint>(vpl.kind));
+  api.Uniform2f(spot_cos_, vpl.cos_inner, vpl.cos_outer);
+  api.Uniform1f(dmin2_, dmin * dmin);
+  api.UniformMatrix3fv(frame_, 1, GL_FALSE, glm::value_ptr(frame));
+  api.Uniform1f(bias_texel_, texel_angle);
+  api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
+  api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
+  api.BindTexture(GL_TEXTURE_CUBE_MAP, shadow_cube);
+  if (!apply_albedo) {
+    gpu.draw_covered(1, [&](const Material& m) { material_.bind_alpha(api, gpu, m); });
+    return;
+  }
+  gpu.draw([&](const Material& m) {
+    const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
+    material_.bind_base(api, gpu, m, rho);
+  });
+}
+
+} // namespace irad::gl

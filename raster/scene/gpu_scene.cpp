@@ -1,0 +1,187 @@
+#include "raster/scene/gpu_scene.h"
+
+#include "core/animation.h"
+#include "core/error.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace irad::gl {
+
+namespace {
+
+struct Vertex {
+  float position[3];
+  float normal[3];
+  float uv[2];
+};
+
+GLint gl_wrap(Wrap w) {
+  switch (w) {
+  case Wrap::ClampToEdge:
+    return GL_CLAMP_TO_EDGE;
+  case Wrap::MirroredRepeat:
+    return GL_MIRRORED_REPEAT;
+  case Wrap::Repeat:
+    break;
+  }
+  return GL_REPEAT;
+}
+
+Texture upload_texture(const GladGLContext& api, const irad::Texture& t) {
+  Texture tex = make_texture(api);
+  api.BindTexture(GL_TEXTURE_2D, tex.get());
+  // Row 0 of Texture is v = 0; GL's first row is t = 0, so uv maps to texture() unchanged.
+  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, t.width, t.height, 0, GL_RGBA, GL_FLOAT,
+                 t.texels.data());
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, gl_wrap(t.wrap_s));
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, gl_wrap(t.wrap_t));
+  return tex;
+}
+
+Vertex vertex_of(const Scene& scene, std::size_t i) {
+  const glm::vec3& p = scene.positions[i];
+  const glm::vec3& n = scene.normals[i];
+  const glm::vec2 uv = scene.uvs.empty() ? glm::vec2(0.0f) : scene.uvs[i];
+  return {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}};
+}
+
+// A tightly packed float attribute array (vec2 or vec4 per vertex) at `location` of the bound
+// vertex array.
+template <class V>
+Buffer upload_attribute(const GladGLContext& api, GLuint location, const std::vector<V>& values) {
+  Buffer buffer = make_buffer(api);
+  api.BindBuffer(GL_ARRAY_BUFFER, buffer.get());
+  api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(values.size() * sizeof(V)), values.data(),
+                 GL_STATIC_DRAW);
+  api.EnableVertexAttribArray(location);
+  api.VertexAttribPointer(location, V::length(), GL_FLOAT, GL_FALSE, 0, nullptr);
+  return buffer;
+}
+
+} // namespace
+
+void GpuScene::update_vertices() {
+  if (!scene_->animation) return;
+  api_->BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
+  std::vector<Vertex> run;
+  // The moving vertices (ascending) form contiguous runs of the scene's arrays: one upload per
+  // run.
+  const std::vector<std::uint32_t> moving = scene_->animation->moving_vertices();
+  for (std::size_t k = 0; k < moving.size();) {
+    const std::uint32_t first = moving[k];
+    run.clear();
+    while (k < moving.size() && moving[k] == first + run.size())
+      run.push_back(vertex_of(*scene_, moving[k++]));
+    api_->BufferSubData(GL_ARRAY_BUFFER, GLintptr(first * sizeof(Vertex)),
+                        GLsizeiptr(run.size() * sizeof(Vertex)), run.data());
+  }
+}
+
+GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
+    : api_(&api), scene_(&scene), vao_(make_vertex_array(api)), vertices_(make_buffer(api)),
+      indices_(make_buffer(api)), features_(MaterialFeatures::of(scene)) {
+  std::vector<Vertex> vertices(scene.positions.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = vertex_of(scene, i);
+  // Triangles grouped by material (stable, so the file's order is kept within a material).
+  std::vector<std::uint32_t> order(scene.triangle_count());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return scene.triangle_material[a] < scene.triangle_material[b];
+  });
+  std::vector<std::uint32_t> indices;
+  indices.reserve(3 * order.size());
+  for (std::uint32_t t : order) {
+    const std::uint32_t m = scene.triangle_material[t];
+    if (ranges_.empty() || ranges_.back().material != m) ranges_.push_back({m, indices.size(), 0});
+    for (int c = 0; c < 3; ++c) indices.push_back(scene.triangles[t][c]);
+    ranges_.back().count += 3;
+  }
+  index_count_ = static_cast<GLsizei>(indices.size());
+
+  api.BindVertexArray(vao_.get());
+  api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
+  api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)),
+                 vertices.data(), scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
+  api.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
+  api.BufferData(GL_ELEMENT_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
+                 GL_STATIC_DRAW);
+  const auto stride = static_cast<GLsizei>(sizeof(Vertex));
+  api.EnableVertexAttribArray(0);
+  api.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(Vertex, position)));
+  api.EnableVertexAttribArray(1);
+  api.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(Vertex, normal)));
+  api.EnableVertexAttribArray(2);
+  api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(offsetof(Vertex, uv)));
+
+  // The optional arrays run parallel to the positions (core/scene.h): GL must never read past one.
+  if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
+      (features_.colors && scene.colors.size() != scene.positions.size()))
+    throw Error(scene.source, "gpu scene", "TEXCOORD_1 or COLOR_0 not one per vertex");
+  if (features_.uv1) uv1_ = upload_attribute(api, kUv1Attribute, scene.uvs1);
+  if (features_.colors) colors_ = upload_attribute(api, kColorAttribute, scene.colors);
+
+  for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
+}
+
+void GpuScene::draw_covered(GLsizei instances,
+                            const std::function<void(const Material&)>& bind_alpha) const {
+  if (!features_.alpha) {
+    if (instances == 1)
+      draw_all();
+    else
+      draw_all_instanced(instances);
+    return;
+  }
+  draw_instanced(instances, bind_alpha);
+}
+
+void GpuScene::draw_range(const Range& r, GLsizei instances) const {
+  const auto* first = reinterpret_cast<const void*>(r.first * sizeof(std::uint32_t));
+  if (instances == 1)
+    api_->DrawElements(GL_TRIANGLES, r.count, GL_UNSIGNED_INT, first);
+  else
+    api_->DrawElementsInstanced(GL_TRIANGLES, r.count, GL_UNSIGNED_INT, first, instances);
+}
+
+void GpuScene::draw_instanced(GLsizei instances,
+                              const std::function<void(const Material&)>& bind) const {
+  api_->BindVertexArray(vao_.get());
+  for (const Range& r : ranges_) {
+    bind(scene_->materials[r.material]);
+    draw_range(r, instances);
+  }
+}
+
+void GpuScene::draw_all_instanced(GLsizei instances) const {
+  api_->BindVertexArray(vao_.get());
+  api_->DrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, instances);
+}
+
+void GpuScene::draw(const std::function<void(const Material&)>& bind) const {
+  draw_if([](const Material&) { return true; }, bind);
+}
+
+void GpuScene::draw_all() const {
+  api_->BindVertexArray(vao_.get());
+  api_->DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+}
+
+void GpuScene::draw_if(const std::function<bool(const Material&)>& select,
+                       const std::function<void(const Material&)>& bind) const {
+  api_->BindVertexArray(vao_.get());
+  for (const Range& r : ranges_) {
+    const Material& m = scene_->materials[r.material];
+    if (!select(m)) continue;
+    bind(m);
+    draw_range(r);
+  }
+}
+
+} // namespace irad::gl

@@ -1,0 +1,67 @@
+#pragma once
+// The scene's triangles and textures on the GPU: one interleaved vertex buffer (position, normal,
+// uv), TEXCOORD_1 and COLOR_0 in buffers of their own only when the scene has them (attributes
+// kUv1Attribute and kColorAttribute, raster/scene/material_glsl.h), one index buffer with the triangles
+// grouped by material, and the textures as linear RGBA32F with bilinear filtering (what the walk
+// samples). Textures are uploaded only when the scene has them.
+#include "core/scene.h"
+#include "raster/context/gl_objects.h"
+#include "raster/scene/material_features.h"
+
+#include <functional>
+#include <vector>
+
+namespace irad::gl {
+
+class GpuScene {
+public:
+  GpuScene(const GladGLContext& api, const Scene& scene);
+
+  // Re-uploads the positions and normals of the vertices the scene's animation moves (after
+  // Animation::pose); nothing for a static scene.
+  void update_vertices();
+
+  // Draws every triangle, calling `bind(material)` before each material's range.
+  void draw(const std::function<void(const Material&)>& bind) const;
+  // Draws every triangle with no per-material state (depth and shadow passes).
+  void draw_all() const;
+  // draw and draw_all with every range drawn `instances` times (gl_InstanceID 0..instances-1).
+  void draw_instanced(GLsizei instances, const std::function<void(const Material&)>& bind) const;
+  void draw_all_instanced(GLsizei instances) const;
+  // A pass that needs no material but its coverage (depth, shadow, irradiance-only): draw_all
+  // (instanced) when the scene has no Mask or Blend material, else draw_instanced with
+  // `bind_alpha` per material (every camera pass then draws range by range, so gl_PrimitiveID,
+  // which the Blend hash reads, is the same in all of them).
+  void draw_covered(GLsizei instances,
+                    const std::function<void(const Material&)>& bind_alpha) const;
+  // Draws only the ranges whose material satisfies `select`.
+  void draw_if(const std::function<bool(const Material&)>& select,
+               const std::function<void(const Material&)>& bind) const;
+
+  const MaterialFeatures& features() const { return features_; }
+
+  // GL name of scene texture `index` (as in Scene::textures).
+  GLuint texture(int index) const { return textures_[static_cast<std::size_t>(index)].get(); }
+
+private:
+  struct Range {
+    std::uint32_t material;
+    std::size_t first; // first index (not triangle)
+    GLsizei count;     // indices
+  };
+  void draw_range(const Range& r, GLsizei instances = 1) const;
+
+  const GladGLContext* api_;
+  const Scene* scene_;
+  VertexArray vao_;
+  Buffer vertices_;
+  Buffer indices_;
+  Buffer uv1_;    // only with TEXCOORD_1
+  Buffer colors_; // only with COLOR_0
+  MaterialFeatures features_;
+  std::vector<Range> ranges_;
+  std::vector<Texture> textures_;
+  GLsizei index_count_ = 0;
+};
+
+} // namespace irad::gl

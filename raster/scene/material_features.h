@@ -1,0 +1,21 @@
+#pragma once
+// Which optional material features a scene uses; the raster's programs compile only those
+// (raster/scene/material_glsl.h), so a scene without them pays nothing.
+#include "core/scene.h"
+
+#include <glad/gl.h>
+
+namespace irad::gl {
+
+struct MaterialFeatures {
+  bool uv1 = false;    // Scene::uvs1 is not empty
+  bool colors = false; // Scene::colors is not empty
+  bool alpha = false;  // some material is Mask or Blend
+  static MaterialFeatures of(const Scene& scene);
+};
+
+// Vertex attribute locations of GpuScene's optional buffers (0-2: position, normal, uv).
+inline constexpr GLuint kUv1Attribute = 3;
+inline constexpr GLuint kColorAttribute = 4;
+
+} // namespace irad::gl

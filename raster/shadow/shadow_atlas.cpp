@@ -1,0 +1,184 @@
+#include "raster/shadow/shadow_atlas.h"
+
+#include "core/error.h"
+#include "raster/glsl/batched_shaders.h"
+#include "raster/shadow/shadow_cube.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace irad::gl {
+
+namespace {
+
+constexpr GLuint kShadowBlockBinding = 0;
+// The atlas's side at most: two 4096^2 depth textures are 128 MB.
+constexpr int kMaxAtlasSide = 4096;
+
+int max_atlas_side(const GladGLContext& api) {
+  GLint texture = 0, renderbuffer = 0;
+  api.GetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+  api.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  return std::min({kMaxAtlasSide, int(texture), int(renderbuffer)});
+}
+
+// A block's size in texels (see the header): 2R + 2h wide, 2h high.
+glm::ivec2 block_size(int r) {
+  const int h = r / 2 + 1;
+  return {2 * r + 2 * h, 2 * h};
+}
+
+// Blocks per row and rows for `blocks` blocks of size `block`, about as wide as high.
+glm::ivec2 block_grid(int blocks, glm::ivec2 block) {
+  const double ratio = static_cast<double>(block.y) / block.x;
+  const int columns = std::max(1, static_cast<int>(std::lround(std::sqrt(blocks * ratio))));
+  const int rows = (blocks + columns - 1) / columns;
+  return {(blocks + rows - 1) / rows, rows};
+}
+
+// Floats of the ShadowBatch block (std140: mat4 and vec4 arrays are tightly packed).
+std::size_t block_floats(int batch) {
+  return static_cast<std::size_t>(batch) * shaders::kShadowBytesPerVpl / sizeof(float);
+}
+
+// Face f's window rectangle that is ever looked up (x0, y0, x1, y1; x0 > x1: none) and its
+// offset atlas texel - face texel, for a VPL whose blocks start at b0 and b1.
+void face_placement(const CubeFaces& cube, int f, int r, glm::ivec2 b0, glm::ivec2 b1,
+                    glm::vec4& rect, glm::vec2& offset) {
+  const float rf = static_cast<float>(r);
+  rect = {0.0f, 0.0f, rf, rf};
+  if (!cube.hemisphere) {
+    offset = glm::vec2(f < 3 ? b0 : b1) + glm::vec2(static_cast<float>((f % 3) * r), 0.0f);
+    return;
+  }
+  const int h = r / 2 + 1;
+  const glm::ivec2 within[6] = {{r, 0}, {2 * h, 0}, {r + 2 * h, h - r}, {r + 2 * h, h}, {0, 0}, {}};
+  offset = glm::vec2(b0 + within[f]);
+  if (f == kNegativeZFace) {
+    rect = {1.0f, 1.0f, -1.0f, -1.0f};
+  } else if (f < 4) {
+    const glm::vec4 w(front_half(f, r));
+    rect = {w.x, w.y, w.x + w.z, w.y + w.w};
+  }
+}
+
+} // namespace
+
+int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) {
+  GLint uniform_block = 0;
+  api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
+  const int side = max_atlas_side(api);
+  const glm::ivec2 block = block_size(resolution);
+  int b = std::min(wanted, static_cast<int>(uniform_block) / shaders::kShadowBytesPerVpl);
+  for (; b > 1; --b) {
+    const glm::ivec2 size = block_grid(b, block) * block;
+    if (size.x <= side && size.y <= side) break;
+  }
+  return std::max(b, 0);
+}
+
+ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
+                         const Bounds& bounds, const MaterialFeatures& features)
+    : api_(&api), resolution_(resolution), batch_(batch), block_(block_size(resolution)),
+      grid_(block_grid(blocks, block_)), bounds_(bounds),
+      program_(
+          api, "batched shadow",
+          material_source(shaders::batched_source(shaders::batched_shadow_vertex, batch), features),
+          material_source(shaders::batched_source(shaders::batched_shadow_fragment, batch),
+                          features)),
+      material_(program_), atlas_{make_texture(api), make_texture(api)}, fbo_{make_framebuffer(api),
+                                                                              make_framebuffer(
+                                                                                  api)},
+      block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f) {
+  const glm::ivec2 size = grid_ * block_;
+  GLint uniform_block = 0;
+  api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
+  if (batch < 1 || blocks < 2 || std::max(size.x, size.y) > max_atlas_side(api) ||
+      batch * shaders::kShadowBytesPerVpl > uniform_block)
+    throw Error("", "shadow atlas",
+                "a batch of " + std::to_string(batch) + " VPLs with " + std::to_string(resolution) +
+                    "^2 faces does not fit this OpenGL");
+  for (int a = 0; a < 2; ++a) {
+    api.BindTexture(GL_TEXTURE_2D, atlas_[a].get());
+    api.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size.x, size.y, 0, GL_DEPTH_COMPONENT,
+                   GL_FLOAT, nullptr);
+    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+    api.BindTexture(GL_TEXTURE_2D, 0);
+    api.BindFramebuffer(GL_FRAMEBUFFER, fbo_[a].get());
+    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, atlas_[a].get(),
+                             0);
+    api.DrawBuffer(GL_NONE);
+    api.ReadBuffer(GL_NONE);
+    check_framebuffer(api, "shadow atlas framebuffer");
+  }
+  const GLuint index = api.GetUniformBlockIndex(program_.get(), "ShadowBatch");
+  if (index == GL_INVALID_INDEX) throw Error("", "shader batched shadow", "no block ShadowBatch");
+  api.UniformBlockBinding(program_.get(), index, kShadowBlockBinding);
+  program_.use();
+  api.Uniform1f(program_.uniform("u_face_size"), static_cast<float>(resolution));
+  api.Uniform2f(program_.uniform("u_atlas_size"), static_cast<float>(size.x),
+                static_cast<float>(size.y));
+}
+
+void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
+                         std::vector<glm::mat3>& frames, std::vector<float>& fars,
+                         std::vector<glm::ivec4>& blocks) {
+  const GladGLContext& api = *api_;
+  frames.resize(static_cast<std::size_t>(n));
+  fars.resize(static_cast<std::size_t>(n));
+  blocks.resize(static_cast<std::size_t>(n));
+  // The block: face matrices, rectangles, offsets, positions (std140 offsets).
+  float* matrices = block_data_.data();
+  float* rects = matrices + 6 * 16 * batch_;
+  float* offsets = rects + 6 * 4 * batch_;
+  float* origins = offsets + 6 * 4 * batch_;
+  int next_block = 0;
+  for (int s = 0; s < n; ++s) {
+    const CubeFaces cube = cube_faces(*vpls[s], bounds_, far_from(bounds_, vpls[s]->position));
+    const glm::ivec2 b0 = block_origin(next_block);
+    const glm::ivec2 b1 = cube.hemisphere ? b0 : block_origin(next_block + 1);
+    next_block += cube.hemisphere ? 1 : 2;
+    if (next_block > this->blocks()) throw Error("", "shadow atlas", "batch exceeds the blocks");
+    frames[static_cast<std::size_t>(s)] = cube.frame;
+    fars[static_cast<std::size_t>(s)] = cube.far;
+    blocks[static_cast<std::size_t>(s)] = glm::ivec4(b0, b1);
+    std::memcpy(origins + 4 * s, &vpls[s]->position[0], 3 * sizeof(float));
+    origins[4 * s + 3] = 1.0f / cube.far;
+    for (int f = 0; f < 6; ++f) {
+      const int i = 6 * s + f;
+      glm::vec4 rect;
+      glm::vec2 offset;
+      face_placement(cube, f, resolution_, b0, b1, rect, offset);
+      std::memcpy(matrices + 16 * i, &cube.view_projection[f][0][0], 16 * sizeof(float));
+      std::memcpy(rects + 4 * i, &rect[0], 4 * sizeof(float));
+      std::memcpy(offsets + 4 * i, &offset[0], 2 * sizeof(float));
+    }
+  }
+  // A new store per batch (no wait for the draw that read the last one).
+  api.BindBuffer(GL_UNIFORM_BUFFER, block_buffer_.get());
+  api.BufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(block_data_.size() * sizeof(float)),
+                 block_data_.data(), GL_STREAM_DRAW);
+  api.BindBufferBase(GL_UNIFORM_BUFFER, kShadowBlockBinding, block_buffer_.get());
+
+  current_ = 1 - current_;
+  api.BindFramebuffer(GL_FRAMEBUFFER, fbo_[current_].get());
+  const glm::ivec2 size = grid_ * block_;
+  api.Viewport(0, 0, size.x, size.y);
+  api.Disable(GL_SCISSOR_TEST);
+  api.Enable(GL_DEPTH_TEST);
+  api.DepthFunc(GL_LESS);
+  api.DepthMask(GL_TRUE);
+  api.Disable(GL_BLEND);
+  api.ClearDepth(1.0); // far: nothing there, never shadowed
+  api.Clear(GL_DEPTH_BUFFER_BIT);
+  program_.use();
+  for (int k = 0; k < 4; ++k) api.Enable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
+  scene.draw_covered(6 * n, [&](const Material& m) { material_.bind_alpha(api, scene, m); });
+  for (int k = 0; k < 4; ++k) api.Disable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
+}
+
+} // namespace irad::gl

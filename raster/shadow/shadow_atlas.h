@@ -1,0 +1,75 @@
+#pragma once
+// The shadow cubes of a batch of VPLs in one 2D atlas, drawn by one instanced draw call
+// (raster/glsl/batched_shaders.h): the distances |p - y| ShadowCube renders, through the same face
+// view-projections (cube_faces), stored as the depth |p - y| / far of a DEPTH_COMPONENT32F
+// texture (one buffer to clear and write instead of a colour and a depth buffer), so a lookup
+// reads what the VPL's cube map would hold up to float rounding. On llvmpipe a VPL's cube costs
+// mostly the fixed cost of its five framebuffer binds, clears and draws and the wait of the next
+// shading pass for them; here a batch costs one bind, one clear and one draw.
+//
+// The atlas is a grid of blocks of (2R + 2h) x 2h texels, h = R/2 + 1 (ShadowCube's front_half).
+// A surface VPL needs only its hemisphere: one block holds its +z face, then the front halves
+// (h texels deep, with the one texel of margin) of +x and -x side by side, then those of +y and
+// -y one over the other. Any other VPL (two-sided, point, spot) takes two blocks of three whole
+// faces each. Texels no face covers keep the clear value 1 (far: never shadowed).
+#include "core/bounds.h"
+#include "core/vpl.h"
+#include "raster/scene/gpu_scene.h"
+#include "raster/scene/material_glsl.h"
+#include "raster/context/shader_program.h"
+
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace irad::gl {
+
+class ShadowAtlas {
+public:
+  // Room for `blocks` blocks of resolution^2 faces, at most `batch` VPLs per render; throws
+  // irad::Error when it exceeds this GL's texture, renderbuffer or uniform-block sizes.
+  // features: the scene's (raster/scene/material_features.h); with alpha, absent fragments cast no
+  // shadow.
+  ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks, const Bounds& bounds,
+              const MaterialFeatures& features);
+
+  // The largest batch (<= wanted) an atlas with one block per VPL can hold on this GL: 0 or 1
+  // means batching is not possible.
+  static int capacity(const GladGLContext& api, int resolution, int wanted);
+  // Blocks a VPL takes: 1 for a surface VPL's hemisphere, 2 for a whole cube.
+  static int blocks_for(const Vpl& vpl) { return vpl.kind == VplKind::Surface ? 1 : 2; }
+
+  // Clears the atlas and draws the cubes of vpls[0..n) (n <= batch(), their blocks_for summing to
+  // at most blocks(); no directional VPLs). frames[s] receives the rotation world -> cube frame
+  // of VPL s, blocks[s] the atlas texels of its first block (xy) and second block (zw). Changes
+  // the bound framebuffer, viewport and program.
+  void render(const Vpl* const* vpls, int n, const GpuScene& scene, std::vector<glm::mat3>& frames,
+              std::vector<float>& fars, std::vector<glm::ivec4>& blocks);
+
+  // The atlas the last render() drew into.
+  GLuint texture() const { return atlas_[current_].get(); }
+  int resolution() const { return resolution_; }
+  int batch() const { return batch_; }
+  int blocks() const { return grid_.x * grid_.y; }
+  // Angular size of one texel at the centre of a face (radians), as ShadowCube::texel_angle.
+  float texel_angle() const { return 2.0f / static_cast<float>(resolution_); }
+
+private:
+  glm::ivec2 block_origin(int b) const { return glm::ivec2(b % grid_.x, b / grid_.x) * block_; }
+
+  const GladGLContext* api_;
+  int resolution_, batch_;
+  glm::ivec2 block_, grid_; // block size in texels; blocks per row, rows
+  Bounds bounds_;
+  ShaderProgram program_;
+  MaterialUniforms material_;
+  // Two atlases, drawn into in turn: the next batch's shadow maps need not wait for the shading
+  // passes that read the last batch's (llvmpipe waits before it renders into a texture that a
+  // queued draw samples).
+  Texture atlas_[2];
+  Framebuffer fbo_[2];
+  int current_ = 0;
+  Buffer block_buffer_;           // the ShadowBatch uniform block
+  std::vector<float> block_data_; // its contents, filled per batch
+};
+
+} // namespace irad::gl
