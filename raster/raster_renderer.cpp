@@ -2,19 +2,20 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "raster/context/gl_context.h"
+#include "raster/context/pass_timer.h"
+#include "raster/image/gbuffer.h"
+#include "raster/image/interleaved.h"
+#include "raster/image/jitter_passes.h"
+#include "raster/image/pixel_jitter.h"
+#include "raster/image/target.h"
 #include "raster/passes/background.h"
 #include "raster/passes/batched_passes.h"
 #include "raster/passes/camera_passes.h"
 #include "raster/passes/directional_pass.h"
-#include "raster/context/gl_context.h"
-#include "raster/scene/gpu_scene.h"
-#include "raster/image/interleaved.h"
-#include "raster/image/jitter_passes.h"
-#include "raster/context/pass_timer.h"
-#include "raster/image/pixel_jitter.h"
-#include "raster/shadow/shadow_cube.h"
-#include "raster/image/target.h"
 #include "raster/passes/vpl_shader.h"
+#include "raster/scene/gpu_scene.h"
+#include "raster/shadow/shadow_cube.h"
 
 #include <algorithm>
 #include <chrono>
@@ -67,7 +68,9 @@ struct RasterRenderer::Impl {
   gl::CameraPasses camera;
   gl::VplShader vpl_shader;
   std::unique_ptr<gl::Target> target;
+  std::unique_ptr<gl::GBuffer> gbuffer; // for the batched passes and the interleaved resolve
   std::unique_ptr<gl::Interleaved> interleaved;
+  bool tile_depths = false; // interleaved: each set's depth drawn in its tile for this image
   std::unique_ptr<gl::JitterPasses> jitter;         // with options.jitter
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   std::unique_ptr<gl::BatchedPasses> batched;       // options.batch > 1, no jitter
@@ -90,9 +93,12 @@ struct RasterRenderer::Impl {
   }
 
   void prepare(const View& view);
-  // Clears the target and draws what every VPL pass adds to: the visible surface's depth (and,
-  // interleaved, the G-buffer and each tile's depth).
+  // Clears the target and draws what every VPL pass adds to: the G-buffer (batched or
+  // interleaved) or else the visible surface's depth.
   void begin_image(const View& view);
+  // Interleaved: each set's depth in its tile, which the per-VPL passes test against (drawn once
+  // per image, only when such a pass comes).
+  void ensure_tile_depths(const View& view);
   // A VPL pass needs its shadow cube: drawn now (render) or kept from before (render_cached).
   using ShadowFor = std::function<GLuint(std::size_t k, glm::mat3& frame)>;
   // The VPL passes of vpls[k] for every k, each VPL's shadow map then shading; returns the number
@@ -100,7 +106,8 @@ struct RasterRenderer::Impl {
   std::size_t vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
                          const ShadowFor& shadow_for, float texel_angle, gl::PassTimer* timer,
                          const Progress& progress);
-  // vpl_passes with the VPLs drawn in batches (raster/passes/batched_passes.h), directional ones alone.
+  // vpl_passes with the VPLs drawn in batches (raster/passes/batched_passes.h), directional ones
+  // alone.
   std::size_t batched_passes(const View& view, const std::vector<const Vpl*>& vpls,
                              gl::PassTimer* timer, const Progress& progress);
   // Binds the VPL's framebuffer and viewport and returns the view-projection it is shaded with;
@@ -135,23 +142,25 @@ glm::mat4 RasterRenderer::Impl::bind_pass(const View& view, const Vpl& vpl,
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {
+  const int resolution = shadow_resolution_for(options.shadow_resolution, view.width, view.height);
+  const int batch = jitter ? 1 : options.batch;
+  if (!batched || !batched->matches(batch, resolution))
+    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution);
   if (!target || target->width() != view.width || target->height() != view.height) {
     interleaved.reset();
+    gbuffer.reset();
     target = std::make_unique<gl::Target>(api, view.width, view.height);
   }
-  const int resolution = shadow_resolution_for(options.shadow_resolution, view.width, view.height);
+  if ((batched || options.interleave > 1) && !gbuffer)
+    gbuffer = std::make_unique<gl::GBuffer>(api, view.width, view.height, target->depth());
   if (!shadow || shadow->resolution() != resolution)
     shadow = std::make_unique<gl::ShadowCube>(api, resolution, scene.bounds, gpu.features());
   if (options.interleave > 1 && !interleaved)
-    interleaved = std::make_unique<gl::Interleaved>(api, view.width, view.height,
-                                                    options.interleave, target->depth());
+    interleaved = std::make_unique<gl::Interleaved>(api, options.interleave, *gbuffer);
   const int ortho = gl::ortho_resolution_for(options.shadow_resolution, view.width, view.height);
   if (gl::has_directional_light(scene) && (!directional || directional->resolution() != ortho))
     directional = std::make_unique<gl::DirectionalPass>(api, scene, ortho);
   if (directional) directional->forget();
-  const int batch = jitter ? 1 : options.batch;
-  if (!batched || !batched->matches(batch, resolution))
-    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution);
 }
 
 std::size_t RasterRenderer::Impl::batched_passes(const View& view,
@@ -162,8 +171,9 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
   for (const Vpl* v : vpls)
     (v->kind == VplKind::Directional || v->mirror >= 0 ? alone : many).push_back(v);
   // VPLs of one direction next to each other (a directional light's, a sun's): the orthographic
-  // map is drawn once per run of equal directions (raster/shadow/ortho_shadow.h), not once per change
-  // (a sun's VPLs alternate with the sky's in path order). The sum does not depend on the order.
+  // map is drawn once per run of equal directions (raster/shadow/ortho_shadow.h), not once per
+  // change (a sun's VPLs alternate with the sky's in path order). The sum does not depend on the
+  // order.
   std::stable_sort(alone.begin(), alone.end(), [](const Vpl* a, const Vpl* b) {
     const bool da = a->kind == VplKind::Directional, db = b->kind == VplKind::Directional;
     if (da != db) return da;
@@ -173,8 +183,8 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
   });
   const int sets = interleaved ? interleaved->sets() : 1;
   const std::size_t drawn = batched->draw(
-      view, many, [&](const Vpl& v) { return set_of(v.path, sets); }, interleaved.get(), *target,
-      gpu, timer,
+      many, [&](const Vpl& v) { return set_of(v.path, sets); }, *gbuffer, interleaved.get(),
+      *target, gpu, timer,
       [&](std::size_t done) {
         if (progress) progress(done, vpls.size());
         return options.cancel == nullptr || !options.cancel->load(std::memory_order_relaxed);
@@ -193,6 +203,7 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
                                              const ShadowFor& shadow_for, float texel_angle,
                                              gl::PassTimer* timer, const Progress& progress) {
+  if (!vpls.empty()) ensure_tile_depths(view);
   // The depth each framebuffer (or atlas tile) holds: the unjittered one (offset 0) at first.
   std::vector<glm::vec2> last_offsets(interleaved ? interleaved->sets() : 1, glm::vec2(0.0f));
   std::size_t passes = 0;
@@ -221,28 +232,34 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector
 void RasterRenderer::Impl::begin_image(const View& view) {
   prepare(view);
   const glm::mat4 vp = view.projection * view.view;
-  if (interleaved) {
-    // The full-resolution G-buffer (its depth is the target's), then each set's depth in its tile.
-    interleaved->bind_gbuffer();
+  api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  api.ClearDepth(1.0);
+  api.DepthMask(GL_TRUE);
+  if (gbuffer) {
+    // The full-resolution G-buffer; its depth is the target's.
+    gbuffer->bind();
     camera.gbuffer(vp, gpu);
     if (jitter) jitter->average_albedo(camera, view, gpu);
+  }
+  tile_depths = false;
+  api.DepthMask(GL_TRUE); // the passes above may leave it off
+  if (interleaved) {
     interleaved->bind_atlas();
-    api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    api.ClearDepth(1.0);
-    api.DepthMask(GL_TRUE);
     api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    for (int s = 0; s < interleaved->sets(); ++s) {
-      interleaved->bind_tile(s);
-      camera.depth(interleaved->tile_projection(s, view.projection) * view.view, gpu);
-    }
   } else {
     target->bind();
-    api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    api.ClearDepth(1.0);
-    api.DepthMask(GL_TRUE);
-    api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    camera.depth(vp, gpu);
+    api.Clear(gbuffer ? GL_COLOR_BUFFER_BIT : GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (!gbuffer) camera.depth(vp, gpu);
   }
+}
+
+void RasterRenderer::Impl::ensure_tile_depths(const View& view) {
+  if (!interleaved || tile_depths) return;
+  for (int s = 0; s < interleaved->sets(); ++s) {
+    interleaved->bind_tile(s);
+    camera.depth(interleaved->tile_projection(s, view.projection) * view.view, gpu);
+  }
+  tile_depths = true;
 }
 
 Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0, std::size_t passes,

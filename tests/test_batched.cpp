@@ -65,8 +65,11 @@ const std::filesystem::path cornell =
     std::filesystem::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf";
 
 // What may separate the two paths: texels at the edge of a cube face where the hand-made face
-// selection and GL's cube-map sampler could disagree (rounding) and the order in which the
-// blended passes are summed. A wrong face, texel or block costs far more: with the +x face read
+// selection and GL's cube-map sampler could disagree (rounding), the order in which the VPLs are
+// summed, and, interleaved, pixels whose centre lies on an edge between two faces: the per-VPL
+// passes rasterize each set's tile through its own shifted projection, the deferred passes read
+// the surface the full-resolution G-buffer kept (the one the resolve also uses), and rounding
+// may pick the other face. A wrong face, texel or block costs far more: with the +x face read
 // mirrored relMSE was 1.9e-3 and 39 % of the pixels were off by more than 1 %.
 TEST(Batched, CornellBoxMatchesThePerVplPasses) {
   Log log = quiet_log();
@@ -78,11 +81,12 @@ TEST(Batched, CornellBoxMatchesThePerVplPasses) {
     // Batches of 7 leave a partial last batch and put VPLs of every set into one draw.
     for (int batch : {7, 32}) {
       const Difference d = batched_against_reference(scene, vpls, view, k, batch, "cornell");
-      // Measured (llvmpipe): relMSE 0 (the same bits) with batch 32, < 2e-15 with batch 7
-      // (max abs 4e-7), at k = 1 and 4; no pixel off by 1 %.
-      EXPECT_LT(d.metrics.relmse, 1e-8);
+      // Measured (llvmpipe, deferred): k = 1: relMSE 1.1e-14 (max abs 1.9e-6), no pixel off by
+      // 1 %; k = 4: relMSE 4.6e-6, mean ratio 1.000055, 16 pixels (0.098 %) off by more than
+      // 1 %, all on the edges of the blocks (the faces the G-buffer and the tile disagree on).
+      EXPECT_LT(d.metrics.relmse, k == 1 ? 1e-8 : 2e-5);
       EXPECT_NEAR(d.metrics.mean_ratio[1], 1.0, 1e-4);
-      EXPECT_LT(d.differing, 0.001);
+      EXPECT_LT(d.differing, k == 1 ? 0.0001 : 0.003);
     }
   }
 }

@@ -184,8 +184,10 @@ TEST(Walkthrough, CachedShadowMapsEqualRedrawingThemUnderCameraMotion) {
     const ImageMetrics ring = compare_images(frame(dir, "ring", f), reshade);
     std::printf("frame %d against reshade: cached relMSE %.3g, ring relMSE %.3g\n", f,
                 cached.relmse, ring.relmse);
-    EXPECT_LT(cached.max_abs_error, 1e-6) << f; // measured: identical
-    EXPECT_GT(ring.relmse, 1e-3) << f;          // ghosts of the earlier viewpoints
+    // Measured: max abs 2.8e-6 (the summation order: the cached frames shade per VPL, the
+    // reshaded ones in the deferred batches); identical when both shaded per VPL.
+    EXPECT_LT(cached.max_abs_error, 1e-5) << f;
+    EXPECT_GT(ring.relmse, 1e-3) << f; // ghosts of the earlier viewpoints
   }
   fs::remove_all(dir);
 }

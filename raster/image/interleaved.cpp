@@ -7,29 +7,19 @@ namespace irad::gl {
 
 namespace {
 
-constexpr GLint atlas_unit = 2, position_unit = 3, normal_unit = 4, albedo_unit = 5;
+// The G-buffer's position, normal and albedo at position_unit, + 1, + 2.
+constexpr GLint atlas_unit = 2, position_unit = 3;
 
 } // namespace
 
-Interleaved::Interleaved(const GladGLContext& api, int width, int height, int k, GLuint depth)
-    : api_(&api), width_(width), height_(height), k_(k), tile_w_((width + k - 1) / k),
-      tile_h_((height + k - 1) / k), position_(make_float_texture(api, width, height)),
-      normal_(make_float_texture(api, width, height)),
-      albedo_(make_float_texture(api, width, height)),
+Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer)
+    : api_(&api), width_(gbuffer.width()), height_(gbuffer.height()), k_(k),
+      tile_w_((width_ + k - 1) / k), tile_h_((height_ + k - 1) / k), gbuffer_(&gbuffer),
       atlas_(make_float_texture(api, k * tile_w_, k * tile_h_)),
-      atlas_depth_(make_renderbuffer(api)), gbuffer_fbo_(make_framebuffer(api)),
-      atlas_fbo_(make_framebuffer(api)), empty_vao_(make_vertex_array(api)),
+      atlas_depth_(make_renderbuffer(api)), atlas_fbo_(make_framebuffer(api)),
+      empty_vao_(make_vertex_array(api)),
       resolve_(api, "resolve", shaders::fullscreen_vertex, shaders::resolve_fragment) {
   if (k < 1) throw Error("", "--interleave", "must be at least 1");
-  api.BindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_.get());
-  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, position_.get(), 0);
-  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normal_.get(), 0);
-  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, albedo_.get(), 0);
-  api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  api.DrawBuffers(3, buffers);
-  check_framebuffer(api, "G-buffer framebuffer");
-
   api.BindRenderbuffer(GL_RENDERBUFFER, atlas_depth_.get());
   api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, k * tile_w_, k * tile_h_);
   api.BindFramebuffer(GL_FRAMEBUFFER, atlas_fbo_.get());
@@ -41,16 +31,11 @@ Interleaved::Interleaved(const GladGLContext& api, int width, int height, int k,
   resolve_.use();
   api.Uniform1i(resolve_.uniform("u_atlas"), atlas_unit);
   api.Uniform1i(resolve_.uniform("u_position"), position_unit);
-  api.Uniform1i(resolve_.uniform("u_normal"), normal_unit);
-  api.Uniform1i(resolve_.uniform("u_albedo"), albedo_unit);
+  api.Uniform1i(resolve_.uniform("u_normal"), position_unit + 1);
+  api.Uniform1i(resolve_.uniform("u_albedo"), position_unit + 2);
   api.Uniform1i(resolve_.uniform("u_k"), k);
   api.Uniform2i(resolve_.uniform("u_tile"), tile_w_, tile_h_);
-  api.Uniform2i(resolve_.uniform("u_size"), width, height);
-}
-
-void Interleaved::bind_gbuffer() const {
-  api_->BindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_.get());
-  api_->Viewport(0, 0, width_, height_);
+  api.Uniform2i(resolve_.uniform("u_size"), width_, height_);
 }
 
 void Interleaved::bind_tile(int set) const {
@@ -86,12 +71,7 @@ void Interleaved::resolve() const {
   resolve_.use();
   api_->ActiveTexture(GL_TEXTURE0 + atlas_unit);
   api_->BindTexture(GL_TEXTURE_2D, atlas_.get());
-  api_->ActiveTexture(GL_TEXTURE0 + position_unit);
-  api_->BindTexture(GL_TEXTURE_2D, position_.get());
-  api_->ActiveTexture(GL_TEXTURE0 + normal_unit);
-  api_->BindTexture(GL_TEXTURE_2D, normal_.get());
-  api_->ActiveTexture(GL_TEXTURE0 + albedo_unit);
-  api_->BindTexture(GL_TEXTURE_2D, albedo_.get());
+  gbuffer_->bind_textures(position_unit);
   api_->BindVertexArray(empty_vao_.get());
   api_->DrawArrays(GL_TRIANGLES, 0, 3);
 }

@@ -7,6 +7,7 @@
 // geometry-aware filter (raster/glsl/shaders.h resolve_fragment).
 #include "raster/context/gl_objects.h"
 #include "raster/context/shader_program.h"
+#include "raster/image/gbuffer.h"
 
 #include <glm/glm.hpp>
 
@@ -14,28 +15,31 @@ namespace irad::gl {
 
 class Interleaved {
 public:
-  // depth: the full-resolution target's depth renderbuffer, shared with the G-buffer pass.
-  Interleaved(const GladGLContext& api, int width, int height, int k, GLuint depth);
+  // gbuffer: the image's (its size is the image's), read by the resolve; kept by reference.
+  Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer);
 
   int k() const { return k_; }
   int sets() const { return k_ * k_; }
-  // Full-resolution G-buffer (position, normal, albedo): bound with the viewport set.
-  void bind_gbuffer() const;
   // The atlas with the viewport on one set's tile (set in [0, k^2)), or on the whole atlas.
   void bind_tile(int set) const;
   void bind_atlas() const;
   // The camera projection moved so that tile pixel (X, Y) of `set` sees the centre of full-image
   // pixel (k X + dx, k Y + dy).
   glm::mat4 tile_projection(int set, const glm::mat4& projection) const;
+  // The tile's rectangle in the atlas (x, y, w, h) of `set`.
+  glm::ivec4 tile(int set) const {
+    return {(set % k_) * tile_w_, (set / k_) * tile_h_, tile_w_, tile_h_};
+  }
   // Writes the resolved VPL light into the bound framebuffer (full resolution, no blending).
   void resolve() const;
 
 private:
   const GladGLContext* api_;
   int width_, height_, k_, tile_w_, tile_h_;
-  Texture position_, normal_, albedo_, atlas_;
+  const GBuffer* gbuffer_;
+  Texture atlas_;
   Renderbuffer atlas_depth_;
-  Framebuffer gbuffer_fbo_, atlas_fbo_;
+  Framebuffer atlas_fbo_;
   VertexArray empty_vao_;
   ShaderProgram resolve_;
 };

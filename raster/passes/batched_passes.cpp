@@ -16,7 +16,7 @@ std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, con
                                                    float clamp, int batch, int resolution) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
-  if (b < 2 || !BatchedShader::fits(api, b)) return nullptr;
+  if (b < 2 || !DeferredShader::fits(api, b)) return nullptr;
   return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution);
 }
 
@@ -26,7 +26,7 @@ BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float
       atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene)),
       shader_(api, scene, clamp, batch) {}
 
-void BatchedPasses::flush(const View& view, std::vector<Entry>& batch,
+void BatchedPasses::flush(std::vector<Entry>& batch, const GBuffer& gbuffer,
                           const Interleaved* interleaved, const Target& target, const GpuScene& gpu,
                           PassTimer* timer) {
   std::stable_sort(batch.begin(), batch.end(),
@@ -43,25 +43,27 @@ void BatchedPasses::flush(const View& view, std::vector<Entry>& batch,
     const int set = batch[static_cast<std::size_t>(first)].set;
     int end = first + 1;
     while (end < n && batch[static_cast<std::size_t>(end)].set == set) ++end;
-    // The view-projection and viewport of the per-VPL pass of this set (and of its depth).
-    glm::mat4 vp = view.projection * view.view;
+    // The set's tile: its pixel t stands for image pixel k t + (set mod k, set / k), the pixel
+    // whose centre the per-VPL pass's tile projection puts there (Interleaved::tile_projection).
+    TilePixels pixels;
     if (interleaved) {
       interleaved->bind_tile(set);
-      vp = interleaved->tile_projection(set, view.projection) * view.view;
+      const int k = interleaved->k();
+      pixels = {glm::ivec2(interleaved->tile(set)), k, glm::ivec2(set % k, set / k)};
     } else {
       target.bind();
     }
-    shader_.draw(first, end - first, vp, atlas_, !interleaved, gpu);
+    shader_.draw(first, end - first, pixels, gbuffer, atlas_, !interleaved);
     first = end;
   }
   if (timer) timer->end();
   batch.clear();
 }
 
-std::size_t BatchedPasses::draw(const View& view, const std::vector<const Vpl*>& vpls,
+std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
                                 const std::function<int(const Vpl&)>& set_of,
-                                const Interleaved* interleaved, const Target& target,
-                                const GpuScene& gpu, PassTimer* timer,
+                                const GBuffer& gbuffer, const Interleaved* interleaved,
+                                const Target& target, const GpuScene& gpu, PassTimer* timer,
                                 const std::function<bool(std::size_t)>& after) {
   std::vector<Entry> batch;
   int blocks = 0;
@@ -72,7 +74,7 @@ std::size_t BatchedPasses::draw(const View& view, const std::vector<const Vpl*>&
       const int need = ShadowAtlas::blocks_for(vpl);
       if (blocks + need > atlas_.blocks()) { // a whole cube where only a hemisphere fits
         drawn += batch.size();
-        flush(view, batch, interleaved, target, gpu, timer);
+        flush(batch, gbuffer, interleaved, target, gpu, timer);
         blocks = 0;
       }
       batch.push_back({&vpl, interleaved ? set_of(vpl) : 0});
@@ -80,7 +82,7 @@ std::size_t BatchedPasses::draw(const View& view, const std::vector<const Vpl*>&
     }
     if (static_cast<int>(batch.size()) == atlas_.batch() || k + 1 == vpls.size()) {
       drawn += batch.size();
-      flush(view, batch, interleaved, target, gpu, timer);
+      flush(batch, gbuffer, interleaved, target, gpu, timer);
       blocks = 0;
       if (after && !after(k + 1)) break;
     }

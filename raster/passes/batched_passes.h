@@ -1,21 +1,23 @@
 #pragma once
-// Batched VPL passes (RasterOptions::batch > 1): the VPLs are drawn B at a time, the shadow cubes
-// of a batch into one atlas by one instanced draw (raster/shadow/shadow_atlas.h), then the batch's
-// shading by one instanced draw per interleaved set (raster/passes/batched_shader.h). The image is the
-// one the per-VPL passes give (the same cube faces, the same shading maths, the same
-// view-projection and viewport per set; tests/test_batched.cpp measures the difference); what
-// changes is the number of framebuffer binds, clears, draw calls and waits: per batch 2 binds,
-// 1 clear and 1 + k^2 draws against 6 binds, 5 clears and 6 draws per VPL. Directional VPLs,
-// jitter and the cached shadow maps keep the per-VPL passes.
+// Batched, deferred VPL passes (RasterOptions::batch > 1): the VPLs are drawn B at a time, the
+// shadow cubes of a batch into one atlas by one instanced draw (raster/shadow/shadow_atlas.h),
+// then the batch's shading screen-space from the camera's G-buffer by one full-screen draw per
+// interleaved set (raster/passes/deferred_shader.h). The image is the one the per-VPL passes give
+// where every pixel sees one surface (the same cube faces, the same shading maths at the same
+// point; tests/test_batched.cpp measures the difference); where faces coincide the per-VPL
+// passes light each of them, these passes the one surface the G-buffer kept. What changes is the
+// cost: per batch 2 binds, 1 clear, 1 + k^2 draws, and a shading cost of pixels x VPLs that does
+// not depend on the triangles, against 6 binds, 5 clears and 6 draws of the whole scene per VPL.
+// Directional and mirrored VPLs, jitter and the cached shadow maps keep the per-VPL passes.
 #include "core/scene.h"
-#include "core/view.h"
 #include "core/vpl.h"
-#include "raster/passes/batched_shader.h"
-#include "raster/scene/gpu_scene.h"
-#include "raster/image/interleaved.h"
 #include "raster/context/pass_timer.h"
-#include "raster/shadow/shadow_atlas.h"
+#include "raster/image/gbuffer.h"
+#include "raster/image/interleaved.h"
 #include "raster/image/target.h"
+#include "raster/passes/deferred_shader.h"
+#include "raster/scene/gpu_scene.h"
+#include "raster/shadow/shadow_atlas.h"
 
 #include <functional>
 #include <memory>
@@ -37,14 +39,14 @@ public:
     return batch == requested_ && resolution == atlas_.resolution();
   }
 
-  // Draws the VPLs that carry light (none directional) batch by batch: shadow atlas, then the
-  // shading of each set (set_of(vpl)) into its tile of `interleaved`, or (nullptr) of all into
-  // the target, over the depth the per-VPL passes use. After each batch `after` gets the number
-  // of VPLs of `vpls` done; false stops. Returns the number of VPLs drawn.
-  std::size_t draw(const View& view, const std::vector<const Vpl*>& vpls,
-                   const std::function<int(const Vpl&)>& set_of, const Interleaved* interleaved,
-                   const Target& target, const GpuScene& gpu, PassTimer* timer,
-                   const std::function<bool(std::size_t)>& after);
+  // Draws the VPLs that carry light (none directional or mirrored) batch by batch: shadow atlas,
+  // then the shading of each set (set_of(vpl)) from `gbuffer` into its tile of `interleaved`, or
+  // (nullptr) of all into the target. After each batch `after` gets the number of VPLs of `vpls`
+  // done; false stops. Returns the number of VPLs drawn.
+  std::size_t draw(const std::vector<const Vpl*>& vpls,
+                   const std::function<int(const Vpl&)>& set_of, const GBuffer& gbuffer,
+                   const Interleaved* interleaved, const Target& target, const GpuScene& gpu,
+                   PassTimer* timer, const std::function<bool(std::size_t)>& after);
 
 private:
   struct Entry {
@@ -52,12 +54,12 @@ private:
     int set;
   };
   // Draws the batch (ordered by set on the way).
-  void flush(const View& view, std::vector<Entry>& batch, const Interleaved* interleaved,
+  void flush(std::vector<Entry>& batch, const GBuffer& gbuffer, const Interleaved* interleaved,
              const Target& target, const GpuScene& gpu, PassTimer* timer);
 
   int requested_;
   ShadowAtlas atlas_;
-  BatchedShader shader_;
+  DeferredShader shader_;
   std::vector<const Vpl*> vpls_;
   std::vector<glm::mat3> frames_;
   std::vector<float> fars_;

@@ -1,0 +1,56 @@
+#pragma once
+// The deferred shading of a batch of VPLs: the camera's G-buffer (raster/image/gbuffer.h) holds
+// the one surface each pixel sees; a draw is one full-screen triangle over the bound viewport
+// (the image, or one interleaved set's tile) whose fragments sum w * C(x) (core/vpl.h, the maths
+// of raster/passes/vpl_shader.h) over the draw's VPLs, their shadow cubes looked up in a
+// ShadowAtlas. The cost of a batch is pixels x VPLs, whatever the number of triangles, and a
+// pixel is lit once even where two faces coincide (duplicated faces, back-to-back walls), which
+// the forward passes light once per face that passes the depth test.
+#include "core/scene.h"
+#include "core/vpl.h"
+#include "raster/context/shader_program.h"
+#include "raster/image/gbuffer.h"
+#include "raster/shadow/shadow_atlas.h"
+
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace irad::gl {
+
+// Where a draw's fragments read the G-buffer: tile pixel t of a viewport with lower-left corner
+// `origin` stands for image pixel k t + offset.
+struct TilePixels {
+  glm::ivec2 origin{0};
+  int k = 1;
+  glm::ivec2 offset{0};
+};
+
+class DeferredShader {
+public:
+  // Up to `batch` VPLs per upload.
+  DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch);
+
+  // Whether this GL's uniform blocks hold a batch of `batch` VPLs.
+  static bool fits(const GladGLContext& api, int batch);
+
+  // The batch's VPLs vpls[0..n) with their cube frames and atlas blocks (ShadowAtlas::render).
+  void upload(const Vpl* const* vpls, int n, const std::vector<glm::mat3>& frames,
+              const std::vector<float>& fars, const std::vector<glm::ivec4>& blocks);
+  // Adds the uploaded VPLs first..first + count - 1 into the bound framebuffer and viewport
+  // (apply_albedo false: irradiance / pi without rho(x), for the interleaved resolve).
+  void draw(int first, int count, const TilePixels& pixels, const GBuffer& gbuffer,
+            const ShadowAtlas& shadow, bool apply_albedo) const;
+
+private:
+  const GladGLContext* api_;
+  float diagonal_, clamp_;
+  int batch_;
+  ShaderProgram program_;
+  GLint first_, count_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_,
+      apply_albedo_;
+  Buffer vpl_block_;
+  VertexArray empty_vao_;
+  std::vector<float> vpl_data_;
+};
+
+} // namespace irad::gl
