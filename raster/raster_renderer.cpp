@@ -15,6 +15,7 @@
 #include "raster/passes/directional_pass.h"
 #include "raster/passes/vpl_shader.h"
 #include "raster/scene/gpu_scene.h"
+#include "raster/shadow/shadow_cache.h"
 #include "raster/shadow/shadow_cube.h"
 
 #include <algorithm>
@@ -75,14 +76,17 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   std::unique_ptr<gl::BatchedPasses> batched;       // options.batch > 1, no jitter
   std::unique_ptr<gl::Background> background;       // only for scenes that show one
-  // Shadow maps kept per path slot (render_cached): one cube per VPL that carries light.
+  // Shadow maps kept per path slot (render_cached). Batched: the slot's VPLs in the atlas pages
+  // of shadow_cache, only the mirrored ones (and the per-VPL reference, batch 1: all) with a cube
+  // of their own; directional VPLs have their orthographic map drawn per image.
   struct CachedPath {
-    std::vector<Vpl> vpls;
+    std::vector<Vpl> vpls; // those shaded per VPL
     std::vector<gl::Texture> cubes;
     std::vector<glm::mat3> frames;
   };
   std::vector<CachedPath> cache;
-  std::unique_ptr<gl::ShadowCube> cache_shadow; // draws into the cached cubes
+  std::unique_ptr<gl::ShadowCube> cache_shadow;  // draws into the cached cubes
+  std::unique_ptr<gl::ShadowCache> shadow_cache; // batched: the kept atlas blocks
 
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
@@ -115,6 +119,9 @@ struct RasterRenderer::Impl {
   glm::mat4 bind_pass(const View& view, const Vpl& vpl, std::vector<glm::vec2>& last_offsets);
   // The orthographic shadow map of a directional VPL (shared by the VPLs of one direction).
   void directional_shadow(const Vpl& vpl) { directional->shadow(vpl, gpu); }
+  gl::DeferredTarget deferred_target() const {
+    return {gbuffer.get(), interleaved.get(), target.get()};
+  }
   // The resolve (interleaved), the emitters, the background and the readback.
   Image finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                      gl::PassTimer* timer, RasterTimings* timings);
@@ -183,8 +190,7 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
   });
   const int sets = interleaved ? interleaved->sets() : 1;
   const std::size_t drawn = batched->draw(
-      many, [&](const Vpl& v) { return set_of(v.path, sets); }, *gbuffer, interleaved.get(),
-      *target, gpu, timer,
+      many, [&](const Vpl& v) { return set_of(v.path, sets); }, deferred_target(), gpu, timer,
       [&](std::size_t done) {
         if (progress) progress(done, vpls.size());
         return options.cancel == nullptr || !options.cancel->load(std::memory_order_relaxed);
@@ -351,8 +357,17 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
   const int resolution = shadow_resolution_for(im.options.shadow_resolution, width, height);
   if (!im.cache_shadow || im.cache_shadow->resolution() != resolution) {
     im.cache.clear(); // cubes of another resolution
+    im.shadow_cache.reset();
     im.cache_shadow =
         std::make_unique<gl::ShadowCube>(im.api, resolution, im.scene.bounds, im.gpu.features());
+    // The batched passes shade kept atlas blocks; the reference (batch 1, jitter) keeps cubes.
+    const int batch = im.jitter ? 1 : im.options.batch;
+    if (!im.batched || !im.batched->matches(batch, resolution))
+      im.batched = gl::BatchedPasses::make(im.api, im.scene, im.options.clamp, batch, resolution);
+    if (im.batched)
+      im.shadow_cache = std::make_unique<gl::ShadowCache>(
+          im.api, resolution, gl::ShadowAtlas::capacity(im.api, resolution, batch), im.scene.bounds,
+          im.gpu.features());
   }
   if (slot >= im.cache.size()) im.cache.resize(std::size_t(slot) + 1);
   Impl::CachedPath& path = im.cache[slot];
@@ -361,8 +376,13 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
   for (gl::Texture& c : path.cubes)
     if (c.get() != 0) spare.push_back(std::move(c));
   path = {};
+  std::vector<Vpl> in_atlas;
   for (const Vpl& v : vpls) {
     if (!carries_light(v)) continue;
+    if (im.shadow_cache && v.kind != VplKind::Directional && v.mirror < 0) {
+      in_atlas.push_back(v);
+      continue;
+    }
     path.vpls.push_back(v);
     if (v.kind == VplKind::Directional) { // its orthographic map is drawn per image
       path.cubes.emplace_back();
@@ -377,6 +397,7 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
     }
     path.frames.push_back(im.cache_shadow->render_into(v, im.gpu, path.cubes.back().get()));
   }
+  if (im.shadow_cache) im.shadow_cache->store(slot, in_atlas, im.gpu);
   im.context->check("cached shadow maps");
 }
 
@@ -385,6 +406,15 @@ Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
   const auto t0 = Clock::now();
   const gl::CurrentScope current(*im.context);
   im.begin_image(view);
+  std::size_t passes = 0;
+  if (im.shadow_cache && im.batched) {
+    const int sets = im.interleaved ? im.interleaved->sets() : 1;
+    for (gl::ShadowCache::Page& page : im.shadow_cache->pages()) {
+      for (gl::AtlasVpl& v : page.vpls) v.set = set_of(v.vpl->path, sets);
+      im.batched->shade(page.vpls, page.lookup, im.deferred_target());
+      passes += page.vpls.size();
+    }
+  }
   std::vector<const Vpl*> list;
   std::vector<std::pair<GLuint, glm::mat3>> maps;
   for (const Impl::CachedPath& p : im.cache)
@@ -398,7 +428,7 @@ Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
     return maps[k].first;
   };
   const float texel = im.cache_shadow ? im.cache_shadow->texel_angle() : 1.0f;
-  const std::size_t passes = im.vpl_passes(view, list, kept, texel, nullptr, {});
+  passes += im.vpl_passes(view, list, kept, texel, nullptr, {});
   return im.finish_image(view, t0, passes, nullptr, timings);
 }
 
@@ -407,7 +437,8 @@ std::size_t RasterRenderer::cache_bytes() const {
   for (const Impl::CachedPath& p : impl_->cache)
     for (const gl::Texture& c : p.cubes) cubes += c.get() != 0 ? 1 : 0;
   const std::size_t r = impl_->cache_shadow ? std::size_t(impl_->cache_shadow->resolution()) : 0;
-  return cubes * 6 * r * r * sizeof(float);
+  return cubes * 6 * r * r * sizeof(float) +
+         (impl_->shadow_cache ? impl_->shadow_cache->bytes() : 0);
 }
 
 } // namespace irad

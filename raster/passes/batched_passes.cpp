@@ -16,7 +16,7 @@ std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, con
                                                    float clamp, int batch, int resolution) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
-  if (b < 2 || !DeferredShader::fits(api, b)) return nullptr;
+  if (b < 2 || DeferredShader::capacity(api, b) < b) return nullptr;
   return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution);
 }
 
@@ -24,11 +24,10 @@ BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float
                              int requested, int batch, int resolution)
     : requested_(requested),
       atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene)),
-      shader_(api, scene, clamp, batch) {}
+      shader_(api, scene, clamp, DeferredShader::capacity(api, std::max(batch, kShadingBatch))) {}
 
-void BatchedPasses::flush(std::vector<Entry>& batch, const GBuffer& gbuffer,
-                          const Interleaved* interleaved, const Target& target, const GpuScene& gpu,
-                          PassTimer* timer) {
+void BatchedPasses::flush(std::vector<Entry>& batch, const DeferredTarget& into,
+                          const GpuScene& gpu, PassTimer* timer) {
   std::stable_sort(batch.begin(), batch.end(),
                    [](const Entry& a, const Entry& b) { return a.set < b.set; });
   vpls_.clear();
@@ -38,32 +37,60 @@ void BatchedPasses::flush(std::vector<Entry>& batch, const GBuffer& gbuffer,
   atlas_.render(vpls_.data(), n, gpu, frames_, fars_, blocks_);
   if (timer) timer->end();
   if (timer) timer->begin(PassTimer::Shading);
-  shader_.upload(vpls_.data(), n, frames_, fars_, blocks_);
-  for (int first = 0; first < n;) {
-    const int set = batch[static_cast<std::size_t>(first)].set;
-    int end = first + 1;
-    while (end < n && batch[static_cast<std::size_t>(end)].set == set) ++end;
-    // The set's tile: its pixel t stands for image pixel k t + (set mod k, set / k), the pixel
-    // whose centre the per-VPL pass's tile projection puts there (Interleaved::tile_projection).
-    TilePixels pixels;
-    if (interleaved) {
-      interleaved->bind_tile(set);
-      const int k = interleaved->k();
-      pixels = {glm::ivec2(interleaved->tile(set)), k, glm::ivec2(set % k, set / k)};
-    } else {
-      target.bind();
-    }
-    shader_.draw(first, end - first, pixels, gbuffer, atlas_, !interleaved);
-    first = end;
+  shaded_.clear();
+  for (int s = 0; s < n; ++s) {
+    const auto u = static_cast<std::size_t>(s);
+    shaded_.push_back({vpls_[u], frames_[u], fars_[u], blocks_[u], batch[u].set});
   }
+  shade_some(shaded_.data(), n, {atlas_.texture(), atlas_.resolution()}, into);
   if (timer) timer->end();
   batch.clear();
 }
 
+void BatchedPasses::shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shadow,
+                          const DeferredTarget& into) {
+  std::stable_sort(vpls.begin(), vpls.end(),
+                   [](const AtlasVpl& a, const AtlasVpl& b) { return a.set < b.set; });
+  const int n = static_cast<int>(vpls.size());
+  for (int first = 0; first < n; first += shader_.batch())
+    shade_some(vpls.data() + first, std::min(shader_.batch(), n - first), shadow, into);
+}
+
+void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& shadow,
+                               const DeferredTarget& into) {
+  vpls_.clear();
+  frames_.clear();
+  fars_.clear();
+  blocks_.clear();
+  for (int s = 0; s < n; ++s) {
+    vpls_.push_back(vpls[s].vpl);
+    frames_.push_back(vpls[s].frame);
+    fars_.push_back(vpls[s].far);
+    blocks_.push_back(vpls[s].blocks);
+  }
+  shader_.upload(vpls_.data(), n, frames_, fars_, blocks_);
+  for (int first = 0; first < n;) {
+    const int set = vpls[first].set;
+    int end = first + 1;
+    while (end < n && vpls[end].set == set) ++end;
+    // The set's tile: its pixel t stands for image pixel k t + (set mod k, set / k), the pixel
+    // whose centre the per-VPL pass's tile projection puts there (Interleaved::tile_projection).
+    TilePixels pixels;
+    if (into.interleaved) {
+      into.interleaved->bind_tile(set);
+      const int k = into.interleaved->k();
+      pixels = {glm::ivec2(into.interleaved->tile(set)), k, glm::ivec2(set % k, set / k)};
+    } else {
+      into.target->bind();
+    }
+    shader_.draw(first, end - first, pixels, *into.gbuffer, shadow, !into.interleaved);
+    first = end;
+  }
+}
+
 std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
                                 const std::function<int(const Vpl&)>& set_of,
-                                const GBuffer& gbuffer, const Interleaved* interleaved,
-                                const Target& target, const GpuScene& gpu, PassTimer* timer,
+                                const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer,
                                 const std::function<bool(std::size_t)>& after) {
   std::vector<Entry> batch;
   int blocks = 0;
@@ -74,15 +101,15 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
       const int need = ShadowAtlas::blocks_for(vpl);
       if (blocks + need > atlas_.blocks()) { // a whole cube where only a hemisphere fits
         drawn += batch.size();
-        flush(batch, gbuffer, interleaved, target, gpu, timer);
+        flush(batch, into, gpu, timer);
         blocks = 0;
       }
-      batch.push_back({&vpl, interleaved ? set_of(vpl) : 0});
+      batch.push_back({&vpl, into.interleaved ? set_of(vpl) : 0});
       blocks += need;
     }
     if (static_cast<int>(batch.size()) == atlas_.batch() || k + 1 == vpls.size()) {
       drawn += batch.size();
-      flush(batch, gbuffer, interleaved, target, gpu, timer);
+      flush(batch, into, gpu, timer);
       blocks = 0;
       if (after && !after(k + 1)) break;
     }

@@ -25,6 +25,24 @@
 
 namespace irad::gl {
 
+// Where deferred shading reads and adds: the image's G-buffer, and the interleaved atlas's tiles
+// (irradiance, the resolve multiplies by the albedo) or, interleaved == nullptr, the target.
+struct DeferredTarget {
+  const GBuffer* gbuffer = nullptr;
+  const Interleaved* interleaved = nullptr;
+  const Target* target = nullptr;
+};
+
+// A VPL whose shadow cube is in an atlas: its frame (world -> cube), far plane and blocks
+// (ShadowAtlas::render's outputs), and its interleaved set.
+struct AtlasVpl {
+  const Vpl* vpl = nullptr;
+  glm::mat3 frame{1.0f};
+  float far = 1.0f;
+  glm::ivec4 blocks{0};
+  int set = 0;
+};
+
 class BatchedPasses {
 public:
   // Batches of up to `batch` VPLs (fewer if this GL's texture or uniform-block sizes ask for
@@ -44,26 +62,37 @@ public:
   // (nullptr) of all into the target. After each batch `after` gets the number of VPLs of `vpls`
   // done; false stops. Returns the number of VPLs drawn.
   std::size_t draw(const std::vector<const Vpl*>& vpls,
-                   const std::function<int(const Vpl&)>& set_of, const GBuffer& gbuffer,
-                   const Interleaved* interleaved, const Target& target, const GpuScene& gpu,
-                   PassTimer* timer, const std::function<bool(std::size_t)>& after);
+                   const std::function<int(const Vpl&)>& set_of, const DeferredTarget& into,
+                   const GpuScene& gpu, PassTimer* timer,
+                   const std::function<bool(std::size_t)>& after);
+  // Shades VPLs whose cubes are already in `shadow` (shadow maps kept,
+  // raster/shadow/shadow_cache.h): sorted by set on the way, as many per draw as the shader holds.
+  void shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shadow, const DeferredTarget& into);
 
 private:
   struct Entry {
     const Vpl* vpl;
     int set;
   };
-  // Draws the batch (ordered by set on the way).
-  void flush(std::vector<Entry>& batch, const GBuffer& gbuffer, const Interleaved* interleaved,
-             const Target& target, const GpuScene& gpu, PassTimer* timer);
+  // The shading's batch at most: more VPLs per full-screen draw than the shadow atlas holds,
+  // for the kept shadow maps (GL guarantees 16 KB uniform blocks: 113 VPLs of 144 bytes). 256
+  // gave the cached walkthrough no measurable gain over 64 (Cornell box, 256x256, N = 64).
+  static constexpr int kShadingBatch = 64;
+  // Draws the batch: its atlas, then shade().
+  void flush(std::vector<Entry>& batch, const DeferredTarget& into, const GpuScene& gpu,
+             PassTimer* timer);
+  // Shades vpls[first..first + n) (sorted by set, n <= the shader's batch).
+  void shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& shadow,
+                  const DeferredTarget& into);
 
   int requested_;
   ShadowAtlas atlas_;
   DeferredShader shader_;
-  std::vector<const Vpl*> vpls_;
+  std::vector<const Vpl*> vpls_; // scratch, reused per batch
   std::vector<glm::mat3> frames_;
   std::vector<float> fars_;
   std::vector<glm::ivec4> blocks_;
+  std::vector<AtlasVpl> shaded_;
 };
 
 } // namespace irad::gl

@@ -6,6 +6,7 @@
 #include "raster/glsl/shaders.h"
 #include "raster/passes/vpl_shader.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -38,10 +39,10 @@ void write_vpl(float* out, const Vpl& vpl, const glm::mat3& frame, float far,
 
 } // namespace
 
-bool DeferredShader::fits(const GladGLContext& api, int batch) {
+int DeferredShader::capacity(const GladGLContext& api, int wanted) {
   GLint block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block);
-  return batch * shaders::kShadingBytesPerVpl <= block;
+  return std::min(wanted, static_cast<int>(block) / shaders::kShadingBytesPerVpl);
 }
 
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch)
@@ -84,7 +85,7 @@ void DeferredShader::upload(const Vpl* const* vpls, int n, const std::vector<glm
 }
 
 void DeferredShader::draw(int first, int count, const TilePixels& pixels, const GBuffer& gbuffer,
-                          const ShadowAtlas& shadow, bool apply_albedo) const {
+                          const ShadowLookup& shadow, bool apply_albedo) const {
   const GladGLContext& api = *api_;
   api.BindBufferBase(GL_UNIFORM_BUFFER, kVplBlockBinding, vpl_block_.get());
   api.Disable(GL_DEPTH_TEST);
@@ -98,12 +99,13 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
   api.Uniform2i(tile_origin_, pixels.origin.x, pixels.origin.y);
   api.Uniform3i(pixel_, pixels.k, pixels.offset.x, pixels.offset.y);
   api.Uniform2i(size_, gbuffer.width(), gbuffer.height());
-  api.Uniform1i(shadow_res_, shadow.resolution());
-  api.Uniform1i(shadow_half_, shadow.resolution() / 2 + 1);
-  api.Uniform1f(bias_texel_, shadow.texel_angle());
+  api.Uniform1i(shadow_res_, shadow.resolution);
+  api.Uniform1i(shadow_half_, shadow.resolution / 2 + 1);
+  // Angular size of one texel at the centre of a face, as ShadowCube::texel_angle.
+  api.Uniform1f(bias_texel_, 2.0f / static_cast<float>(shadow.resolution));
   api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
-  api.BindTexture(GL_TEXTURE_2D, shadow.texture());
+  api.BindTexture(GL_TEXTURE_2D, shadow.texture);
   gbuffer.bind_textures(gbuffer_unit);
   api.BindVertexArray(empty_vao_.get());
   api.DrawArrays(GL_TRIANGLES, 0, 3);

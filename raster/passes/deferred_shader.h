@@ -10,7 +10,6 @@
 #include "core/vpl.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/gbuffer.h"
-#include "raster/shadow/shadow_atlas.h"
 
 #include <glm/glm.hpp>
 #include <vector>
@@ -25,13 +24,20 @@ struct TilePixels {
   glm::ivec2 offset{0};
 };
 
+// The atlas a draw's VPLs look their shadow cubes up in (raster/shadow/shadow_atlas.h's layout):
+// a DEPTH_COMPONENT32F texture of blocks of resolution^2 faces.
+struct ShadowLookup {
+  GLuint texture = 0;
+  int resolution = 0;
+};
+
 class DeferredShader {
 public:
   // Up to `batch` VPLs per upload.
   DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch);
 
-  // Whether this GL's uniform blocks hold a batch of `batch` VPLs.
-  static bool fits(const GladGLContext& api, int batch);
+  // The largest batch (<= wanted) this GL's uniform blocks hold.
+  static int capacity(const GladGLContext& api, int wanted);
 
   // The batch's VPLs vpls[0..n) with their cube frames and atlas blocks (ShadowAtlas::render).
   void upload(const Vpl* const* vpls, int n, const std::vector<glm::mat3>& frames,
@@ -39,7 +45,8 @@ public:
   // Adds the uploaded VPLs first..first + count - 1 into the bound framebuffer and viewport
   // (apply_albedo false: irradiance / pi without rho(x), for the interleaved resolve).
   void draw(int first, int count, const TilePixels& pixels, const GBuffer& gbuffer,
-            const ShadowAtlas& shadow, bool apply_albedo) const;
+            const ShadowLookup& shadow, bool apply_albedo) const;
+  int batch() const { return batch_; }
 
 private:
   const GladGLContext* api_;

@@ -24,12 +24,6 @@ int max_atlas_side(const GladGLContext& api) {
   return std::min({kMaxAtlasSide, int(texture), int(renderbuffer)});
 }
 
-// A block's size in texels (see the header): 2R + 2h wide, 2h high.
-glm::ivec2 block_size(int r) {
-  const int h = r / 2 + 1;
-  return {2 * r + 2 * h, 2 * h};
-}
-
 // Blocks per row and rows for `blocks` blocks of size `block`, about as wide as high.
 glm::ivec2 block_grid(int blocks, glm::ivec2 block) {
   const double ratio = static_cast<double>(block.y) / block.x;
@@ -70,7 +64,7 @@ int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) 
   GLint uniform_block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
   const int side = max_atlas_side(api);
-  const glm::ivec2 block = block_size(resolution);
+  const glm::ivec2 block = ShadowAtlas::block_size(resolution);
   int b = std::min(wanted, static_cast<int>(uniform_block) / shaders::kShadowBytesPerVpl);
   for (; b > 1; --b) {
     const glm::ivec2 size = block_grid(b, block) * block;
@@ -81,8 +75,9 @@ int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) 
 
 ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
                          const Bounds& bounds, const MaterialFeatures& features)
-    : api_(&api), resolution_(resolution), batch_(batch), block_(block_size(resolution)),
-      grid_(block_grid(blocks, block_)), bounds_(bounds),
+    : api_(&api), resolution_(resolution), batch_(batch),
+      block_(ShadowAtlas::block_size(resolution)), grid_(block_grid(blocks, block_)),
+      bounds_(bounds),
       program_(
           api, "batched shadow",
           material_source(shaders::batched_source(shaders::batched_shadow_vertex, batch), features),

@@ -14,9 +14,9 @@
 // faces each. Texels no face covers keep the clear value 1 (far: never shadowed).
 #include "core/bounds.h"
 #include "core/vpl.h"
+#include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
-#include "raster/context/shader_program.h"
 
 #include <glm/glm.hpp>
 #include <vector>
@@ -35,6 +35,11 @@ public:
   // The largest batch (<= wanted) an atlas with one block per VPL can hold on this GL: 0 or 1
   // means batching is not possible.
   static int capacity(const GladGLContext& api, int resolution, int wanted);
+  // A block's size in texels: 2R + 2h wide, 2h high, h = R/2 + 1 (see above).
+  static glm::ivec2 block_size(int resolution) {
+    const int h = resolution / 2 + 1;
+    return {2 * resolution + 2 * h, 2 * h};
+  }
   // Blocks a VPL takes: 1 for a surface VPL's hemisphere, 2 for a whole cube.
   static int blocks_for(const Vpl& vpl) { return vpl.kind == VplKind::Surface ? 1 : 2; }
 
