@@ -97,6 +97,8 @@ struct RasterRenderer::Impl {
   }
 
   void prepare(const View& view);
+  // The batched passes for a width x height image (batch > 1, no jitter, a GL that fits them).
+  void ensure_batched(int width, int height);
   // Clears the target and draws what every VPL pass adds to: the G-buffer (batched or
   // interleaved) or else the visible surface's depth.
   void begin_image(const View& view);
@@ -120,7 +122,7 @@ struct RasterRenderer::Impl {
   // The orthographic shadow map of a directional VPL (shared by the VPLs of one direction).
   void directional_shadow(const Vpl& vpl) { directional->shadow(vpl, gpu); }
   gl::DeferredTarget deferred_target() const {
-    return {gbuffer.get(), interleaved.get(), target.get()};
+    return {gbuffer.get(), interleaved.get(), [t = target.get()] { t->bind(); }};
   }
   // The resolve (interleaved), the emitters, the background and the readback.
   Image finish_image(const View& view, Clock::time_point t0, std::size_t passes,
@@ -148,11 +150,19 @@ glm::mat4 RasterRenderer::Impl::bind_pass(const View& view, const Vpl& vpl,
   return projection * view.view;
 }
 
+void RasterRenderer::Impl::ensure_batched(int width, int height) {
+  const int resolution = shadow_resolution_for(options.shadow_resolution, width, height);
+  const int ortho = gl::has_directional_light(scene)
+                        ? gl::ortho_resolution_for(options.shadow_resolution, width, height)
+                        : 0;
+  const int batch = jitter ? 1 : options.batch;
+  if (!batched || !batched->matches(batch, resolution, ortho))
+    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution, ortho);
+}
+
 void RasterRenderer::Impl::prepare(const View& view) {
   const int resolution = shadow_resolution_for(options.shadow_resolution, view.width, view.height);
-  const int batch = jitter ? 1 : options.batch;
-  if (!batched || !batched->matches(batch, resolution))
-    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution);
+  ensure_batched(view.width, view.height);
   if (!target || target->width() != view.width || target->height() != view.height) {
     interleaved.reset();
     gbuffer.reset();
@@ -173,10 +183,13 @@ void RasterRenderer::Impl::prepare(const View& view) {
 std::size_t RasterRenderer::Impl::batched_passes(const View& view,
                                                  const std::vector<const Vpl*>& vpls,
                                                  gl::PassTimer* timer, const Progress& progress) {
-  // Directional and mirrored VPLs keep their own passes (orthographic maps, the pyramid clip).
+  // Mirrored VPLs keep their own passes (the unfolded cube, the pyramid clip); directional ones
+  // when no orthographic atlas fits this GL.
   std::vector<const Vpl*> many, alone;
-  for (const Vpl* v : vpls)
-    (v->kind == VplKind::Directional || v->mirror >= 0 ? alone : many).push_back(v);
+  for (const Vpl* v : vpls) {
+    const bool own = v->mirror >= 0 || (v->kind == VplKind::Directional && !batched->directional());
+    (own ? alone : many).push_back(v);
+  }
   // VPLs of one direction next to each other (a directional light's, a sun's): the orthographic
   // map is drawn once per run of equal directions (raster/shadow/ortho_shadow.h), not once per
   // change (a sun's VPLs alternate with the sky's in path order). The sum does not depend on the
@@ -361,13 +374,11 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
     im.cache_shadow =
         std::make_unique<gl::ShadowCube>(im.api, resolution, im.scene.bounds, im.gpu.features());
     // The batched passes shade kept atlas blocks; the reference (batch 1, jitter) keeps cubes.
-    const int batch = im.jitter ? 1 : im.options.batch;
-    if (!im.batched || !im.batched->matches(batch, resolution))
-      im.batched = gl::BatchedPasses::make(im.api, im.scene, im.options.clamp, batch, resolution);
+    im.ensure_batched(width, height);
     if (im.batched)
       im.shadow_cache = std::make_unique<gl::ShadowCache>(
-          im.api, resolution, gl::ShadowAtlas::capacity(im.api, resolution, batch), im.scene.bounds,
-          im.gpu.features());
+          im.api, resolution, gl::ShadowAtlas::capacity(im.api, resolution, im.options.batch),
+          im.scene.bounds, im.gpu.features());
   }
   if (slot >= im.cache.size()) im.cache.resize(std::size_t(slot) + 1);
   Impl::CachedPath& path = im.cache[slot];

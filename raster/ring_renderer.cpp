@@ -1,15 +1,17 @@
 #include "raster/ring_renderer.h"
 
 #include "core/error.h"
+#include "raster/context/gl_context.h"
+#include "raster/glsl/shaders.h"
+#include "raster/image/gbuffer.h"
+#include "raster/image/target.h"
 #include "raster/passes/background.h"
+#include "raster/passes/batched_passes.h"
 #include "raster/passes/camera_passes.h"
 #include "raster/passes/directional_pass.h"
-#include "raster/context/gl_context.h"
-#include "raster/scene/gpu_scene.h"
-#include "raster/glsl/shaders.h"
-#include "raster/shadow/shadow_cube.h"
-#include "raster/image/target.h"
 #include "raster/passes/vpl_shader.h"
+#include "raster/scene/gpu_scene.h"
+#include "raster/shadow/shadow_cube.h"
 
 #include <fmt/format.h>
 
@@ -50,6 +52,10 @@ struct RingRenderer::Impl {
   gl::ShaderProgram copy;
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   std::unique_ptr<gl::Background> background;       // only for scenes that show one
+  // The deferred passes (raster.batch > 1): a path image shades its G-buffer; nullptr: the
+  // per-VPL passes (the reference).
+  std::unique_ptr<gl::BatchedPasses> batched;
+  std::unique_ptr<gl::GBuffer> gbuffer;
   int frames_since_resum = 0;
   std::size_t passes = 0;
 
@@ -77,9 +83,14 @@ struct RingRenderer::Impl {
     clear_color();
     copy.use();
     api.Uniform1i(copy.uniform("u_source"), copy_unit);
+    const int ortho = gl::ortho_resolution_for(o.raster.shadow_resolution, o.width, o.height);
     if (gl::has_directional_light(s))
-      directional = std::make_unique<gl::DirectionalPass>(
-          api, s, gl::ortho_resolution_for(o.raster.shadow_resolution, o.width, o.height));
+      directional = std::make_unique<gl::DirectionalPass>(api, s, ortho);
+    batched = gl::BatchedPasses::make(
+        api, s, o.raster.clamp, o.raster.batch,
+        shadow_resolution_for(o.raster.shadow_resolution, o.width, o.height),
+        directional ? ortho : 0);
+    if (batched) gbuffer = std::make_unique<gl::GBuffer>(api, o.width, o.height, target.depth());
     context->check("ring set-up");
   }
 
@@ -154,14 +165,36 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
                                 im.slots[s].get(), 0);
     im.viewport();
   };
-  bind_slot();
   im.api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   im.api.ClearDepth(1.0);
   im.api.DepthMask(GL_TRUE);
-  im.api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  im.camera.depth(vp, im.gpu);
+  if (im.gbuffer) {
+    im.gbuffer->bind();
+    im.camera.gbuffer(vp, im.gpu); // its depth is the slot's
+    bind_slot();
+    im.api.Clear(GL_COLOR_BUFFER_BIT);
+  } else {
+    bind_slot();
+    im.api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    im.camera.depth(vp, im.gpu);
+  }
   if (im.directional) im.directional->forget();
+  // Batched: all but the mirrored VPLs (and the directional ones when no orthographic atlas fits)
+  // in the deferred passes, the rest one by one.
+  std::vector<const Vpl*> many;
+  std::vector<Vpl> alone;
   for (const Vpl& vpl : vpls) {
+    const bool own = vpl.mirror >= 0 || (vpl.kind == VplKind::Directional &&
+                                         !(im.batched && im.batched->directional()));
+    if (im.batched && !own)
+      many.push_back(&vpl);
+    else
+      alone.push_back(vpl);
+  }
+  if (im.batched)
+    im.passes += im.batched->draw(many, [](const Vpl&) { return 0; },
+                                  {im.gbuffer.get(), nullptr, bind_slot}, im.gpu, nullptr, {});
+  for (const Vpl& vpl : alone) {
     if (!(vpl.intensity.x > 0.0f || vpl.intensity.y > 0.0f || vpl.intensity.z > 0.0f)) continue;
     if (vpl.kind == VplKind::Directional) {
       im.directional->shadow(vpl, im.gpu);

@@ -22,13 +22,17 @@ struct BatchVpl {
   vec4 position;   // xyz
   vec4 normal;     // xyz (spot axis for spots)
   vec4 intensity;  // rgb
-  vec4 cone;       // cos inner, cos outer, squared clamp distance, far (the atlas's unit)
-  ivec4 info;      // kind (0 surface, 1 two-sided, 2 point, 3 spot)
-  ivec4 blocks;    // atlas texel of its first block (xy) and of its second (zw)
-  vec4 frame[3];   // columns of world -> cube frame
+  vec4 cone;       // cos inner, cos outer, squared clamp distance, far (the atlas's unit);
+                   // directional: texel width, half width (world units)
+  ivec4 info;      // kind (0 surface, 1 two-sided, 2 point, 3 spot, 4 directional)
+  ivec4 blocks;    // atlas texel of its first block (xy) and of its second (zw); directional:
+                   // its tile's first texel (xy)
+  vec4 frame[3];   // columns of world -> cube frame; directional: rows of world -> (u, v, depth)
 };
 layout(std140) uniform VplBatch { BatchVpl u_vpl[MAX_BATCH]; };
 uniform sampler2D u_shadow_atlas;
+uniform sampler2D u_ortho_atlas;   // orthographic maps (raster/shadow/ortho_atlas.h)
+uniform int u_ortho_res;           // M, texels per tile edge
 uniform sampler2D u_position;    // G-buffer: xyz, w = 1 on a surface
 uniform sampler2D u_normal;      // towards the camera
 uniform sampler2D u_albedo;
@@ -81,8 +85,26 @@ float stored_distance(int kind, ivec4 blocks, float far, vec3 q) {
   return texelFetch(u_shadow_atlas, texel + face_offset(kind, blocks, face), 0).r * far;
 }
 
+// A directional VPL's I max(0, n . -d) V / pi (raster/glsl/directional_shaders.h's maths): the
+// normal offset by a texel's width times sin theta_x, the map's texel (nearest, clamped to the
+// tile), its window depth z_w as the depth (2 z_w - 1) h along d.
+vec3 directional_light(int i, vec3 x, vec3 n) {
+  vec3 d = u_vpl[i].normal.xyz;
+  float cos_x = dot(n, -d);
+  if (cos_x <= 0.0) return vec3(0.0);
+  vec4 cone = u_vpl[i].cone;
+  float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
+  vec4 p = vec4(x + n * (cone.x * sin_x), 1.0);
+  vec3 s = vec3(dot(u_vpl[i].frame[0], p), dot(u_vpl[i].frame[1], p), dot(u_vpl[i].frame[2], p));
+  ivec2 texel = clamp(ivec2(floor(s.xy * float(u_ortho_res))), ivec2(0), ivec2(u_ortho_res - 1));
+  float z = texelFetch(u_ortho_atlas, texel + u_vpl[i].blocks.xy, 0).r;
+  if (s.z > (2.0 * z - 1.0) * cone.y + u_bias_constant) return vec3(0.0);
+  return u_vpl[i].intensity.rgb * (cos_x * INV_PI);
+}
+
 // w * C(x) / rho(x) of VPL i at the surface point x with normal n (0 where it does not reach).
 vec3 vpl_light(int i, vec3 x, vec3 n) {
+  if (u_vpl[i].info.x == 4) return directional_light(i, x, n);
   vec3 d = x - u_vpl[i].position.xyz;
   float dist2 = dot(d, d);
   if (!(dist2 > u_min_dist2)) return vec3(0.0);

@@ -13,36 +13,74 @@ bool carries_light(const Vpl& v) {
 } // namespace
 
 std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, const Scene& scene,
-                                                   float clamp, int batch, int resolution) {
+                                                   float clamp, int batch, int resolution,
+                                                   int ortho_resolution) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
   if (b < 2 || DeferredShader::capacity(api, b) < b) return nullptr;
-  return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution);
+  const int tiles = ortho_resolution > 0 ? OrthoAtlas::capacity(api, ortho_resolution, b) : 0;
+  return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution, tiles,
+                                         tiles > 0 ? ortho_resolution : 0);
 }
 
 BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp,
-                             int requested, int batch, int resolution)
+                             int requested, int batch, int resolution, int ortho_tiles,
+                             int ortho_resolution)
     : requested_(requested),
       atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene)),
+      ortho_(ortho_tiles > 0
+                 ? std::make_unique<OrthoAtlas>(api, ortho_resolution, ortho_tiles, scene.bounds,
+                                                MaterialFeatures::of(scene))
+                 : nullptr),
       shader_(api, scene, clamp, DeferredShader::capacity(api, std::max(batch, kShadingBatch))) {}
+
+void BatchedPasses::draw_ortho(const std::vector<std::size_t>& directional, const GpuScene& gpu) {
+  // One map per direction: a directional light's VPLs (or a sun's) share theirs.
+  directions_.clear();
+  std::vector<int> tile(directional.size());
+  for (std::size_t i = 0; i < directional.size(); ++i) {
+    const glm::vec3& d = shaded_[directional[i]].vpl->normal;
+    const auto same = std::find(directions_.begin(), directions_.end(), d);
+    tile[i] = static_cast<int>(same - directions_.begin());
+    if (same == directions_.end()) directions_.push_back(d);
+  }
+  ortho_->render(directions_.data(), static_cast<int>(directions_.size()), gpu, lookups_, origins_);
+  for (std::size_t i = 0; i < directional.size(); ++i) {
+    AtlasVpl& a = shaded_[directional[i]];
+    const auto t = static_cast<std::size_t>(tile[i]);
+    a.lookup = lookups_[t];
+    a.blocks = glm::ivec4(origins_[t], 0, 0);
+    a.half_width = ortho_->half_width();
+    a.texel = ortho_->texel();
+  }
+}
 
 void BatchedPasses::flush(std::vector<Entry>& batch, const DeferredTarget& into,
                           const GpuScene& gpu, PassTimer* timer) {
-  std::stable_sort(batch.begin(), batch.end(),
-                   [](const Entry& a, const Entry& b) { return a.set < b.set; });
-  vpls_.clear();
-  for (const Entry& e : batch) vpls_.push_back(e.vpl);
-  const int n = static_cast<int>(batch.size());
-  if (timer) timer->begin(PassTimer::Shadow);
-  atlas_.render(vpls_.data(), n, gpu, frames_, fars_, blocks_);
-  if (timer) timer->end();
-  if (timer) timer->begin(PassTimer::Shading);
   shaded_.clear();
-  for (int s = 0; s < n; ++s) {
-    const auto u = static_cast<std::size_t>(s);
-    shaded_.push_back({vpls_[u], frames_[u], fars_[u], blocks_[u], batch[u].set});
+  vpls_.clear();
+  std::vector<std::size_t> cubes, directional; // indices into shaded_
+  for (const Entry& e : batch) {
+    (e.vpl->kind == VplKind::Directional ? directional : cubes).push_back(shaded_.size());
+    shaded_.push_back({e.vpl, glm::mat3(1.0f), 1.0f, glm::ivec4(0), e.set});
   }
-  shade_some(shaded_.data(), n, {atlas_.texture(), atlas_.resolution()}, into);
+  for (std::size_t i : cubes) vpls_.push_back(shaded_[i].vpl);
+  if (timer) timer->begin(PassTimer::Shadow);
+  if (!vpls_.empty())
+    atlas_.render(vpls_.data(), static_cast<int>(vpls_.size()), gpu, frames_, fars_, blocks_);
+  if (!directional.empty()) draw_ortho(directional, gpu);
+  if (timer) timer->end();
+  for (std::size_t c = 0; c < cubes.size(); ++c) {
+    AtlasVpl& a = shaded_[cubes[c]];
+    a.frame = frames_[c];
+    a.far = fars_[c];
+    a.blocks = blocks_[c];
+  }
+  if (timer) timer->begin(PassTimer::Shading);
+  ShadowLookup lookup{atlas_.texture(), atlas_.resolution()};
+  if (ortho_)
+    lookup = {atlas_.texture(), atlas_.resolution(), ortho_->texture(), ortho_->resolution()};
+  shade(shaded_, lookup, into);
   if (timer) timer->end();
   batch.clear();
 }
@@ -58,17 +96,7 @@ void BatchedPasses::shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shado
 
 void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& shadow,
                                const DeferredTarget& into) {
-  vpls_.clear();
-  frames_.clear();
-  fars_.clear();
-  blocks_.clear();
-  for (int s = 0; s < n; ++s) {
-    vpls_.push_back(vpls[s].vpl);
-    frames_.push_back(vpls[s].frame);
-    fars_.push_back(vpls[s].far);
-    blocks_.push_back(vpls[s].blocks);
-  }
-  shader_.upload(vpls_.data(), n, frames_, fars_, blocks_);
+  shader_.upload(vpls, n);
   for (int first = 0; first < n;) {
     const int set = vpls[first].set;
     int end = first + 1;
@@ -81,7 +109,7 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
       const int k = into.interleaved->k();
       pixels = {glm::ivec2(into.interleaved->tile(set)), k, glm::ivec2(set % k, set / k)};
     } else {
-      into.target->bind();
+      into.bind_image();
     }
     shader_.draw(first, end - first, pixels, *into.gbuffer, shadow, !into.interleaved);
     first = end;
@@ -94,23 +122,31 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
                                 const std::function<bool(std::size_t)>& after) {
   std::vector<Entry> batch;
   int blocks = 0;
+  std::vector<glm::vec3> directions; // the batch's distinct directions
   std::size_t drawn = 0;
+  const auto send = [&] {
+    drawn += batch.size();
+    flush(batch, into, gpu, timer);
+    blocks = 0;
+    directions.clear();
+  };
   for (std::size_t k = 0; k < vpls.size(); ++k) {
     const Vpl& vpl = *vpls[k];
     if (carries_light(vpl)) {
-      const int need = ShadowAtlas::blocks_for(vpl);
-      if (blocks + need > atlas_.blocks()) { // a whole cube where only a hemisphere fits
-        drawn += batch.size();
-        flush(batch, into, gpu, timer);
-        blocks = 0;
+      if (vpl.kind == VplKind::Directional) {
+        const bool known =
+            std::find(directions.begin(), directions.end(), vpl.normal) != directions.end();
+        if (!known && static_cast<int>(directions.size()) == ortho_->tiles()) send();
+        if (!known) directions.push_back(vpl.normal);
+      } else {
+        const int need = ShadowAtlas::blocks_for(vpl);
+        if (blocks + need > atlas_.blocks()) send(); // a whole cube where only a hemisphere fits
+        blocks += need;
       }
       batch.push_back({&vpl, into.interleaved ? set_of(vpl) : 0});
-      blocks += need;
     }
     if (static_cast<int>(batch.size()) == atlas_.batch() || k + 1 == vpls.size()) {
-      drawn += batch.size();
-      flush(batch, into, gpu, timer);
-      blocks = 0;
+      send();
       if (after && !after(k + 1)) break;
     }
   }

@@ -14,9 +14,9 @@
 #include "raster/context/pass_timer.h"
 #include "raster/image/gbuffer.h"
 #include "raster/image/interleaved.h"
-#include "raster/image/target.h"
 #include "raster/passes/deferred_shader.h"
 #include "raster/scene/gpu_scene.h"
+#include "raster/shadow/ortho_atlas.h"
 #include "raster/shadow/shadow_atlas.h"
 
 #include <functional>
@@ -26,41 +26,39 @@
 namespace irad::gl {
 
 // Where deferred shading reads and adds: the image's G-buffer, and the interleaved atlas's tiles
-// (irradiance, the resolve multiplies by the albedo) or, interleaved == nullptr, the target.
+// (irradiance, the resolve multiplies by the albedo) or, interleaved == nullptr, the image
+// `bind_image` binds with its viewport (the target, a ring's path image).
 struct DeferredTarget {
   const GBuffer* gbuffer = nullptr;
   const Interleaved* interleaved = nullptr;
-  const Target* target = nullptr;
-};
-
-// A VPL whose shadow cube is in an atlas: its frame (world -> cube), far plane and blocks
-// (ShadowAtlas::render's outputs), and its interleaved set.
-struct AtlasVpl {
-  const Vpl* vpl = nullptr;
-  glm::mat3 frame{1.0f};
-  float far = 1.0f;
-  glm::ivec4 blocks{0};
-  int set = 0;
+  std::function<void()> bind_image;
 };
 
 class BatchedPasses {
 public:
   // Batches of up to `batch` VPLs (fewer if this GL's texture or uniform-block sizes ask for
-  // it) with resolution^2 cube faces; nullptr when batch < 2 or not even 2 VPLs fit.
+  // it) with resolution^2 cube faces and, ortho_resolution > 0 (scenes with directional light),
+  // as many orthographic maps of ortho_resolution^2; nullptr when batch < 2 or not even 2 VPLs
+  // fit.
   static std::unique_ptr<BatchedPasses> make(const GladGLContext& api, const Scene& scene,
-                                             float clamp, int batch, int resolution);
+                                             float clamp, int batch, int resolution,
+                                             int ortho_resolution);
   BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp, int requested, int batch,
-                int resolution);
+                int resolution, int ortho_tiles, int ortho_resolution);
 
-  // Whether this object serves make(..., batch, resolution).
-  bool matches(int batch, int resolution) const {
-    return batch == requested_ && resolution == atlas_.resolution();
+  // Whether this object serves make(..., batch, resolution, ortho_resolution).
+  bool matches(int batch, int resolution, int ortho_resolution) const {
+    return batch == requested_ && resolution == atlas_.resolution() &&
+           ortho_resolution == (ortho_ ? ortho_->resolution() : 0);
   }
+  // Whether directional VPLs can be drawn here (an orthographic atlas was made).
+  bool directional() const { return ortho_ != nullptr; }
 
-  // Draws the VPLs that carry light (none directional or mirrored) batch by batch: shadow atlas,
-  // then the shading of each set (set_of(vpl)) from `gbuffer` into its tile of `interleaved`, or
-  // (nullptr) of all into the target. After each batch `after` gets the number of VPLs of `vpls`
-  // done; false stops. Returns the number of VPLs drawn.
+  // Draws the VPLs that carry light (none mirrored; directional only when directional()) batch
+  // by batch: shadow atlases, then the shading of each set (set_of(vpl)) from `gbuffer` into its
+  // tile of `interleaved`, or (nullptr) of all into the target. A batch draws one map per
+  // direction it holds (a directional light's VPLs share one). After each batch `after` gets the
+  // number of VPLs of `vpls` done; false stops. Returns the number of VPLs drawn.
   std::size_t draw(const std::vector<const Vpl*>& vpls,
                    const std::function<int(const Vpl&)>& set_of, const DeferredTarget& into,
                    const GpuScene& gpu, PassTimer* timer,
@@ -85,13 +83,22 @@ private:
   void shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& shadow,
                   const DeferredTarget& into);
 
+  // The orthographic maps of the batch's directional VPLs, one per direction; fills the
+  // directional entries of shaded_.
+  void draw_ortho(const std::vector<std::size_t>& directional, const GpuScene& gpu);
+
   int requested_;
   ShadowAtlas atlas_;
+  std::unique_ptr<OrthoAtlas> ortho_; // scenes with directional light
   DeferredShader shader_;
-  std::vector<const Vpl*> vpls_; // scratch, reused per batch
+  // Scratch, reused per batch.
+  std::vector<const Vpl*> vpls_;
   std::vector<glm::mat3> frames_;
   std::vector<float> fars_;
   std::vector<glm::ivec4> blocks_;
+  std::vector<glm::vec3> directions_;
+  std::vector<glm::mat4> lookups_;
+  std::vector<glm::ivec2> origins_;
   std::vector<AtlasVpl> shaded_;
 };
 

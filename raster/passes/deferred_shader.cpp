@@ -19,22 +19,30 @@ constexpr std::size_t kFloatsPerVpl = shaders::kShadingBytesPerVpl / sizeof(floa
 // The G-buffer's position, normal and albedo at gbuffer_unit, + 1, + 2 (after the shadow atlas
 // at shadow_unit).
 constexpr GLint gbuffer_unit = 3;
+constexpr GLint ortho_unit = 6;
 
 // The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 144 bytes).
-void write_vpl(float* out, const Vpl& vpl, const glm::mat3& frame, float far,
-               const glm::ivec4& blocks, float dmin) {
+void write_vpl(float* out, const AtlasVpl& a, float dmin) {
+  const Vpl& vpl = *a.vpl;
   std::memset(out, 0, kFloatsPerVpl * sizeof(float));
   std::memcpy(out + 0, &vpl.position[0], 3 * sizeof(float));
   std::memcpy(out + 4, &vpl.normal[0], 3 * sizeof(float));
   std::memcpy(out + 8, &vpl.intensity[0], 3 * sizeof(float));
-  out[12] = vpl.cos_inner;
-  out[13] = vpl.cos_outer;
+  const bool directional = vpl.kind == VplKind::Directional;
+  out[12] = directional ? a.texel : vpl.cos_inner;
+  out[13] = directional ? a.half_width : vpl.cos_outer;
   out[14] = dmin * dmin;
-  out[15] = far;
+  out[15] = a.far;
   const std::int32_t ints[8] = {
-      static_cast<std::int32_t>(vpl.kind), 0, 0, 0, blocks.x, blocks.y, blocks.z, blocks.w};
+      static_cast<std::int32_t>(vpl.kind), 0, 0, 0, a.blocks.x, a.blocks.y, a.blocks.z, a.blocks.w};
   std::memcpy(out + 16, ints, sizeof(ints));
-  for (int c = 0; c < 3; ++c) std::memcpy(out + 24 + 4 * c, &frame[c][0], 3 * sizeof(float));
+  for (int c = 0; c < 3; ++c) {
+    if (directional) { // row c of the affine lookup
+      for (int k = 0; k < 4; ++k) out[24 + 4 * c + k] = a.lookup[k][c];
+    } else {
+      std::memcpy(out + 24 + 4 * c, &a.frame[c][0], 3 * sizeof(float));
+    }
+  }
 }
 
 } // namespace
@@ -53,7 +61,7 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
       tile_origin_(program_.uniform("u_tile_origin")), pixel_(program_.uniform("u_pixel")),
       size_(program_.uniform("u_size")), shadow_res_(program_.uniform("u_shadow_res")),
       shadow_half_(program_.uniform("u_shadow_half")),
-      bias_texel_(program_.uniform("u_bias_texel")),
+      bias_texel_(program_.uniform("u_bias_texel")), ortho_res_(program_.uniform("u_ortho_res")),
       apply_albedo_(program_.uniform("u_apply_albedo")), vpl_block_(make_buffer(api)),
       empty_vao_(make_vertex_array(api)),
       vpl_data_(static_cast<std::size_t>(batch) * kFloatsPerVpl, 0.0f) {
@@ -62,6 +70,7 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   api.UniformBlockBinding(program_.get(), index, kVplBlockBinding);
   program_.use();
   api.Uniform1i(program_.uniform("u_shadow_atlas"), shadow_unit);
+  api.Uniform1i(program_.uniform("u_ortho_atlas"), ortho_unit);
   api.Uniform1i(program_.uniform("u_position"), gbuffer_unit);
   api.Uniform1i(program_.uniform("u_normal"), gbuffer_unit + 1);
   api.Uniform1i(program_.uniform("u_albedo"), gbuffer_unit + 2);
@@ -70,13 +79,11 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * diagonal_);
 }
 
-void DeferredShader::upload(const Vpl* const* vpls, int n, const std::vector<glm::mat3>& frames,
-                            const std::vector<float>& fars, const std::vector<glm::ivec4>& blocks) {
+void DeferredShader::upload(const AtlasVpl* vpls, int n) {
   if (n > batch_) throw Error("", "deferred vpl", "more VPLs than the batch holds");
   for (int s = 0; s < n; ++s) {
-    const auto u = static_cast<std::size_t>(s);
-    const float dmin = vpls[s]->clamped() ? clamp_ * diagonal_ : 0.0f;
-    write_vpl(vpl_data_.data() + kFloatsPerVpl * u, *vpls[s], frames[u], fars[u], blocks[u], dmin);
+    const float dmin = vpls[s].vpl->clamped() ? clamp_ * diagonal_ : 0.0f;
+    write_vpl(vpl_data_.data() + kFloatsPerVpl * static_cast<std::size_t>(s), vpls[s], dmin);
   }
   // A new store per batch (no wait for the draws that read the last one).
   api_->BindBuffer(GL_UNIFORM_BUFFER, vpl_block_.get());
@@ -104,8 +111,11 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
   // Angular size of one texel at the centre of a face, as ShadowCube::texel_angle.
   api.Uniform1f(bias_texel_, 2.0f / static_cast<float>(shadow.resolution));
   api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
+  api.Uniform1i(ortho_res_, shadow.ortho_resolution);
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
   api.BindTexture(GL_TEXTURE_2D, shadow.texture);
+  api.ActiveTexture(GL_TEXTURE0 + ortho_unit);
+  api.BindTexture(GL_TEXTURE_2D, shadow.ortho_texture);
   gbuffer.bind_textures(gbuffer_unit);
   api.BindVertexArray(empty_vao_.get());
   api.DrawArrays(GL_TRIANGLES, 0, 3);

@@ -24,11 +24,29 @@ struct TilePixels {
   glm::ivec2 offset{0};
 };
 
-// The atlas a draw's VPLs look their shadow cubes up in (raster/shadow/shadow_atlas.h's layout):
-// a DEPTH_COMPONENT32F texture of blocks of resolution^2 faces.
+// The atlases a draw's VPLs look their shadow maps up in: cubes in raster/shadow/shadow_atlas.h's
+// layout (blocks of resolution^2 faces), orthographic maps in raster/shadow/ortho_atlas.h's
+// (tiles of ortho_resolution^2 texels; 0: none).
 struct ShadowLookup {
   GLuint texture = 0;
   int resolution = 0;
+  GLuint ortho_texture = 0;
+  int ortho_resolution = 0;
+};
+
+// A VPL whose shadow map is in an atlas, with what the lookup needs and its interleaved set.
+// A cube (any kind but Directional): frame (world -> cube frame), far plane and blocks (atlas
+// texels of its first block, xy, and second, zw; ShadowAtlas::render's outputs). Directional:
+// `lookup` (world -> (u, v over its tile, depth along d); OrthoAtlas::render's), its tile's first
+// texel in blocks.xy, and the map's half width and texel width in world units.
+struct AtlasVpl {
+  const Vpl* vpl = nullptr;
+  glm::mat3 frame{1.0f};
+  float far = 1.0f;
+  glm::ivec4 blocks{0};
+  int set = 0;
+  glm::mat4 lookup{1.0f};
+  float half_width = 0.0f, texel = 0.0f;
 };
 
 class DeferredShader {
@@ -39,9 +57,8 @@ public:
   // The largest batch (<= wanted) this GL's uniform blocks hold.
   static int capacity(const GladGLContext& api, int wanted);
 
-  // The batch's VPLs vpls[0..n) with their cube frames and atlas blocks (ShadowAtlas::render).
-  void upload(const Vpl* const* vpls, int n, const std::vector<glm::mat3>& frames,
-              const std::vector<float>& fars, const std::vector<glm::ivec4>& blocks);
+  // The batch's VPLs vpls[0..n) (n <= batch()).
+  void upload(const AtlasVpl* vpls, int n);
   // Adds the uploaded VPLs first..first + count - 1 into the bound framebuffer and viewport
   // (apply_albedo false: irradiance / pi without rho(x), for the interleaved resolve).
   void draw(int first, int count, const TilePixels& pixels, const GBuffer& gbuffer,
@@ -54,7 +71,7 @@ private:
   int batch_;
   ShaderProgram program_;
   GLint first_, count_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_,
-      apply_albedo_;
+      ortho_res_, apply_albedo_;
   Buffer vpl_block_;
   VertexArray empty_vao_;
   std::vector<float> vpl_data_;

@@ -6,10 +6,10 @@
 // raster/passes/vpl_shader.h). Built only for scenes with a directional light or an environment.
 #include "core/scene.h"
 #include "core/vpl.h"
+#include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
 #include "raster/shadow/ortho_shadow.h"
-#include "raster/context/shader_program.h"
 
 #include <glm/glm.hpp>
 

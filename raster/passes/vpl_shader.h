@@ -5,9 +5,9 @@
 #include "core/mirrors.h"
 #include "core/scene.h"
 #include "core/vpl.h"
+#include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
-#include "raster/context/shader_program.h"
 #include "raster/shadow/shadow_cube.h"
 
 #include <glm/glm.hpp>

@@ -8,11 +8,11 @@
 
 namespace irad::gl {
 
-namespace {
+float ortho_half_width(const Bounds& bounds) {
+  return std::max(0.505f * bounds.diagonal(), 1e-30f);
+}
 
-// Rows (t, b, d) of the light's frame, as a matrix mapping world p to
-// (t.(p - c) sx + ox, b.(p - c) sx + ox, d.(p - c) sz, 1).
-glm::mat4 light_matrix(const glm::vec3& d, const glm::vec3& c, float sx, float ox, float sz) {
+glm::mat4 ortho_light_matrix(const glm::vec3& d, const glm::vec3& c, float sx, float ox, float sz) {
   glm::vec3 t, b;
   orthonormal_basis(d, t, b);
   const glm::mat4 rows(glm::vec4(sx * t, ox - sx * glm::dot(t, c)),
@@ -20,8 +20,6 @@ glm::mat4 light_matrix(const glm::vec3& d, const glm::vec3& c, float sx, float o
                        glm::vec4(sz * d, -sz * glm::dot(d, c)), glm::vec4(0, 0, 0, 1));
   return glm::transpose(rows); // glm's constructor takes columns
 }
-
-} // namespace
 
 int ortho_resolution_for(int requested, int width, int height) {
   if (requested > 0) return requested;
@@ -33,7 +31,7 @@ int ortho_resolution_for(int requested, int width, int height) {
 OrthoShadow::OrthoShadow(const GladGLContext& api, int resolution, const Bounds& bounds,
                          const MaterialFeatures& features)
     : api_(&api), resolution_(resolution), centre_(bounds.center()),
-      half_width_(std::max(0.505f * bounds.diagonal(), 1e-30f)),
+      half_width_(ortho_half_width(bounds)),
       program_(api, "ortho shadow", material_source(shaders::ortho_shadow_vertex, features),
                material_source(shaders::ortho_shadow_fragment, features)),
       material_(program_), u_light_clip_(program_.uniform("u_light_clip")),
@@ -59,8 +57,8 @@ bool OrthoShadow::render(const glm::vec3& d, const GpuScene& scene) {
   // Clip space: x, y over the square of half width h around c, z = d.(p - c) / h in [-1, 1]
   // (the bounding sphere), so GL_LESS keeps the surface nearest to the light.
   const float inv = 1.0f / half_width_;
-  const glm::mat4 clip = light_matrix(d, centre_, inv, 0.0f, inv);
-  lookup_ = light_matrix(d, centre_, 0.5f * inv, 0.5f, 1.0f);
+  const glm::mat4 clip = ortho_light_matrix(d, centre_, inv, 0.0f, inv);
+  lookup_ = ortho_light_matrix(d, centre_, 0.5f * inv, 0.5f, 1.0f);
   api_->BindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
   api_->Viewport(0, 0, resolution_, resolution_);
   api_->Enable(GL_DEPTH_TEST);

@@ -5,9 +5,9 @@
 // rendered again only when d changes (or after forget()).
 #include "core/bounds.h"
 #include "core/vpl.h"
+#include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
-#include "raster/context/shader_program.h"
 
 #include <glm/glm.hpp>
 
@@ -48,6 +48,12 @@ private:
   bool valid_ = false;
   glm::mat4 lookup_{1.0f};
 };
+
+// Half the width of the square a map covers: the bounding sphere's radius plus 1 %.
+float ortho_half_width(const Bounds& bounds);
+// Rows (t, b, d) of the light's frame (t, b from orthonormal_basis(d)), as a matrix mapping
+// world p to (t.(p - c) sx + ox, b.(p - c) sx + ox, d.(p - c) sz, 1).
+glm::mat4 ortho_light_matrix(const glm::vec3& d, const glm::vec3& c, float sx, float ox, float sz);
 
 // The orthographic map's resolution for an image: `requested` if positive, else twice the image's
 // larger side rounded up to a power of two, between 256 and 4096 (the map spans the whole scene,

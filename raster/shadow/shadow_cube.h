@@ -2,12 +2,13 @@
 // Omnidirectional shadow map of one VPL: a cube of R32F distances |p - y| to the nearest surface,
 // rendered face by face into one framebuffer. A surface VPL lights only its hemisphere, so its
 // cube is turned to put the normal at the centre of the +z face and the -z face is skipped.
-// A mirrored VPL (core/mirrors.h) gets the cube of its unfolded paths (raster/glsl/mirror_shaders.h).
+// A mirrored VPL (core/mirrors.h) gets the cube of its unfolded paths
+// (raster/glsl/mirror_shaders.h).
 #include "core/bounds.h"
 #include "core/vpl.h"
+#include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
-#include "raster/context/shader_program.h"
 
 #include <array>
 #include <functional>
