@@ -1,5 +1,6 @@
 #include "apps/bench.h"
 #include "apps/bench_real_scenes.h"
+#include "apps/peak_memory.h"
 
 #include "core/analytic_scenes.h"
 #include "core/error.h"
@@ -103,6 +104,7 @@ Image reference(const BenchScene& b, const RayScene& rays, const View& view, std
 }
 
 void score(BenchRow& row, const Image& image, const Image& ref) {
+  row.peak_mib = peak_memory_mib();
   const ImageMetrics m = compare_images(image, ref);
   row.rmse = m.rmse;
   row.relmse = m.relmse;
@@ -111,7 +113,9 @@ void score(BenchRow& row, const Image& image, const Image& ref) {
   row.height = image.height();
 }
 
+// A new row; the peak memory counts from here.
 BenchRow base_row(const BenchScene& b, double bvh, const char* estimator) {
+  reset_peak_memory();
   BenchRow row;
   row.scene = b.name;
   row.triangles = b.scene.triangle_count();
@@ -133,6 +137,7 @@ void log_row(const BenchRow& r, Log& log) {
   if (r.vpls > 0 && r.shadow >= 0 && r.shading >= 0)
     line += fmt::format(" (shadow {:.3f}, shading {:.3f})", 1e3 * r.shadow / vpls,
                         1e3 * r.shading / vpls);
+  if (r.peak_mib > 0) line += fmt::format("  peak {:.0f} MiB", r.peak_mib);
   log.info(line);
 }
 
@@ -303,13 +308,14 @@ void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path)
   std::ofstream out(path);
   out << "scene,triangles,estimator,sequence,paths,spp,vpls,width,height,seconds_load,"
          "seconds_walk,seconds_shadow_gpu,seconds_shading_gpu,seconds_readback,seconds_trace,"
-         "seconds_total,vpls_per_second,rmse,relmse,mean_ratio,seconds_bvh\n";
+         "seconds_total,vpls_per_second,rmse,relmse,mean_ratio,seconds_bvh,peak_mib\n";
   for (const BenchRow& r : rows)
     out << fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f}\n",
+                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f},{:.1f}\n",
                        r.scene, r.triangles, r.estimator, r.sequence, r.paths, r.spp, r.vpls,
                        r.width, r.height, r.load, r.walk, r.shadow, r.shading, r.readback, r.trace,
-                       r.total, r.vpls_per_second, r.rmse, r.relmse, r.mean_ratio, r.bvh);
+                       r.total, r.vpls_per_second, r.rmse, r.relmse, r.mean_ratio, r.bvh,
+                       r.peak_mib);
   if (!out) throw Error(path, "", "cannot write");
 }
 

@@ -36,6 +36,7 @@ struct BenchRow {
   double load = 0, bvh = 0, walk = 0, shadow = -1, shading = -1, readback = 0, trace = 0, total = 0;
   double vpls_per_second = 0;
   double rmse = 0, relmse = 0, mean_ratio = 0;
+  double peak_mib = 0; // the process's peak resident set during the row (apps/peak_memory.h)
 };
 
 // Runs the sweep, writes OUT/bench.csv (and plots), returns the rows. zdm2 and godot run a
