@@ -3,7 +3,6 @@
 #include "core/error.h"
 #include "raster/glsl/batched_shaders.h"
 #include "raster/glsl/deferred_shaders.h"
-#include "raster/glsl/shaders.h"
 #include "raster/passes/vpl_shader.h"
 
 #include <algorithm>
@@ -55,11 +54,11 @@ int DeferredShader::capacity(const GladGLContext& api, int wanted) {
 
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch),
-      program_(api, "deferred vpl", shaders::fullscreen_vertex,
+      program_(api, "deferred vpl", shaders::batched_source(shaders::deferred_vpl_vertex, batch),
                shaders::batched_source(shaders::deferred_vpl_fragment, batch)),
-      first_(program_.uniform("u_first")), count_(program_.uniform("u_count")),
-      tile_origin_(program_.uniform("u_tile_origin")), pixel_(program_.uniform("u_pixel")),
-      size_(program_.uniform("u_size")), shadow_res_(program_.uniform("u_shadow_res")),
+      first_(program_.uniform("u_first")), tile_origin_(program_.uniform("u_tile_origin")),
+      pixel_(program_.uniform("u_pixel")), size_(program_.uniform("u_size")),
+      shadow_res_(program_.uniform("u_shadow_res")),
       shadow_half_(program_.uniform("u_shadow_half")),
       bias_texel_(program_.uniform("u_bias_texel")), ortho_res_(program_.uniform("u_ortho_res")),
       apply_albedo_(program_.uniform("u_apply_albedo")), vpl_block_(make_buffer(api)),
@@ -102,7 +101,6 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
   api.BlendFunc(GL_ONE, GL_ONE);
   program_.use();
   api.Uniform1i(first_, first);
-  api.Uniform1i(count_, count);
   api.Uniform2i(tile_origin_, pixels.origin.x, pixels.origin.y);
   api.Uniform3i(pixel_, pixels.k, pixels.offset.x, pixels.offset.y);
   api.Uniform2i(size_, gbuffer.width(), gbuffer.height());
@@ -118,7 +116,7 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
   api.BindTexture(GL_TEXTURE_2D, shadow.ortho_texture);
   gbuffer.bind_textures(gbuffer_unit);
   api.BindVertexArray(empty_vao_.get());
-  api.DrawArrays(GL_TRIANGLES, 0, 3);
+  api.DrawArraysInstanced(GL_TRIANGLES, 0, 3, count);
 }
 
 } // namespace irad::gl

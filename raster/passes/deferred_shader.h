@@ -1,11 +1,11 @@
 #pragma once
 // The deferred shading of a batch of VPLs: the camera's G-buffer (raster/image/gbuffer.h) holds
-// the one surface each pixel sees; a draw is one full-screen triangle over the bound viewport
-// (the image, or one interleaved set's tile) whose fragments sum w * C(x) (core/vpl.h, the maths
-// of raster/passes/vpl_shader.h) over the draw's VPLs, their shadow cubes looked up in a
-// ShadowAtlas. The cost of a batch is pixels x VPLs, whatever the number of triangles, and a
-// pixel is lit once even where two faces coincide (duplicated faces, back-to-back walls), which
-// the forward passes light once per face that passes the depth test.
+// the one surface each pixel sees; a draw is an instanced full-screen triangle over the bound
+// viewport (the image, or one interleaved set's tile), instance i adding w * C(x) (core/vpl.h,
+// the maths of raster/passes/vpl_shader.h) of the draw's VPL i, its shadow map looked up in a
+// ShadowAtlas or an OrthoAtlas. The cost of a batch is pixels x VPLs, whatever the number of
+// triangles, and a pixel is lit once even where two faces coincide (duplicated faces, back-to-back
+// walls), which the forward passes light once per face that passes the depth test.
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/context/shader_program.h"
@@ -70,8 +70,8 @@ private:
   float diagonal_, clamp_;
   int batch_;
   ShaderProgram program_;
-  GLint first_, count_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_,
-      ortho_res_, apply_albedo_;
+  GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
+      apply_albedo_;
   Buffer vpl_block_;
   VertexArray empty_vao_;
   std::vector<float> vpl_data_;
