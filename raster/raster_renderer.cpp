@@ -151,7 +151,8 @@ void RasterRenderer::Impl::prepare(const View& view) {
   if (directional) directional->forget();
   const int batch = jitter ? 1 : options.batch;
   if (!batched || !batched->matches(batch, resolution))
-    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution);
+    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution,
+                                      options.shadow_lod);
 }
 
 std::size_t RasterRenderer::Impl::batched_passes(const View& view,

@@ -13,17 +13,18 @@ bool carries_light(const Vpl& v) {
 } // namespace
 
 std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, const Scene& scene,
-                                                   float clamp, int batch, int resolution) {
+                                                   float clamp, int batch, int resolution,
+                                                   ShadowLodMode lod) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
   if (b < 2 || !BatchedShader::fits(api, b)) return nullptr;
-  return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution);
+  return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution, lod);
 }
 
 BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp,
-                             int requested, int batch, int resolution)
+                             int requested, int batch, int resolution, ShadowLodMode lod)
     : requested_(requested),
-      atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene)),
+      atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene), lod),
       shader_(api, scene, clamp, batch) {}
 
 void BatchedPasses::flush(const View& view, std::vector<Entry>& batch,

@@ -28,9 +28,10 @@ public:
   // Batches of up to `batch` VPLs (fewer if this GL's texture or uniform-block sizes ask for
   // it) with resolution^2 cube faces; nullptr when batch < 2 or not even 2 VPLs fit.
   static std::unique_ptr<BatchedPasses> make(const GladGLContext& api, const Scene& scene,
-                                             float clamp, int batch, int resolution);
+                                             float clamp, int batch, int resolution,
+                                             ShadowLodMode lod = ShadowLodMode::Off);
   BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp, int requested, int batch,
-                int resolution);
+                int resolution, ShadowLodMode lod = ShadowLodMode::Off);
 
   // Whether this object serves make(..., batch, resolution).
   bool matches(int batch, int resolution) const {
