@@ -38,6 +38,8 @@ void add_bench_command(CLI::App& app, Commands& commands) {
   cmd->add_flag(
       "--no-scale", [options](std::int64_t) { options->scale = false; },
       "Skip the triangle-count study (skipped anyway when only zdm2 and godot run)");
+  cmd->add_flag("--scale-only", options->scale_only,
+                "Only the triangle-count study (OUT/scale.csv; with --quick up to 32k triangles)");
   cmd->add_option("--load", load->file,
                   "Instead of the sweep: time and peak memory of loading this glTF/GLB (load, "
                   "BVH, GL upload); writes OUT/load.csv")
@@ -59,7 +61,10 @@ void add_bench_command(CLI::App& app, Commands& commands) {
         fmt::print("{}", load_table(run_load_bench(*load, log)));
         return 0;
       }
-      run_bench(*options, log);
+      if (options->scale_only)
+        run_scale_study(*options, log);
+      else
+        run_bench(*options, log);
       return 0;
     };
   });
