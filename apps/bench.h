@@ -50,6 +50,10 @@ void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path)
 // Cornell box with a sphere of as many triangles (curved), the raster with each
 // RasterOptions::shadow_lod.
 void run_scale_study(const BenchOptions& options, Log& log);
+// The shadow level of detail's error on the real scenes among options.scenes (zdm2, godot):
+// raster (interleave 1) with shadow-lod off, cull, on against rt-vpl with the same VPLs;
+// OUT/shadow_lod_error.csv.
+void run_shadow_lod_error(const BenchOptions& options, Log& log);
 // error_vs_time.png (log-log, every estimator) and error_vs_paths.png (per sequence, with the
 // least-squares slope of log relMSE against log N in the legend). Throws when gnuplot fails.
 void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out_dir, Log& log);

@@ -8,10 +8,16 @@
 // (core/mesh_clusters.h), and per RasterOptions::shadow_lod (off, cull, on) the raster per VPL
 // (wall clock, the median of `runs` renders after a warm-up) split into the shadow and the
 // shading passes' GPU time. 128x128, interleave 1, batch 16, N = 16.
+//
+// run_shadow_lod_error: what the shadow level of detail costs in error on real scenes (zdm2,
+// godot): the same VPLs through the raster with shadow-lod off and on and through rt-vpl
+// (exact visibility), interleave 1 so that the difference is the shadow maps'.
 #include "apps/bench.h"
+#include "apps/bench_real_scenes.h"
 
 #include "core/error.h"
 #include "core/gltf/loader.h"
+#include "core/image_metrics.h"
 #include "core/mesh_clusters.h"
 #include "core/scene_builder.h"
 #include "core/sphere_mesh.h"
@@ -62,9 +68,12 @@ RasterCost raster_cost(const Scene& s, const View& view, const VplSet& vpls, Sha
   RasterOptions ro;
   ro.interleave = 1;
   ro.gpu_timers = true;
-  ro.shadow_lod = mode;
+  ro.shadow_lod.mode = mode;
   RasterRenderer raster(s, ro);
-  raster.render(view, vpls); // warm-up: context, upload, the cluster hierarchy
+  // Warm-up (context, upload, the cluster hierarchy) with the first path's VPLs.
+  VplSet first = vpls;
+  first.vpls.resize(std::min<std::size_t>(first.vpls.size(), 8));
+  raster.render(view, first);
   std::vector<double> total, shadow, shading;
   for (int r = 0; r < runs; ++r) {
     RasterTimings t;
@@ -123,6 +132,55 @@ void run_scale_study(const BenchOptions& o, Log& log) {
       }
       (void)big;
     }
+  if (!out) throw Error(path, "", "cannot write");
+}
+
+void run_shadow_lod_error(const BenchOptions& o, Log& log) {
+  const std::string path = o.out_dir + "/shadow_lod_error.csv";
+  std::ofstream out(path);
+  out << "scene,triangles,paths,vpls,width,height,shadow_lod,texels,seconds_raster_per_vpl,"
+         "seconds_shadow_per_vpl,relmse_vs_rtvpl,relmse4_vs_rtvpl,mean_ratio_vs_rtvpl,"
+         "relmse_vs_off,mean_ratio_vs_off\n";
+  const int size = o.size > 0 ? o.size : 128;
+  const std::uint32_t paths = o.quick ? 4 : 16;
+  for (const std::string& name : o.scenes) {
+    if (!is_real_scene(name)) continue;
+    const Scene s = load_real_scene(name, o.shared, log);
+    const RayScene rays(s);
+    const VplSet vpls = quasi_random_walk(s, rays, {paths, 64}, log);
+    const View view = make_view(s.cameras.at(0), s.bounds, size, size);
+    const Image traced = trace_vpls(s, rays, view, vpls, {0.05f, 0});
+    Image off;
+    const ShadowLodOptions settings[] = {{ShadowLodMode::Off, 0.0f}, {ShadowLodMode::Cull, 0.0f},
+                                         {ShadowLodMode::On, 0.25f}, {ShadowLodMode::On, 0.5f},
+                                         {ShadowLodMode::On, 1.0f},  {ShadowLodMode::On, 2.0f}};
+    for (const ShadowLodOptions& lod : settings) {
+      const ShadowLodMode mode = lod.mode;
+      RasterOptions ro;
+      ro.interleave = 1;
+      ro.gpu_timers = true;
+      ro.shadow_lod = lod;
+      RasterRenderer raster(s, ro);
+      RasterTimings t;
+      const Image image = raster.render(view, vpls, &t);
+      if (mode == ShadowLodMode::Off) off = image;
+      const double n = static_cast<double>(std::max<std::size_t>(t.passes, 1));
+      const ImageMetrics rt = compare_images(image, traced), rt4 = compare_images(image, traced, 4);
+      const ImageMetrics full = compare_images(image, off);
+      out << fmt::format("{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6g},{:.6g},{:.6f},{:.6g},"
+                         "{:.6f}\n",
+                         name, s.triangle_count(), paths, vpls.vpls.size(), size, size,
+                         mode_name(mode), lod.texels, (t.passes_seconds + t.readback) / n,
+                         t.shadow_gpu / n, rt.relmse, rt4.relmse, rt.mean_ratio[1], full.relmse,
+                         full.mean_ratio[1]);
+      out.flush();
+      log.info(fmt::format("bench: {} shadow-lod {} ({} texels): {:.2f} ms/VPL (shadow {:.2f}); "
+                           "relMSE against rt-vpl {:.4g} (4x4 blocks {:.4g}), against off {:.3g}",
+                           name, mode_name(mode), lod.texels,
+                           1e3 * (t.passes_seconds + t.readback) / n, 1e3 * t.shadow_gpu / n,
+                           rt.relmse, rt4.relmse, full.relmse));
+    }
+  }
   if (!out) throw Error(path, "", "cannot write");
 }
 

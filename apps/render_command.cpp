@@ -233,7 +233,7 @@ int run_render(const RenderArgs& args) {
   request.raster.gl_device = args.gl_device;
   request.raster.interleave = args.interleave;
   request.raster.batch = args.batch;
-  request.raster.shadow_lod = parse_shadow_lod(args.shadow_lod);
+  request.raster.shadow_lod.mode = parse_shadow_lod(args.shadow_lod);
   request.raster.jitter = args.jitter == "on";
   request.pt.pixel_footprint = args.jitter == "on"; // pt: each sample at a uniform pixel point
   request.progress = !args.quiet && isatty(STDERR_FILENO);

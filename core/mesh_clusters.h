@@ -39,6 +39,12 @@ enum class ShadowLodMode {
   Cull, // only the clusters a face sees: exact, the same image
   On,   // culled, and each face draws the coarsest nodes whose error is below its texel
 };
+struct ShadowLodOptions {
+  ShadowLodMode mode = ShadowLodMode::On;
+  // On: the error a drawn level may have, in texels at the centre of a face at the cluster's
+  // distance (docs/performance.md measures the image error against it).
+  float texels = 0.5f;
+};
 
 // A coarser level of a node: indices [first, first + count), error as ClusterNode::error.
 struct ClusterLevel {

@@ -111,7 +111,7 @@ TEST(ShadowLod, BoundsHoldTheirMeshesAndErrorsGrowTowardTheRoot) {
 // sphere (simplification keeps vertices), so how far the mesh strays is the sag of its
 // triangles, R - |centroid - centre| (about the largest over a flat triangle). Measured: the sag
 // beyond the original tessellation's up to 1.4 times the node's error (meshoptimizer's quadric
-// error is an area-weighted mean, not a maximum); ShadowAtlas::kLodTexels (half a texel) leaves
+// error is an area-weighted mean, not a maximum); ShadowLodOptions::texels (half a texel) leaves
 // room for that. On the Cornell box with a sphere, the largest distance of sample points (the
 // centroid and edge midpoints of every simplified triangle) from the node's original triangles
 // was up to 2.7 times the error on the smallest nodes, 0.8 times on the root.
@@ -209,7 +209,7 @@ Image render_with(const Scene& s, const View& view, const VplSet& vpls, ShadowLo
   RasterOptions o;
   o.interleave = 1;
   o.batch = batch;
-  o.shadow_lod = mode;
+  o.shadow_lod.mode = mode;
   return RasterRenderer(s, o).render(view, vpls);
 }
 
@@ -227,7 +227,7 @@ TEST(ShadowLod, CullingChangesNoPixel) {
 }
 
 // The level of detail against the full sphere, and both against exact visibility (rt-vpl).
-// Measured (llvmpipe, 64^2 faces, kLodTexels 0.5): relMSE 2.4e-6 against the full meshes, mean
+// Measured (llvmpipe, 64^2 faces, texels 0.5): relMSE 2.4e-6 against the full meshes, mean
 // ratio 1.00016; against rt-vpl 6.0e-4 either way. With a bug that drew empty inner meshes (the
 // sphere gone from most faces): relMSE 1.2e-2, mean ratio 1.03.
 TEST(ShadowLod, SimplifiedShadowsStayCloseToTheFullMeshes) {
@@ -303,9 +303,9 @@ TEST(ShadowLod, NoNewLeaksBetweenTwoSubdividedRooms) {
     RasterOptions o;
     o.shadow_resolution = 256;
     o.interleave = k;
-    o.shadow_lod = ShadowLodMode::Off;
+    o.shadow_lod.mode = ShadowLodMode::Off;
     RasterRenderer full(s, o);
-    o.shadow_lod = ShadowLodMode::On;
+    o.shadow_lod.mode = ShadowLodMode::On;
     RasterRenderer lod(s, o);
     const Lit a = lit(full.render(in_b, vpls)), b = lit(lod.render(in_b, vpls));
     const ImageMetrics room_a = compare_images(lod.render(in_a, vpls), full.render(in_a, vpls));

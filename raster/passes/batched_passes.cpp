@@ -14,7 +14,7 @@ bool carries_light(const Vpl& v) {
 
 std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, const Scene& scene,
                                                    float clamp, int batch, int resolution,
-                                                   ShadowLodMode lod) {
+                                                   const ShadowLodOptions& lod) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
   if (b < 2 || !BatchedShader::fits(api, b)) return nullptr;
@@ -22,7 +22,8 @@ std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, con
 }
 
 BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp,
-                             int requested, int batch, int resolution, ShadowLodMode lod)
+                             int requested, int batch, int resolution,
+                             const ShadowLodOptions& lod)
     : requested_(requested),
       atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene), lod),
       shader_(api, scene, clamp, batch) {}

@@ -29,9 +29,9 @@ public:
   // it) with resolution^2 cube faces; nullptr when batch < 2 or not even 2 VPLs fit.
   static std::unique_ptr<BatchedPasses> make(const GladGLContext& api, const Scene& scene,
                                              float clamp, int batch, int resolution,
-                                             ShadowLodMode lod = ShadowLodMode::Off);
+                                             const ShadowLodOptions& lod);
   BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp, int requested, int batch,
-                int resolution, ShadowLodMode lod = ShadowLodMode::Off);
+                int resolution, const ShadowLodOptions& lod);
 
   // Whether this object serves make(..., batch, resolution).
   bool matches(int batch, int resolution) const {

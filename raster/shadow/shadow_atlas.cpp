@@ -80,7 +80,8 @@ int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) 
 }
 
 ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
-                         const Bounds& bounds, const MaterialFeatures& features, ShadowLodMode lod)
+                         const Bounds& bounds, const MaterialFeatures& features,
+                         const ShadowLodOptions& lod)
     : api_(&api), resolution_(resolution), batch_(batch), block_(block_size(resolution)),
       grid_(block_grid(blocks, block_)), bounds_(bounds),
       program_(
@@ -91,7 +92,7 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
       material_(program_), atlas_{make_texture(api), make_texture(api)}, fbo_{make_framebuffer(api),
                                                                               make_framebuffer(
                                                                                   api)},
-      block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f), lod_mode_(lod),
+      block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f), lod_options_(lod),
       u_face_(program_.uniform("u_face")) {
   const glm::ivec2 size = grid_ * block_;
   GLint uniform_block = 0;
@@ -127,10 +128,10 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
 }
 
 bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
-  if (lod_mode_ == ShadowLodMode::Off || scene.scene().animation) return false;
+  if (lod_options_.mode == ShadowLodMode::Off || scene.scene().animation) return false;
   if (lod_scene_ != &scene) {
     lod_ = std::make_unique<ShadowLod>(*api_, scene, build_mesh_clusters(scene.scene()),
-                                       lod_mode_ == ShadowLodMode::On);
+                                       lod_options_.mode == ShadowLodMode::On);
     lod_scene_ = &scene;
   }
   return !lod_->clusters().nodes.empty();
@@ -143,7 +144,7 @@ void ShadowAtlas::draw_clusters(int n, const GpuScene& scene) {
                   [&](const Material& m) { material_.bind_alpha(api, scene, m); }, 6 * n);
     material_.bind_alpha(api, scene, Material{}); // opaque: nothing absent
   }
-  const float per_distance = kLodTexels * texel_angle();
+  const float per_distance = lod_options_.texels * texel_angle();
   // A twentieth of the shading passes' constant depth bias (2e-4 of the diagonal).
   const float floor = 1e-5f * bounds_.diagonal();
   cluster_triangles_ = 0;

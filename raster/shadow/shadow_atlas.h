@@ -16,8 +16,8 @@
 // With ShadowLodMode Cull or On (core/mesh_clusters.h) the opaque triangles are drawn face by
 // face from a cluster hierarchy (raster/shadow/shadow_lod.h): one glMultiDrawElements per face of
 // the clusters it sees (Cull: the same image), at the coarsest level whose error stays below
-// kLodTexels texels at the VPL's distance (On). The face comes from a uniform then instead of
-// gl_InstanceID; alpha-tested materials stay one instanced draw of all faces.
+// ShadowLodOptions::texels texels at the VPL's distance (On). The face comes from a uniform then
+// instead of gl_InstanceID; alpha-tested materials stay one instanced draw of all faces.
 #include "core/bounds.h"
 #include "core/mesh_clusters.h"
 #include "core/vpl.h"
@@ -41,11 +41,7 @@ public:
   // lod: how the faces draw the opaque triangles (Off: all of them into every face). The
   // hierarchy is built on the first render() of a scene (never for an animated one).
   ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks, const Bounds& bounds,
-              const MaterialFeatures& features, ShadowLodMode lod = ShadowLodMode::Off);
-
-  // The error a chosen cluster may have, in texels at the centre of a face at the cluster's
-  // distance (ShadowLodMode::On; tests/test_shadow_lod.cpp measured the shadows it changes).
-  static constexpr float kLodTexels = 0.5f;
+              const MaterialFeatures& features, const ShadowLodOptions& lod = {ShadowLodMode::Off});
 
   // The largest batch (<= wanted) an atlas with one block per VPL can hold on this GL: 0 or 1
   // means batching is not possible.
@@ -100,7 +96,7 @@ private:
   int current_ = 0;
   Buffer block_buffer_;           // the ShadowBatch uniform block
   std::vector<float> block_data_; // its contents, filled per batch
-  ShadowLodMode lod_mode_;
+  ShadowLodOptions lod_options_;
   GLint u_face_;
   std::unique_ptr<ShadowLod> lod_;
   const GpuScene* lod_scene_ = nullptr; // the scene lod_ is of
