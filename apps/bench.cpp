@@ -268,42 +268,6 @@ std::vector<BenchRow> run_bench(const BenchOptions& o, Log& log) {
   return rows;
 }
 
-void run_scale_study(const BenchOptions& o, Log& log) {
-  // The Cornell box split into 32 * 4^L triangles: the same image at 8k to 2M triangles.
-  const std::string path = o.out_dir + "/scale.csv";
-  std::ofstream out(path);
-  out << "triangles,seconds_bvh,walk_paths,seconds_walk,vpls,seconds_raster_per_vpl,"
-         "seconds_rtvpl_per_vpl\n";
-  for (int levels = 4; levels <= (o.quick ? 5 : 8); ++levels) {
-    Scene s = load_gltf(o.cornell, log);
-    subdivide(s, levels);
-    const auto t0 = Clock::now();
-    const RayScene rays(s);
-    const double bvh = since(t0);
-    const auto t1 = Clock::now();
-    const VplSet big = quasi_random_walk(s, rays, {1024, 64}, log);
-    const double walk = since(t1);
-    const VplSet small = quasi_random_walk(s, rays, {16, 64}, log);
-    const View view = make_view(s.cameras.at(0), s.bounds, 128, 128);
-    RasterOptions ro;
-    ro.interleave = 1;
-    RasterRenderer raster(s, ro);
-    raster.render(view, small); // warm-up: context, upload
-    RasterTimings t;
-    raster.render(view, small, &t);
-    const double per_vpl = (t.passes_seconds + t.readback) / static_cast<double>(t.passes);
-    const auto t2 = Clock::now();
-    trace_vpls(s, rays, view, small, {0.05f, 0});
-    const double rt_per_vpl = since(t2) / static_cast<double>(small.vpls.size());
-    out << fmt::format("{},{:.4f},1024,{:.4f},{},{:.6f},{:.6f}\n", s.triangle_count(), bvh, walk,
-                       small.vpls.size(), per_vpl, rt_per_vpl);
-    log.info(fmt::format("bench: scale {} triangles: BVH {:.3f} s, walk (N=1024) {:.3f} s, raster "
-                         "{:.2f} ms/VPL, rt-vpl {:.2f} ms/VPL at 128x128",
-                         s.triangle_count(), bvh, walk, 1e3 * per_vpl, 1e3 * rt_per_vpl));
-  }
-  if (!out) throw Error(path, "", "cannot write");
-}
-
 void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path) {
   std::ofstream out(path);
   out << "scene,triangles,estimator,sequence,paths,spp,vpls,width,height,seconds_load,"

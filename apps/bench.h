@@ -23,6 +23,7 @@ struct BenchOptions {
   std::uint32_t reference_spp = 0; // 0: 256 quick, 4096 full (zdm2, godot: 1024)
   bool plots = true;
   bool scale = true; // the triangle-count study: OUT/scale.csv (never when only zdm2, godot run)
+  bool scale_only = false; // only the triangle-count study
 };
 
 struct BenchRow {
@@ -45,8 +46,15 @@ struct BenchRow {
 std::vector<BenchRow> run_bench(const BenchOptions& options, Log& log);
 
 void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path);
-// Walk and per-VPL raster/rt-vpl cost of the Cornell box split into 8k .. 2M triangles.
+// Walk and per-VPL raster/rt-vpl cost against the triangle count, 8k .. 2M triangles
+// (apps/bench_scale.cpp): the Cornell box split into 32 x 4^L triangles (flat walls) and the
+// Cornell box with a sphere of as many triangles (curved), the raster with each
+// RasterOptions::shadow_lod.
 void run_scale_study(const BenchOptions& options, Log& log);
+// The shadow level of detail's error on the real scenes among options.scenes (zdm2, godot):
+// raster (interleave 1) with shadow-lod off, cull, on against rt-vpl with the same VPLs;
+// OUT/shadow_lod_error.csv.
+void run_shadow_lod_error(const BenchOptions& options, Log& log);
 // error_vs_time.png (log-log, every estimator) and error_vs_paths.png (per sequence, with the
 // least-squares slope of log relMSE against log N in the legend). Throws when gnuplot fails.
 void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out_dir, Log& log);

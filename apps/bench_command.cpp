@@ -3,11 +3,13 @@
 // irad bench --load FILE [--runs N] [-o DIR]: load, BVH and upload time and memory of one scene
 // (apps/load_bench.h).
 #include "apps/bench.h"
+#include "apps/bench_real_scenes.h"
 #include "apps/commands.h"
 #include "apps/load_bench.h"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <memory>
 
 namespace irad::apps {
@@ -38,6 +40,10 @@ void add_bench_command(CLI::App& app, Commands& commands) {
   cmd->add_flag(
       "--no-scale", [options](std::int64_t) { options->scale = false; },
       "Skip the triangle-count study (skipped anyway when only zdm2 and godot run)");
+  cmd->add_flag("--scale-only", options->scale_only,
+                "Only the triangle-count study (OUT/scale.csv; with --quick up to 32k "
+                "triangles); with --scene zdm2,godot instead the shadow level of detail's error "
+                "on them (OUT/shadow_lod_error.csv)");
   cmd->add_option("--load", load->file,
                   "Instead of the sweep: time and peak memory of loading this glTF/GLB (load, "
                   "BVH, GL upload); writes OUT/load.csv")
@@ -59,7 +65,15 @@ void add_bench_command(CLI::App& app, Commands& commands) {
         fmt::print("{}", load_table(run_load_bench(*load, log)));
         return 0;
       }
-      run_bench(*options, log);
+      if (options->scale_only) {
+        const bool real =
+            std::any_of(options->scenes.begin(), options->scenes.end(), is_real_scene);
+        if (real)
+          run_shadow_lod_error(*options, log); // the real scenes only
+        else
+          run_scale_study(*options, log);
+      } else
+        run_bench(*options, log);
       return 0;
     };
   });

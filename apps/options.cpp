@@ -29,6 +29,13 @@ GlBackend parse_backend(const std::string& name) {
   throw Error("", "--gl", "unknown backend '" + name + "' (auto, egl, osmesa)");
 }
 
+ShadowLodMode parse_shadow_lod(const std::string& name) {
+  if (name == "on") return ShadowLodMode::On;
+  if (name == "cull") return ShadowLodMode::Cull;
+  if (name == "off") return ShadowLodMode::Off;
+  throw Error("", "--shadow-lod", "unknown mode '" + name + "' (on, cull, off)");
+}
+
 void require_writable(const std::string& path, const char* option) {
   namespace fs = std::filesystem;
   const fs::path parent = fs::path(path).parent_path();

@@ -17,6 +17,8 @@ namespace irad::apps {
 std::pair<int, int> parse_size_option(const std::string& text);
 // "auto", "egl" or "osmesa".
 GlBackend parse_backend(const std::string& name);
+// --shadow-lod: on, cull, off (RasterOptions::shadow_lod).
+ShadowLodMode parse_shadow_lod(const std::string& name);
 // Throws irad::Error naming `option` unless `path` can be written: its folder exists and it is
 // not something other than a regular file (a folder, a device).
 void require_writable(const std::string& path, const char* option);

@@ -48,6 +48,7 @@ struct RenderArgs {
   std::string light_allocation = "power";
   int interleave = 4;
   int batch = RasterOptions{}.batch;
+  std::string shadow_lod = "on";
   std::string jitter = "off";
   int gl_device = -1;
   bool partial = false;
@@ -153,6 +154,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"shadow_res", shadow_resolution_for(args.shadow_res, r.view.width, r.view.height)},
           {"interleave", args.interleave},
           {"batch", args.batch},
+          {"shadow_lod", args.shadow_lod},
           {"jitter", args.jitter == "on"},
           {"clamp", args.clamp},
           {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},
@@ -231,6 +233,7 @@ int run_render(const RenderArgs& args) {
   request.raster.gl_device = args.gl_device;
   request.raster.interleave = args.interleave;
   request.raster.batch = args.batch;
+  request.raster.shadow_lod.mode = parse_shadow_lod(args.shadow_lod);
   request.raster.jitter = args.jitter == "on";
   request.pt.pixel_footprint = args.jitter == "on"; // pt: each sample at a uniform pixel point
   request.progress = !args.quiet && isatty(STDERR_FILENO);
@@ -348,6 +351,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--batch", args->batch,
                   "Raster: VPLs per instanced draw of shadow maps and shading (1: one pass per "
                   "VPL; jitter always draws one by one)")
+      ->capture_default_str();
+  cmd->add_option("--shadow-lod", args->shadow_lod,
+                  "Raster, batched: the shadow faces draw only the clusters they see (cull, the "
+                  "same image) and those simplified below half a texel (on); off: every triangle")
+      ->check(CLI::IsMember({"on", "cull", "off"}))
       ->capture_default_str();
   cmd->add_option("--jitter", args->jitter,
                   "Raster: every VPL pass and the emitters at a sub-pixel offset from the path's "

@@ -157,7 +157,8 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
                         : 0;
   const int batch = jitter ? 1 : options.batch;
   if (!batched || !batched->matches(batch, resolution, ortho))
-    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution, ortho);
+    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution, ortho,
+                                      options.shadow_lod);
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {

@@ -3,6 +3,7 @@
 // shadow map and a shading pass that adds w * C(x) into an RGBA32F framebuffer; the visible
 // emitters' L_e once; then readback. Public header: no GL types.
 #include "core/image.h"
+#include "core/mesh_clusters.h"
 #include "core/scene.h"
 #include "core/view.h"
 #include "core/vpl.h"
@@ -34,6 +35,11 @@ struct RasterOptions {
   // shading pass per VPL (the reference, the same image). 16 was the fastest of 8..64 at 512x512
   // (docs/performance.md). Jitter, directional VPLs and render_cached take the per-VPL passes.
   int batch = 16;
+  // How the batched shadow atlas draws the opaque triangles (core/mesh_clusters.h): mode Off every
+  // triangle into every face, Cull only the clusters a face sees (the same image), On culled and
+  // simplified below `texels` (0.5) shadow texels at the VPL's distance (docs/performance.md).
+  // The per-VPL passes (batch 1) always draw everything.
+  ShadowLodOptions shadow_lod{};
   // When it becomes true (a signal handler), render() draws no further VPL passes and returns
   // what the passes so far accumulated.
   const std::atomic<bool>* cancel = nullptr;

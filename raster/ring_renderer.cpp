@@ -89,7 +89,7 @@ struct RingRenderer::Impl {
     batched = gl::BatchedPasses::make(
         api, s, o.raster.clamp, o.raster.batch,
         shadow_resolution_for(o.raster.shadow_resolution, o.width, o.height),
-        directional ? ortho : 0);
+        directional ? ortho : 0, o.raster.shadow_lod);
     if (batched) gbuffer = std::make_unique<gl::GBuffer>(api, o.width, o.height, target.depth());
     context->check("ring set-up");
   }

@@ -42,9 +42,10 @@ public:
   // fit.
   static std::unique_ptr<BatchedPasses> make(const GladGLContext& api, const Scene& scene,
                                              float clamp, int batch, int resolution,
-                                             int ortho_resolution);
+                                             int ortho_resolution, const ShadowLodOptions& lod);
   BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp, int requested, int batch,
-                int resolution, int ortho_tiles, int ortho_resolution);
+                int resolution, int ortho_tiles, int ortho_resolution,
+                const ShadowLodOptions& lod);
 
   // Whether this object serves make(..., batch, resolution, ortho_resolution).
   bool matches(int batch, int resolution, int ortho_resolution) const {

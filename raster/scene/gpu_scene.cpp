@@ -48,17 +48,23 @@ Vertex vertex_of(const Scene& scene, std::size_t i) {
   return {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}};
 }
 
-// A tightly packed float attribute array (vec2 or vec4 per vertex) at `location` of the bound
-// vertex array.
+// A tightly packed float attribute array (vec2 or vec4 per vertex).
 template <class V>
-Buffer upload_attribute(const GladGLContext& api, GLuint location, const std::vector<V>& values) {
+Buffer upload_attribute(const GladGLContext& api, const std::vector<V>& values) {
   Buffer buffer = make_buffer(api);
   api.BindBuffer(GL_ARRAY_BUFFER, buffer.get());
   api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(values.size() * sizeof(V)), values.data(),
                  GL_STATIC_DRAW);
-  api.EnableVertexAttribArray(location);
-  api.VertexAttribPointer(location, V::length(), GL_FLOAT, GL_FALSE, 0, nullptr);
   return buffer;
+}
+
+// `buffer` (tightly packed, `components` floats per vertex) as attribute `location` of the bound
+// vertex array.
+void attach_packed(const GladGLContext& api, const Buffer& buffer, GLuint location,
+                   GLint components) {
+  api.BindBuffer(GL_ARRAY_BUFFER, buffer.get());
+  api.EnableVertexAttribArray(location);
+  api.VertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
 }
 
 } // namespace
@@ -101,14 +107,29 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   }
   index_count_ = static_cast<GLsizei>(indices.size());
 
-  api.BindVertexArray(vao_.get());
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
   api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)),
                  vertices.data(), scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
+  // The optional arrays run parallel to the positions (core/scene.h): GL must never read past one.
+  if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
+      (features_.colors && scene.colors.size() != scene.positions.size()))
+    throw Error(scene.source, "gpu scene", "TEXCOORD_1 or COLOR_0 not one per vertex");
+  if (features_.uv1) uv1_ = upload_attribute(api, scene.uvs1);
+  if (features_.colors) colors_ = upload_attribute(api, scene.colors);
+
+  api.BindVertexArray(vao_.get());
   api.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
   api.BufferData(GL_ELEMENT_ARRAY_BUFFER,
                  static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
                  GL_STATIC_DRAW);
+  attach_attributes();
+
+  for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
+}
+
+void GpuScene::attach_attributes() const {
+  const GladGLContext& api = *api_;
+  api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
   const auto stride = static_cast<GLsizei>(sizeof(Vertex));
   api.EnableVertexAttribArray(0);
   api.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride,
@@ -119,15 +140,17 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   api.EnableVertexAttribArray(2);
   api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
                           reinterpret_cast<const void*>(offsetof(Vertex, uv)));
+  if (uv1_) attach_packed(api, uv1_, kUv1Attribute, 2);
+  if (colors_) attach_packed(api, colors_, kColorAttribute, 4);
+}
 
-  // The optional arrays run parallel to the positions (core/scene.h): GL must never read past one.
-  if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
-      (features_.colors && scene.colors.size() != scene.positions.size()))
-    throw Error(scene.source, "gpu scene", "TEXCOORD_1 or COLOR_0 not one per vertex");
-  if (features_.uv1) uv1_ = upload_attribute(api, kUv1Attribute, scene.uvs1);
-  if (features_.colors) colors_ = upload_attribute(api, kColorAttribute, scene.colors);
-
-  for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
+VertexArray GpuScene::vertex_array_with(const Buffer& indices) const {
+  VertexArray vao = make_vertex_array(*api_);
+  api_->BindVertexArray(vao.get());
+  api_->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices.get());
+  attach_attributes();
+  api_->BindVertexArray(0);
+  return vao;
 }
 
 void GpuScene::draw_covered(GLsizei instances,
@@ -174,13 +197,13 @@ void GpuScene::draw_all() const {
 }
 
 void GpuScene::draw_if(const std::function<bool(const Material&)>& select,
-                       const std::function<void(const Material&)>& bind) const {
+                       const std::function<void(const Material&)>& bind, GLsizei instances) const {
   api_->BindVertexArray(vao_.get());
   for (const Range& r : ranges_) {
     const Material& m = scene_->materials[r.material];
     if (!select(m)) continue;
     bind(m);
-    draw_range(r);
+    draw_range(r, instances);
   }
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // The scene's triangles and textures on the GPU: one interleaved vertex buffer (position, normal,
 // uv), TEXCOORD_1 and COLOR_0 in buffers of their own only when the scene has them (attributes
-// kUv1Attribute and kColorAttribute, raster/scene/material_glsl.h), one index buffer with the triangles
-// grouped by material, and the textures as linear RGBA32F with bilinear filtering (what the walk
-// samples). Textures are uploaded only when the scene has them.
+// kUv1Attribute and kColorAttribute, raster/scene/material_glsl.h), one index buffer with the
+// triangles grouped by material, and the textures as linear RGBA32F with bilinear filtering (what
+// the walk samples). Textures are uploaded only when the scene has them.
 #include "core/scene.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/material_features.h"
@@ -34,9 +34,15 @@ public:
   // which the Blend hash reads, is the same in all of them).
   void draw_covered(GLsizei instances,
                     const std::function<void(const Material&)>& bind_alpha) const;
-  // Draws only the ranges whose material satisfies `select`.
+  // Draws only the ranges whose material satisfies `select` (`instances` times each).
   void draw_if(const std::function<bool(const Material&)>& select,
-               const std::function<void(const Material&)>& bind) const;
+               const std::function<void(const Material&)>& bind, GLsizei instances = 1) const;
+  // A vertex array over this scene's vertex buffers, with the attributes of its own, and
+  // `indices` as its element buffer: other index lists over the same vertices (the shadow
+  // passes' clusters, raster/shadow/shadow_lod.h). Valid while this GpuScene lives.
+  VertexArray vertex_array_with(const Buffer& indices) const;
+
+  const Scene& scene() const { return *scene_; }
 
   const MaterialFeatures& features() const { return features_; }
 
@@ -50,6 +56,8 @@ private:
     GLsizei count;     // indices
   };
   void draw_range(const Range& r, GLsizei instances = 1) const;
+  // The vertex attributes on the bound vertex array.
+  void attach_attributes() const;
 
   const GladGLContext* api_;
   const Scene* scene_;

@@ -74,10 +74,10 @@ int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) 
 }
 
 ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
-                         const Bounds& bounds, const MaterialFeatures& features)
-    : api_(&api), resolution_(resolution), batch_(batch),
-      block_(ShadowAtlas::block_size(resolution)), grid_(block_grid(blocks, block_)),
-      bounds_(bounds),
+                         const Bounds& bounds, const MaterialFeatures& features,
+                         const ShadowLodOptions& lod)
+    : api_(&api), resolution_(resolution), batch_(batch), block_(ShadowAtlas::block_size(resolution)),
+      grid_(block_grid(blocks, block_)), bounds_(bounds),
       program_(
           api, "batched shadow",
           material_source(shaders::batched_source(shaders::batched_shadow_vertex, batch), features),
@@ -86,7 +86,8 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
       material_(program_), atlas_{make_texture(api), make_texture(api)}, fbo_{make_framebuffer(api),
                                                                               make_framebuffer(
                                                                                   api)},
-      block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f) {
+      block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f), lod_options_(lod),
+      u_face_(program_.uniform("u_face")) {
   const glm::ivec2 size = grid_ * block_;
   GLint uniform_block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
@@ -117,6 +118,40 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
   api.Uniform1f(program_.uniform("u_face_size"), static_cast<float>(resolution));
   api.Uniform2f(program_.uniform("u_atlas_size"), static_cast<float>(size.x),
                 static_cast<float>(size.y));
+  api.Uniform1i(u_face_, -1); // the face from gl_InstanceID
+}
+
+bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
+  if (lod_options_.mode == ShadowLodMode::Off || scene.scene().animation) return false;
+  if (lod_scene_ != &scene) {
+    lod_ = std::make_unique<ShadowLod>(*api_, scene, build_mesh_clusters(scene.scene()),
+                                       lod_options_.mode == ShadowLodMode::On);
+    lod_scene_ = &scene;
+  }
+  return !lod_->clusters().nodes.empty();
+}
+
+void ShadowAtlas::draw_clusters(int n, const GpuScene& scene) {
+  const GladGLContext& api = *api_;
+  if (scene.features().alpha) { // not in the hierarchy: every face, through gl_InstanceID
+    scene.draw_if([](const Material& m) { return m.alpha_mode != AlphaMode::Opaque; },
+                  [&](const Material& m) { material_.bind_alpha(api, scene, m); }, 6 * n);
+    material_.bind_alpha(api, scene, Material{}); // opaque: nothing absent
+  }
+  const float per_distance = lod_options_.texels * texel_angle();
+  // A twentieth of the shading passes' constant depth bias (2e-4 of the diagonal).
+  const float floor = 1e-5f * bounds_.diagonal();
+  cluster_triangles_ = 0;
+  for (const Face& f : faces_) {
+    if (f.rect.x > f.rect.z) continue; // never looked up
+    selection_.clear();
+    lod_->select(face_planes(f.view_projection, f.rect, resolution_), f.origin, per_distance, floor,
+                 selection_);
+    cluster_triangles_ += selection_.triangles;
+    api.Uniform1i(u_face_, f.instance);
+    lod_->draw(selection_);
+  }
+  api.Uniform1i(u_face_, -1);
 }
 
 void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
@@ -132,6 +167,7 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   float* offsets = rects + 6 * 4 * batch_;
   float* origins = offsets + 6 * 4 * batch_;
   int next_block = 0;
+  faces_.clear();
   for (int s = 0; s < n; ++s) {
     const CubeFaces cube = cube_faces(*vpls[s], bounds_, far_from(bounds_, vpls[s]->position));
     const glm::ivec2 b0 = block_origin(next_block);
@@ -151,6 +187,7 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
       std::memcpy(matrices + 16 * i, &cube.view_projection[f][0][0], 16 * sizeof(float));
       std::memcpy(rects + 4 * i, &rect[0], 4 * sizeof(float));
       std::memcpy(offsets + 4 * i, &offset[0], 2 * sizeof(float));
+      faces_.push_back({i, cube.view_projection[f], rect, vpls[s]->position});
     }
   }
   // A new store per batch (no wait for the draw that read the last one).
@@ -172,7 +209,10 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   api.Clear(GL_DEPTH_BUFFER_BIT);
   program_.use();
   for (int k = 0; k < 4; ++k) api.Enable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
-  scene.draw_covered(6 * n, [&](const Material& m) { material_.bind_alpha(api, scene, m); });
+  if (prepare_lod(scene))
+    draw_clusters(n, scene);
+  else
+    scene.draw_covered(6 * n, [&](const Material& m) { material_.bind_alpha(api, scene, m); });
   for (int k = 0; k < 4; ++k) api.Disable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
 }
 

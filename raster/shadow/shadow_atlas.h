@@ -12,13 +12,22 @@
 // (h texels deep, with the one texel of margin) of +x and -x side by side, then those of +y and
 // -y one over the other. Any other VPL (two-sided, point, spot) takes two blocks of three whole
 // faces each. Texels no face covers keep the clear value 1 (far: never shadowed).
+//
+// With ShadowLodMode Cull or On (core/mesh_clusters.h) the opaque triangles are drawn face by
+// face from a cluster hierarchy (raster/shadow/shadow_lod.h): one glMultiDrawElements per face of
+// the clusters it sees (Cull: the same image), at the coarsest level whose error stays below
+// ShadowLodOptions::texels texels at the VPL's distance (On). The face comes from a uniform then
+// instead of gl_InstanceID; alpha-tested materials stay one instanced draw of all faces.
 #include "core/bounds.h"
+#include "core/mesh_clusters.h"
 #include "core/vpl.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
+#include "raster/shadow/shadow_lod.h"
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 
 namespace irad::gl {
@@ -29,8 +38,10 @@ public:
   // irad::Error when it exceeds this GL's texture, renderbuffer or uniform-block sizes.
   // features: the scene's (raster/scene/material_features.h); with alpha, absent fragments cast no
   // shadow.
+  // lod: how the faces draw the opaque triangles (Off: all of them into every face). The
+  // hierarchy is built on the first render() of a scene (never for an animated one).
   ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks, const Bounds& bounds,
-              const MaterialFeatures& features);
+              const MaterialFeatures& features, const ShadowLodOptions& lod = {ShadowLodMode::Off});
 
   // The largest batch (<= wanted) an atlas with one block per VPL can hold on this GL: 0 or 1
   // means batching is not possible.
@@ -57,8 +68,23 @@ public:
   int blocks() const { return grid_.x * grid_.y; }
   // Angular size of one texel at the centre of a face (radians), as ShadowCube::texel_angle.
   float texel_angle() const { return 2.0f / static_cast<float>(resolution_); }
+  // Triangles the faces of the last render() drew from the hierarchy (0 without one), and the
+  // hierarchy (nullptr before a render() or without one).
+  std::size_t cluster_triangles() const { return cluster_triangles_; }
+  const ShadowLod* lod() const { return lod_.get(); }
 
 private:
+  // One face of the batch: instance 6 s + f, its view-projection, rectangle and VPL position.
+  struct Face {
+    int instance;
+    glm::mat4 view_projection;
+    glm::vec4 rect;
+    glm::vec3 origin;
+  };
+  // The hierarchy of `scene`, made on first use; false when the faces draw everything.
+  bool prepare_lod(const GpuScene& scene);
+  // The opaque triangles face by face from the hierarchy, the alpha-tested ones instanced.
+  void draw_clusters(int n, const GpuScene& scene);
   glm::ivec2 block_origin(int b) const { return glm::ivec2(b % grid_.x, b / grid_.x) * block_; }
 
   const GladGLContext* api_;
@@ -75,6 +101,13 @@ private:
   int current_ = 0;
   Buffer block_buffer_;           // the ShadowBatch uniform block
   std::vector<float> block_data_; // its contents, filled per batch
+  ShadowLodOptions lod_options_;
+  GLint u_face_;
+  std::unique_ptr<ShadowLod> lod_;
+  const GpuScene* lod_scene_ = nullptr; // the scene lod_ is of
+  std::vector<Face> faces_;             // of the last render()
+  ClusterSelection selection_;
+  std::size_t cluster_triangles_ = 0;
 };
 
 } // namespace irad::gl

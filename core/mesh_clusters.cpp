@@ -1,0 +1,204 @@
+#include "core/mesh_clusters.h"
+
+#include <algorithm>
+#include <meshoptimizer.h>
+#include <numeric>
+
+namespace irad {
+
+namespace {
+
+// welded[v]: the first vertex at v's position (bitwise equal floats).
+std::vector<std::uint32_t> weld_positions(const Scene& scene) {
+  const std::size_t n = scene.positions.size();
+  std::vector<unsigned int> remap(n);
+  const std::size_t unique = meshopt_generateVertexRemap(
+      remap.data(), nullptr, n, scene.positions.data(), n, sizeof(glm::vec3));
+  std::vector<std::uint32_t> first(unique, ~0u), welded(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (first[remap[v]] == ~0u) first[remap[v]] = static_cast<std::uint32_t>(v);
+    welded[v] = first[remap[v]];
+  }
+  return welded;
+}
+
+struct Builder {
+  const Scene& scene;
+  const ClusterOptions& options;
+  std::vector<glm::uvec3> triangles; // welded, in the order `order` permutes
+  std::vector<glm::vec3> centroids;
+  std::vector<std::uint32_t> order;
+  MeshClusters out;
+
+  // Node over order[begin, end): a leaf writes its triangles to the original part, in
+  // depth-first order, so every subtree's leaves are contiguous there.
+  std::int32_t build(std::size_t begin, std::size_t end) {
+    const auto id = static_cast<std::int32_t>(out.nodes.size());
+    out.nodes.emplace_back();
+    Bounds centre;
+    for (std::size_t k = begin; k < end; ++k) centre.extend(centroids[order[k]]);
+    if (end - begin <= options.leaf_triangles) {
+      ClusterNode& node = out.nodes.back();
+      node.leaf_first = node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
+      for (std::size_t k = begin; k < end; ++k) {
+        const glm::uvec3& t = triangles[order[k]];
+        for (int c = 0; c < 3; ++c) {
+          out.indices.push_back(t[c]);
+          node.bounds.extend(scene.positions[t[c]]);
+        }
+      }
+      node.leaf_count = node.mesh_count = static_cast<std::uint32_t>(3 * (end - begin));
+      return id;
+    }
+    const glm::vec3 extent = centre.hi - centre.lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
+    const std::size_t mid = begin + (end - begin) / 2;
+    std::nth_element(
+        order.begin() + static_cast<std::ptrdiff_t>(begin),
+        order.begin() + static_cast<std::ptrdiff_t>(mid),
+        order.begin() + static_cast<std::ptrdiff_t>(end),
+        [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+    const std::int32_t c0 = build(begin, mid);
+    const std::int32_t c1 = build(mid, end);
+    ClusterNode& node = out.nodes[static_cast<std::size_t>(id)];
+    const ClusterNode &a = out.nodes[static_cast<std::size_t>(c0)],
+                      &b = out.nodes[static_cast<std::size_t>(c1)];
+    node.children[0] = c0;
+    node.children[1] = c1;
+    node.bounds = a.bounds;
+    node.bounds.extend(b.bounds.lo);
+    node.bounds.extend(b.bounds.hi);
+    node.leaf_first = a.leaf_first;
+    node.leaf_count = a.leaf_count + b.leaf_count;
+    return id;
+  }
+};
+
+// `input` simplified to half its triangles, its open edges (the region's border) locked; error:
+// this step's (world units).
+struct Simplified {
+  std::vector<std::uint32_t> indices;
+  float error = 0.0f;
+};
+Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& input,
+                          std::vector<std::uint32_t>& local_of) {
+  // A compact vertex array of the vertices used (meshoptimizer scales by all it is given).
+  std::vector<std::uint32_t> global, local(input.size());
+  std::vector<glm::vec3> positions;
+  for (std::size_t k = 0; k < input.size(); ++k) {
+    std::uint32_t& l = local_of[input[k]];
+    if (l == ~0u) {
+      l = static_cast<std::uint32_t>(global.size());
+      global.push_back(input[k]);
+      positions.push_back(scene.positions[input[k]]);
+    }
+    local[k] = l;
+  }
+  for (std::uint32_t g : global) local_of[g] = ~0u;
+  Simplified s;
+  std::vector<std::uint32_t> dest(input.size());
+  const std::size_t target = input.size() / 6 * 3;
+  float relative = 0.0f;
+  const std::size_t count =
+      meshopt_simplify(dest.data(), local.data(), local.size(), &positions[0].x, positions.size(),
+                       sizeof(glm::vec3), target, 1.0f, meshopt_SimplifyLockBorder, &relative);
+  s.error = relative * meshopt_simplifyScale(&positions[0].x, positions.size(), sizeof(glm::vec3));
+  s.indices.resize(count);
+  for (std::size_t k = 0; k < count; ++k) s.indices[k] = global[dest[k]];
+  return s;
+}
+
+// The inner nodes' meshes, children before parents (nodes are numbered parents first).
+void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify) {
+  std::vector<std::vector<std::uint32_t>> meshes(out.nodes.size());
+  std::vector<std::uint32_t> local_of(scene.positions.size(), ~0u);
+  const auto mesh_of = [&](std::int32_t n) {
+    const ClusterNode& c = out.nodes[static_cast<std::size_t>(n)];
+    const std::vector<std::uint32_t>& m = meshes[static_cast<std::size_t>(n)];
+    return c.leaf() ? std::vector<std::uint32_t>(out.indices.begin() + c.mesh_first,
+                                                 out.indices.begin() + c.mesh_first + c.mesh_count)
+                    : m;
+  };
+  for (std::size_t n = out.nodes.size(); n-- > 0;) {
+    ClusterNode& node = out.nodes[n];
+    if (node.leaf()) continue;
+    std::vector<std::uint32_t> input = mesh_of(node.children[0]);
+    const std::vector<std::uint32_t> second = mesh_of(node.children[1]);
+    input.insert(input.end(), second.begin(), second.end());
+    const float below = std::max(out.nodes[static_cast<std::size_t>(node.children[0])].error,
+                                 out.nodes[static_cast<std::size_t>(node.children[1])].error);
+    if (simplify && !input.empty()) {
+      Simplified s = simplify_union(scene, input, local_of);
+      if (s.indices.size() < input.size()) {
+        input = std::move(s.indices);
+        node.error = below + s.error;
+      } else {
+        node.error = below;
+      }
+    } else {
+      node.error = below;
+    }
+    meshes[n] = std::move(input);
+  }
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) {
+    ClusterNode& node = out.nodes[n];
+    if (node.leaf()) continue;
+    node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
+    node.mesh_count = static_cast<std::uint32_t>(meshes[n].size());
+    out.indices.insert(out.indices.end(), meshes[n].begin(), meshes[n].end());
+  }
+}
+
+// Each node's coarser levels: its mesh halved again and again (the border still locked) while
+// that removes at least a tenth of the triangles.
+void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels) {
+  std::vector<std::uint32_t> local_of(scene.positions.size(), ~0u);
+  for (ClusterNode& node : out.nodes) {
+    node.levels_first = static_cast<std::uint32_t>(out.levels.size());
+    std::vector<std::uint32_t> mesh(out.indices.begin() + node.mesh_first,
+                                    out.indices.begin() + node.mesh_first + node.mesh_count);
+    float error = node.error;
+    for (int l = 0; l < max_levels && !mesh.empty(); ++l) {
+      Simplified s = simplify_union(scene, mesh, local_of);
+      if (10 * s.indices.size() > 9 * mesh.size()) break;
+      error += s.error;
+      mesh = std::move(s.indices);
+      out.levels.push_back({error, static_cast<std::uint32_t>(out.indices.size()),
+                            static_cast<std::uint32_t>(mesh.size())});
+      out.indices.insert(out.indices.end(), mesh.begin(), mesh.end());
+    }
+    node.levels_count = static_cast<std::uint32_t>(out.levels.size()) - node.levels_first;
+  }
+}
+
+} // namespace
+
+float distance_to(const Bounds& b, const glm::vec3& p) {
+  return glm::length(glm::max(glm::max(b.lo - p, p - b.hi), glm::vec3(0.0f)));
+}
+
+MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& options) {
+  Builder b{scene, options, {}, {}, {}, {}};
+  const std::vector<std::uint32_t> welded = weld_positions(scene);
+  for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
+    if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
+    const glm::uvec3 v = scene.triangles[t];
+    b.out.triangles.push_back(static_cast<std::uint32_t>(t));
+    b.triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
+    b.centroids.push_back((scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) /
+                          3.0f);
+  }
+  if (b.triangles.empty()) return std::move(b.out);
+  b.order.resize(b.triangles.size());
+  std::iota(b.order.begin(), b.order.end(), 0u);
+  b.out.indices.reserve(3 * b.triangles.size());
+  b.build(0, b.triangles.size());
+  b.out.original_indices = b.out.indices.size();
+  simplify_inner_nodes(scene, b.out, options.simplify);
+  if (options.simplify) add_coarser_levels(scene, b.out, options.max_levels);
+  return std::move(b.out);
+}
+
+} // namespace irad

@@ -1,0 +1,99 @@
+#pragma once
+// A cluster hierarchy with levels of detail over a scene's opaque triangles, for the shadow
+// passes (raster/shadow/shadow_lod.h): they cull it against each cube face and draw, per face, a
+// cut through it whose geometric error stays below the shadow map's texel at the VPL's distance.
+//
+// The tree: a binary tree of spatial regions (median split of the triangle centroids along the
+// longest axis) down to leaves of at most ClusterOptions::leaf_triangles triangles. Every node
+// has a mesh: a leaf its original triangles (error 0), an inner node the union of its children's
+// meshes simplified to half their triangles (meshoptimizer, meshopt_SimplifyLockBorder) with
+//     error(node) = max(error(children)) + meshopt's result_error * meshopt_simplifyScale,
+// a world-space bound on how far its mesh lies from the original surface (meshoptimizer's
+// quadric estimate; tests/test_shadow_lod.cpp measures it). Errors grow toward the root. Each
+// node also keeps coarser levels of its own mesh, halved again and again with the same locked
+// border (error: the level before's plus the step's), for the faces that see it from far.
+//
+// Crack-free by construction: a node's open edges, the border of its region, are locked in its
+// simplification, and every region's border is part of the borders of the regions below it
+// that touch it, so every node's mesh keeps its region's original border exactly. Any cut (a
+// set of nodes whose regions tile the mesh) therefore meets along original edges: no gaps that
+// a shadow map could leak light through. Simplification keeps topology (edge collapses onto
+// existing vertices), so a closed surface stays closed.
+//
+// The meshes index the scene's own vertex array, so a GPU draws them with the scene's vertex
+// buffer. Positions are welded first (vertices at one position become the first of them: the
+// simplifier sees one connected surface where a file or subdivide() duplicated vertices at
+// seams); a welded index draws the same position, so the leaves draw the very triangles the
+// scene has.
+#include "core/bounds.h"
+#include "core/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace irad {
+
+// How the batched shadow passes use the hierarchy (RasterOptions::shadow_lod).
+enum class ShadowLodMode {
+  Off,  // every triangle into every face (the reference)
+  Cull, // only the clusters a face sees: exact, the same image
+  On,   // culled, and each face draws the coarsest nodes whose error is below its texel
+};
+struct ShadowLodOptions {
+  ShadowLodMode mode = ShadowLodMode::On;
+  // On: the error a drawn level may have, in texels at the centre of a face at the cluster's
+  // distance (docs/performance.md measures the image error against it).
+  float texels = 0.5f;
+};
+
+// A coarser level of a node: indices [first, first + count), error as ClusterNode::error.
+struct ClusterLevel {
+  float error = 0.0f;
+  std::uint32_t first = 0, count = 0;
+};
+
+struct ClusterNode {
+  Bounds bounds;      // of the region's original triangles; every node below lies inside
+  float error = 0.0f; // world-space distance of the mesh from the original surface (0: a leaf)
+  // The node's mesh: indices [mesh_first, mesh_first + mesh_count) of MeshClusters::indices.
+  std::uint32_t mesh_first = 0, mesh_count = 0;
+  // The region's original triangles: indices [leaf_first, leaf_first + leaf_count), inside the
+  // original part (the leaves below, contiguous in depth-first order).
+  std::uint32_t leaf_first = 0, leaf_count = 0;
+  std::int32_t children[2] = {-1, -1};
+  // Its coarser levels: MeshClusters::levels [levels_first, levels_first + levels_count),
+  // errors ascending (every one above `error`).
+  std::uint32_t levels_first = 0, levels_count = 0;
+  bool leaf() const { return children[0] < 0; }
+};
+
+struct MeshClusters {
+  std::vector<std::uint32_t> indices; // into Scene::positions, 3 per triangle
+  std::vector<ClusterNode> nodes;     // nodes[0] the root; empty when no triangle is clustered
+  std::vector<ClusterLevel> levels;   // the nodes' coarser levels
+  // indices[0, original_indices): every clustered triangle once (welded), leaves in depth-first
+  // order; the simplified meshes of the inner nodes and the coarser levels follow.
+  std::size_t original_indices = 0;
+  // The scene triangles in the hierarchy, ascending (those of Opaque materials).
+  std::vector<std::uint32_t> triangles;
+  std::size_t bytes() const {
+    return indices.size() * sizeof(std::uint32_t) + nodes.size() * sizeof(ClusterNode) +
+           levels.size() * sizeof(ClusterLevel) + triangles.size() * sizeof(std::uint32_t);
+  }
+};
+
+struct ClusterOptions {
+  std::uint32_t leaf_triangles = 1024; // at most this many per leaf
+  bool simplify = true;                // false: inner nodes' meshes are their original triangles
+  int max_levels = 8;                  // coarser levels per node at most
+};
+
+// The hierarchy over the triangles of Opaque materials (Mask and Blend ones keep their alpha
+// test, drawn apart by the caller). The caller decides about animated scenes (the tree is of the
+// positions at the time of the call).
+MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& options = {});
+
+// The distance from p to the box b (0 inside).
+float distance_to(const Bounds& b, const glm::vec3& p);
+
+} // namespace irad

@@ -1,0 +1,68 @@
+#pragma once
+// The cluster hierarchy of core/mesh_clusters.h on the GPU, and the choice of what one shadow
+// face draws: the nodes whose bounds meet the face's pyramid (clipped to the rectangle the face
+// is ever looked up on), each at the coarsest node of its subtree whose error is below
+//     max(error_per_distance * distance(VPL, node bounds), error_floor).
+// With error_per_distance = f * (2 / R), the angle of a texel at a face's centre times a factor
+// f, a chosen node's mesh lies within f texels of the original surface as the VPL sees it.
+// Culling is exact: a node is left out only when its box lies wholly outside a plane of the
+// face's pyramid, where GL would clip all of it. The selected index ranges are drawn with one
+// glMultiDrawElements over one index buffer (ranges that touch are merged).
+#include "core/mesh_clusters.h"
+#include "raster/context/gl_objects.h"
+#include "raster/scene/gpu_scene.h"
+
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace irad::gl {
+
+// What one face draws: index ranges of ShadowLod's buffer.
+struct ClusterSelection {
+  std::vector<GLsizei> counts;
+  std::vector<const void*> offsets; // bytes
+  std::size_t triangles = 0;
+  void clear() {
+    counts.clear();
+    offsets.clear();
+    triangles = 0;
+  }
+};
+
+// The four planes a * p + d >= 0 of the pyramid that face pixels p of [x0, x1] x [y0, y1]
+// (rect) see through the face view-projection `view_projection` (R texels per edge):
+// pixel = (ndc + 1) R / 2, as the batched shadow vertex shader computes it.
+std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm::vec4& rect,
+                                     int resolution);
+
+class ShadowLod {
+public:
+  // Uploads `clusters` (of gpu's scene) as one index buffer; `simplify`: whether the inner
+  // nodes' meshes may be drawn (false: culling only, the original triangles).
+  ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters, bool simplify);
+
+  // Appends to `out` the ranges of the face with pyramid `planes` seen from `origin`.
+  // error_floor: an error no shadow test can tell (far below the depth bias), so that coplanar
+  // simplification, exact up to rounding, serves even a VPL inside a node's bounds.
+  void select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
+              float error_per_distance, float error_floor, ClusterSelection& out) const;
+  // Draws `selection` (the bound program's state is the caller's).
+  void draw(const ClusterSelection& selection) const;
+
+  // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
+  // drawn by the caller.
+  const MeshClusters& clusters() const { return clusters_; }
+  std::size_t gpu_bytes() const { return clusters_.indices.size() * sizeof(std::uint32_t); }
+
+private:
+  void emit(std::uint32_t first, std::uint32_t count, ClusterSelection& out) const;
+
+  const GladGLContext* api_;
+  MeshClusters clusters_;
+  bool simplify_;
+  Buffer indices_;
+  VertexArray vao_;
+  mutable std::vector<std::int32_t> stack_; // select()'s traversal
+};
+
+} // namespace irad::gl
