@@ -1,6 +1,7 @@
 #include "core/mesh_clusters.h"
 
 #include <algorithm>
+#include <limits>
 #include <meshoptimizer.h>
 #include <numeric>
 
@@ -22,6 +23,31 @@ std::vector<std::uint32_t> weld_positions(const Scene& scene) {
   return welded;
 }
 
+// The group of each triangle: its connected component (through shared welded vertices) where
+// that has at least `least` triangles, else kRestGroup (all the small components together).
+constexpr std::uint32_t kRestGroup = ~0u;
+std::vector<std::uint32_t> component_groups(const std::vector<glm::uvec3>& triangles,
+                                            std::size_t vertices, std::uint32_t least) {
+  std::vector<std::uint32_t> parent(vertices);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const glm::uvec3& t : triangles) {
+    const std::uint32_t a = find(t.x);
+    parent[find(t.y)] = a;
+    parent[find(t.z)] = a;
+  }
+  std::vector<std::uint32_t> size(vertices, 0), group(triangles.size());
+  for (const glm::uvec3& t : triangles) ++size[find(t.x)];
+  for (std::size_t k = 0; k < triangles.size(); ++k) {
+    const std::uint32_t c = find(triangles[k].x);
+    group[k] = size[c] >= least ? c : kRestGroup;
+  }
+  return group;
+}
+
 struct Builder {
   const Scene& scene;
   const ClusterOptions& options;
@@ -29,6 +55,81 @@ struct Builder {
   std::vector<glm::vec3> centroids;
   std::vector<std::uint32_t> order;
   MeshClusters out;
+
+  // Splits order[begin, end) in two (returns where the second part starts): the binned
+  // surface-area heuristic over the centroids (kBins bins per axis; cost = area(box) x count of
+  // each side), so that a few large triangles (a room's walls) get regions of their own and do not
+  // stretch the boxes of the small ones, which would keep these at full detail (the distance to
+  // a box is what the level of detail reads). The median of the longest axis where the
+  // centroids do not spread.
+  std::size_t split(std::size_t begin, std::size_t end, const Bounds& centre) {
+    constexpr int kBins = 16;
+    const glm::vec3 extent = centre.hi - centre.lo;
+    const auto bin_of = [&](std::uint32_t t, int axis) {
+      const float u = (centroids[t][axis] - centre.lo[axis]) / extent[axis];
+      return std::clamp(static_cast<int>(u * kBins), 0, kBins - 1);
+    };
+    const auto area = [](const Bounds& b) {
+      if (b.empty()) return 0.0;
+      const glm::dvec3 e(b.hi - b.lo);
+      return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+    };
+    double best = std::numeric_limits<double>::infinity();
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(extent[axis] > 0.0f)) continue;
+      Bounds boxes[kBins];
+      std::size_t counts[kBins] = {};
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::uint32_t t = order[k];
+        const int b = bin_of(t, axis);
+        ++counts[b];
+        for (int c = 0; c < 3; ++c) boxes[b].extend(scene.positions[triangles[t][c]]);
+      }
+      // right[b]: bins b.. merged.
+      Bounds right[kBins + 1];
+      std::size_t right_count[kBins + 1] = {};
+      for (int b = kBins - 1; b >= 0; --b) {
+        right[b] = right[b + 1];
+        right[b].extend(boxes[b].lo);
+        right[b].extend(boxes[b].hi);
+        if (boxes[b].empty()) right[b] = right[b + 1];
+        right_count[b] = right_count[b + 1] + counts[b];
+      }
+      Bounds left;
+      std::size_t left_count = 0;
+      for (int b = 0; b + 1 < kBins; ++b) {
+        if (!boxes[b].empty()) {
+          left.extend(boxes[b].lo);
+          left.extend(boxes[b].hi);
+        }
+        left_count += counts[b];
+        if (left_count == 0 || right_count[b + 1] == 0) continue;
+        const double cost = area(left) * static_cast<double>(left_count) +
+                            area(right[b + 1]) * static_cast<double>(right_count[b + 1]);
+        if (cost < best) {
+          best = cost;
+          best_axis = axis;
+          best_bin = b;
+        }
+      }
+    }
+    const auto first = order.begin() + static_cast<std::ptrdiff_t>(begin);
+    const auto last = order.begin() + static_cast<std::ptrdiff_t>(end);
+    if (best_axis >= 0)
+      return static_cast<std::size_t>(
+          std::partition(first, last,
+                         [&](std::uint32_t t) { return bin_of(t, best_axis) <= best_bin; }) -
+          order.begin());
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
+    const std::size_t mid = begin + (end - begin) / 2;
+    std::nth_element(
+        first, order.begin() + static_cast<std::ptrdiff_t>(mid), last,
+        [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+    return mid;
+  }
 
   // Node over order[begin, end): a leaf writes its triangles to the original part, in
   // depth-first order, so every subtree's leaves are contiguous there.
@@ -50,16 +151,7 @@ struct Builder {
       node.leaf_count = node.mesh_count = static_cast<std::uint32_t>(3 * (end - begin));
       return id;
     }
-    const glm::vec3 extent = centre.hi - centre.lo;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
-                     : extent.y >= extent.z                       ? 1
-                                                                  : 2;
-    const std::size_t mid = begin + (end - begin) / 2;
-    std::nth_element(
-        order.begin() + static_cast<std::ptrdiff_t>(begin),
-        order.begin() + static_cast<std::ptrdiff_t>(mid),
-        order.begin() + static_cast<std::ptrdiff_t>(end),
-        [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+    const std::size_t mid = split(begin, end, centre);
     const std::int32_t c0 = build(begin, mid);
     const std::int32_t c1 = build(mid, end);
     ClusterNode& node = out.nodes[static_cast<std::size_t>(id)];
@@ -76,14 +168,14 @@ struct Builder {
   }
 };
 
-// `input` simplified to half its triangles, its open edges (the region's border) locked; error:
-// this step's (world units).
+// `input` simplified to 1/divisor of its triangles, its open edges (the region's border) locked;
+// error: this step's (world units).
 struct Simplified {
   std::vector<std::uint32_t> indices;
   float error = 0.0f;
 };
 Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& input,
-                          std::vector<std::uint32_t>& local_of) {
+                          std::vector<std::uint32_t>& local_of, std::size_t divisor = 2) {
   // A compact vertex array of the vertices used (meshoptimizer scales by all it is given).
   std::vector<std::uint32_t> global, local(input.size());
   std::vector<glm::vec3> positions;
@@ -99,7 +191,7 @@ Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& 
   for (std::uint32_t g : global) local_of[g] = ~0u;
   Simplified s;
   std::vector<std::uint32_t> dest(input.size());
-  const std::size_t target = input.size() / 6 * 3;
+  const std::size_t target = input.size() / (3 * divisor) * 3;
   float relative = 0.0f;
   const std::size_t count =
       meshopt_simplify(dest.data(), local.data(), local.size(), &positions[0].x, positions.size(),
@@ -152,16 +244,22 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify) 
 }
 
 // Each node's coarser levels: its mesh halved again and again (the border still locked) while
-// that removes at least a tenth of the triangles.
-void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels) {
+// that removes at least a tenth of the triangles. A root of one connected component (`whole`)
+// starts from its original triangles instead and quarters them: no region border inside it is
+// locked, so a closed surface simplifies as far as its error allows.
+void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
+                        const std::vector<bool>& whole) {
   std::vector<std::uint32_t> local_of(scene.positions.size(), ~0u);
-  for (ClusterNode& node : out.nodes) {
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) {
+    ClusterNode& node = out.nodes[n];
     node.levels_first = static_cast<std::uint32_t>(out.levels.size());
-    std::vector<std::uint32_t> mesh(out.indices.begin() + node.mesh_first,
-                                    out.indices.begin() + node.mesh_first + node.mesh_count);
-    float error = node.error;
+    const std::uint32_t first = whole[n] ? node.leaf_first : node.mesh_first;
+    const std::uint32_t count = whole[n] ? node.leaf_count : node.mesh_count;
+    std::vector<std::uint32_t> mesh(out.indices.begin() + first,
+                                    out.indices.begin() + first + count);
+    float error = whole[n] ? 0.0f : node.error;
     for (int l = 0; l < max_levels && !mesh.empty(); ++l) {
-      Simplified s = simplify_union(scene, mesh, local_of);
+      Simplified s = simplify_union(scene, mesh, local_of, whole[n] ? 4 : 2);
       if (10 * s.indices.size() > 9 * mesh.size()) break;
       error += s.error;
       mesh = std::move(s.indices);
@@ -191,13 +289,27 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& optio
                           3.0f);
   }
   if (b.triangles.empty()) return std::move(b.out);
+  // One tree per connected component of at least a leaf's triangles, one for all the others.
+  const std::vector<std::uint32_t> group =
+      component_groups(b.triangles, scene.positions.size(), options.leaf_triangles);
   b.order.resize(b.triangles.size());
   std::iota(b.order.begin(), b.order.end(), 0u);
+  std::stable_sort(b.order.begin(), b.order.end(),
+                   [&](std::uint32_t x, std::uint32_t y) { return group[x] < group[y]; });
   b.out.indices.reserve(3 * b.triangles.size());
-  b.build(0, b.triangles.size());
+  std::vector<bool> whole;
+  for (std::size_t begin = 0; begin < b.order.size();) {
+    std::size_t end = begin + 1;
+    while (end < b.order.size() && group[b.order[end]] == group[b.order[begin]]) ++end;
+    const std::int32_t root = b.build(begin, end);
+    b.out.roots.push_back(root);
+    whole.resize(b.out.nodes.size(), false);
+    whole[static_cast<std::size_t>(root)] = group[b.order[begin]] != kRestGroup;
+    begin = end;
+  }
   b.out.original_indices = b.out.indices.size();
   simplify_inner_nodes(scene, b.out, options.simplify);
-  if (options.simplify) add_coarser_levels(scene, b.out, options.max_levels);
+  if (options.simplify) add_coarser_levels(scene, b.out, options.max_levels, whole);
   return std::move(b.out);
 }
 

@@ -3,15 +3,21 @@
 // passes (raster/shadow/shadow_lod.h): they cull it against each cube face and draw, per face, a
 // cut through it whose geometric error stays below the shadow map's texel at the VPL's distance.
 //
-// The tree: a binary tree of spatial regions (median split of the triangle centroids along the
-// longest axis) down to leaves of at most ClusterOptions::leaf_triangles triangles. Every node
-// has a mesh: a leaf its original triangles (error 0), an inner node the union of its children's
-// meshes simplified to half their triangles (meshoptimizer, meshopt_SimplifyLockBorder) with
+// The tree: a binary tree of spatial regions (split by the surface-area heuristic over the
+// triangle centroids) down to leaves of at most ClusterOptions::leaf_triangles triangles. Every
+// node has a mesh: a leaf its original triangles (error 0), an inner node the union of its
+// children's meshes simplified to half their triangles (meshoptimizer, meshopt_SimplifyLockBorder)
+// with
 //     error(node) = max(error(children)) + meshopt's result_error * meshopt_simplifyScale,
 // a world-space bound on how far its mesh lies from the original surface (meshoptimizer's
 // quadric estimate; tests/test_shadow_lod.cpp measures it). Errors grow toward the root. Each
 // node also keeps coarser levels of its own mesh, halved again and again with the same locked
 // border (error: the level before's plus the step's), for the faces that see it from far.
+//
+// The trees: one per large connected component (welded), and one for all the small ones. A
+// component's root also keeps levels of the whole component, simplified from its original
+// triangles with only the component's own open edges locked: a face that sees the component
+// from far draws one of them (one mesh, no seams), one that sees it from near a cut of its tree.
 //
 // Crack-free by construction: a node's open edges, the border of its region, are locked in its
 // simplification, and every region's border is part of the borders of the regions below it
@@ -47,6 +53,7 @@ struct ShadowLodOptions {
 };
 
 // A coarser level of a node: indices [first, first + count), error as ClusterNode::error.
+// (For a component's root: relative to the original triangles, so not always above `error`.)
 struct ClusterLevel {
   float error = 0.0f;
   std::uint32_t first = 0, count = 0;
@@ -62,15 +69,20 @@ struct ClusterNode {
   std::uint32_t leaf_first = 0, leaf_count = 0;
   std::int32_t children[2] = {-1, -1};
   // Its coarser levels: MeshClusters::levels [levels_first, levels_first + levels_count),
-  // errors ascending (every one above `error`).
+  // errors ascending, triangles descending.
   std::uint32_t levels_first = 0, levels_count = 0;
   bool leaf() const { return children[0] < 0; }
 };
 
 struct MeshClusters {
   std::vector<std::uint32_t> indices; // into Scene::positions, 3 per triangle
-  std::vector<ClusterNode> nodes;     // nodes[0] the root; empty when no triangle is clustered
-  std::vector<ClusterLevel> levels;   // the nodes' coarser levels
+  std::vector<ClusterNode> nodes;     // every tree's nodes, parents before children
+  // The trees' roots: one per connected component of at least ClusterOptions::leaf_triangles
+  // triangles (its coarser levels simplify the whole component, from its original triangles,
+  // with no region border inside it locked), one for all smaller components together. Empty
+  // when no triangle is clustered.
+  std::vector<std::int32_t> roots;
+  std::vector<ClusterLevel> levels; // the nodes' coarser levels
   // indices[0, original_indices): every clustered triangle once (welded), leaves in depth-first
   // order; the simplified meshes of the inner nodes and the coarser levels follow.
   std::size_t original_indices = 0;

@@ -56,8 +56,7 @@ void ShadowLod::emit(std::uint32_t first, std::uint32_t count, ClusterSelection&
 void ShadowLod::select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
                        float error_per_distance, float error_floor, ClusterSelection& out) const {
   const std::vector<ClusterNode>& nodes = clusters_.nodes;
-  if (nodes.empty()) return;
-  stack_.assign(1, 0);
+  stack_.assign(clusters_.roots.rbegin(), clusters_.roots.rend());
   while (!stack_.empty()) {
     const ClusterNode& node = nodes[static_cast<std::size_t>(stack_.back())];
     stack_.pop_back();
@@ -74,15 +73,20 @@ void ShadowLod::select(const std::array<glm::vec4, 4>& planes, const glm::vec3& 
     if (outside) continue;
     const float allowed =
         std::max(error_floor, error_per_distance * distance_to(node.bounds, origin));
+    // The acceptable mesh of the node with the fewest triangles: its own or a coarser level.
+    std::uint32_t first = 0, count = ~0u;
     if (simplify_ && node.error <= allowed) {
-      // The coarsest level within the bound (errors ascend).
-      std::uint32_t first = node.mesh_first, count = node.mesh_count;
-      for (std::uint32_t l = 0; l < node.levels_count; ++l) {
-        const ClusterLevel& level = clusters_.levels[node.levels_first + l];
-        if (level.error > allowed) break;
+      first = node.mesh_first;
+      count = node.mesh_count;
+    }
+    for (std::uint32_t l = 0; simplify_ && l < node.levels_count; ++l) {
+      const ClusterLevel& level = clusters_.levels[node.levels_first + l];
+      if (level.error <= allowed && level.count < count) {
         first = level.first;
         count = level.count;
       }
+    }
+    if (count != ~0u) {
       emit(first, count, out);
     } else if (node.leaf() || (inside && !simplify_)) {
       emit(node.leaf_first, node.leaf_count, out); // the original triangles below
