@@ -160,8 +160,8 @@ float triangle_area(const Scene& scene, std::size_t t);
 // not visible (Environment::visible false); else L_env(w) (0 without an environment) plus the
 // radiance E / (pi sin^2 r) of every directional light of angular radius r > 0 (a sun) whose
 // disk holds w. The one definition pt, rt-vpl and the raster's background pass
-// (raster/passes/background.h) share. Rays after a mirror see the environment whatever `visible` says,
-// and no sun disk (it is a delta light for the lighting).
+// (raster/passes/background.h) share. Rays after a mirror see the environment whatever `visible`
+// says, and no sun disk (it is a delta light for the lighting).
 glm::vec3 background_radiance(const Scene& scene, const glm::vec3& w);
 // Radiance of a sun's disk (PunctualLight::angular_radius > 0), 0 otherwise.
 glm::vec3 sun_disk_radiance(const PunctualLight& light);

@@ -27,13 +27,14 @@ struct RasterOptions {
   // geometry-aware k x k resolve. 4 is the default: at equal time it wins on error against the
   // path tracer (docs/performance.md).
   int interleave = 4;
-  // Jittered low-discrepancy sampling (raster/image/pixel_jitter.h): every VPL pass, and the emitters,
-  // at a sub-pixel offset, so the accumulation antialiases geometric edges.
+  // Jittered low-discrepancy sampling (raster/image/pixel_jitter.h): every VPL pass, and the
+  // emitters, at a sub-pixel offset, so the accumulation antialiases geometric edges.
   bool jitter = false;
-  // VPLs per batch (raster/passes/batched_passes.h): their shadow cubes in one atlas by one instanced
-  // draw, their shading by one instanced draw per interleaved set. 1: one shadow cube and one
-  // shading pass per VPL (the reference, the same image). 16 was the fastest of 8..64 at 512x512
-  // (docs/performance.md). Jitter, directional VPLs and render_cached take the per-VPL passes.
+  // VPLs per batch (raster/passes/batched_passes.h): their shadow cubes in one atlas by one
+  // instanced draw, their shading by one instanced draw per interleaved set. 1: one shadow cube and
+  // one shading pass per VPL (the reference, the same image). 16 was the fastest of 8..64 at
+  // 512x512 (docs/performance.md). Jitter, directional VPLs and render_cached take the per-VPL
+  // passes.
   int batch = 16;
   // How the batched shadow atlas draws the opaque triangles (core/mesh_clusters.h): mode Off every
   // triangle into every face, Cull only the clusters a face sees (the same image), On culled and

@@ -37,8 +37,8 @@ public:
 
   // Renders one path's VPLs (seen from `view`) into slot path mod N, replacing what was there.
   void replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view);
-  // The running sum plus the emitters and the background (raster/passes/background.h) seen from `view`
-  // (alpha 1).
+  // The running sum plus the emitters and the background (raster/passes/background.h) seen from
+  // `view` (alpha 1).
   Image frame(const View& view);
   // The sum recomputed from the ring (what the running sum should be).
   Image exact_sum();

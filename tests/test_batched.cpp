@@ -220,7 +220,8 @@ TEST(Batched, KeptShadowMapsOfEveryPathMatchDrawingThemAnew) {
       for (std::uint32_t p = 0; p < paths.size(); ++p) renderer.cache_path(p, paths[p], 96, 96);
       const ImageMetrics m = compare_images(renderer.render_cached(view), fresh);
       std::printf("kept shadow maps, batch %d, k = %d: relMSE %.3g, max abs %.3g, %.2f MB\n", batch,
-                  k, m.relmse, m.max_abs_error, static_cast<double>(renderer.cache_bytes()) / 1048576.0);
+                  k, m.relmse, m.max_abs_error,
+                  static_cast<double>(renderer.cache_bytes()) / 1048576.0);
       // Measured: batch 1 identical; batch 16 relMSE 5e-14 (k = 1) and 8e-16 (k = 4), max abs
       // 7e-7 (the summation order).
       EXPECT_LT(m.max_abs_error, 1e-5);

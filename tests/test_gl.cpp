@@ -5,9 +5,9 @@
 #include "core/image_metrics.h"
 #include "core/view.h"
 #include "raster/context/gl_context.h"
-#include "raster/raster_renderer.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/target.h"
+#include "raster/raster_renderer.h"
 #include "walk/quasi_random_walk.h"
 
 #include <gtest/gtest.h>

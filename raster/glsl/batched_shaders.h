@@ -1,6 +1,6 @@
 #pragma once
-// GLSL 3.30 core sources of the batched VPL passes (raster/passes/batched_passes.h): many VPLs per draw
-// call, told apart by gl_InstanceID. Each source is a body: batched_source() puts the version
+// GLSL 3.30 core sources of the batched VPL passes (raster/passes/batched_passes.h): many VPLs per
+// draw call, told apart by gl_InstanceID. Each source is a body: batched_source() puts the version
 // line and the array size in front.
 #include <string>
 
@@ -15,11 +15,11 @@ inline std::string batched_source(const char* body, int batch) {
   return "#version 330 core\n#define MAX_BATCH " + std::to_string(batch) + "\n" + body;
 }
 
-// Shadow atlas (raster/shadow/shadow_atlas.h): instance i = 6 s + f draws face f of the batch's VPL s.
-// The face's clip coordinates give face pixels p = (ndc + 1) R / 2; four clip distances keep
-// p inside u_rect[i] (the face's window rectangle that is ever looked up; x0 > x1: not drawn),
-// and the atlas pixel is p + u_offset[i]. u_face >= 0 names the instance i instead (the face by
-// face draws of the cluster hierarchy, raster/shadow/shadow_lod.h).
+// Shadow atlas (raster/shadow/shadow_atlas.h): instance i = 6 s + f draws face f of the batch's VPL
+// s. The face's clip coordinates give face pixels p = (ndc + 1) R / 2; four clip distances keep p
+// inside u_rect[i] (the face's window rectangle that is ever looked up; x0 > x1: not drawn), and
+// the atlas pixel is p + u_offset[i]. u_face >= 0 names the instance i instead (the face by face
+// draws of the cluster hierarchy, raster/shadow/shadow_lod.h).
 inline constexpr const char* batched_shadow_vertex = R"(
 layout(location = 0) in vec3 a_position;
 #ifdef IRAD_ALPHA
@@ -62,8 +62,8 @@ void main() {
 
 // The distance |p - y| / far as the depth (the depth test keeps the nearest surface: distance
 // grows with depth along a ray from y), so the atlas is one depth texture, cleared to 1 (far:
-// never shadowed). With alpha, absent fragments (raster/scene/material_glsl.h) are seeded by the VPL's
-// position, as ShadowCube's.
+// never shadowed). With alpha, absent fragments (raster/scene/material_glsl.h) are seeded by the
+// VPL's position, as ShadowCube's.
 inline constexpr const char* batched_shadow_fragment = R"(
 in vec3 v_position;
 flat in vec4 v_origin;

@@ -1,7 +1,7 @@
 #include "raster/image/jitter_passes.h"
 
-#include "raster/image/pixel_jitter.h"
 #include "raster/glsl/shaders.h"
+#include "raster/image/pixel_jitter.h"
 #include "raster/passes/vpl_shader.h"
 
 #include <glm/gtc/type_ptr.hpp>

@@ -5,10 +5,10 @@
 // jittered passes, so the whole image is filtered with the same box over the pixel footprint.
 #include "core/scene.h"
 #include "core/view.h"
+#include "raster/context/shader_program.h"
 #include "raster/passes/background.h"
 #include "raster/passes/camera_passes.h"
 #include "raster/scene/gpu_scene.h"
-#include "raster/context/shader_program.h"
 
 #include <glm/glm.hpp>
 

@@ -44,8 +44,7 @@ public:
                                              float clamp, int batch, int resolution,
                                              int ortho_resolution, const ShadowLodOptions& lod);
   BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp, int requested, int batch,
-                int resolution, int ortho_tiles, int ortho_resolution,
-                const ShadowLodOptions& lod);
+                int resolution, int ortho_tiles, int ortho_resolution, const ShadowLodOptions& lod);
 
   // Whether this object serves make(..., batch, resolution, ortho_resolution).
   bool matches(int batch, int resolution, int ortho_resolution) const {

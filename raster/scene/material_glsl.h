@@ -11,9 +11,9 @@
 // A scene with none of them compiles the same maths as before these features existed (the uv
 // transform is one mat3 product, exact for the identity), so its images stay bit-identical.
 #include "core/scene.h"
+#include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_features.h"
-#include "raster/context/shader_program.h"
 
 #include <string>
 

@@ -76,8 +76,9 @@ int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) 
 ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
                          const Bounds& bounds, const MaterialFeatures& features,
                          const ShadowLodOptions& lod)
-    : api_(&api), resolution_(resolution), batch_(batch), block_(ShadowAtlas::block_size(resolution)),
-      grid_(block_grid(blocks, block_)), bounds_(bounds),
+    : api_(&api), resolution_(resolution), batch_(batch),
+      block_(ShadowAtlas::block_size(resolution)), grid_(block_grid(blocks, block_)),
+      bounds_(bounds),
       program_(
           api, "batched shadow",
           material_source(shaders::batched_source(shaders::batched_shadow_vertex, batch), features),
