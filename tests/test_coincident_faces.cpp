@@ -33,10 +33,10 @@ Scene coincident_scene() {
   const std::uint32_t floor = add_material(s, glm::vec3(0.5f));
   const std::uint32_t wall = add_material(s, {0.7f, 0.6f, 0.5f});
   add_quad(s, {-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}, floor);
+  const auto at = [](int k) { return -2.0f + 4.0f * static_cast<float>(k) / 3.0f; };
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
-      const float x0 = -2.0f + 4.0f * i / 3.0f, x1 = -2.0f + 4.0f * (i + 1) / 3.0f;
-      const float y0 = -2.0f + 4.0f * j / 3.0f, y1 = -2.0f + 4.0f * (j + 1) / 3.0f;
+      const float x0 = at(i), x1 = at(i + 1), y0 = at(j), y1 = at(j + 1);
       add_quad(s, {x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}, floor);
     }
   add_quad(s, {-2, 1, 0}, {-2, 1, 2}, {2, 1, 2}, {2, 1, 0}, wall); // faces -y
