@@ -168,14 +168,19 @@ struct Builder {
   }
 };
 
-// `input` simplified to 1/divisor of its triangles, its open edges (the region's border) locked;
+// Relative error (of the mesh's extent) below which meshoptimizer's collapses count as exact.
+constexpr float kExact = 1e-6f;
+
+// `input` simplified to 1/divisor of its triangles (divisor 0: as far as target_error, relative
+// to the extent, allows), its open edges (the region's border) locked;
 // error: this step's (world units).
 struct Simplified {
   std::vector<std::uint32_t> indices;
   float error = 0.0f;
 };
 Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& input,
-                          std::vector<std::uint32_t>& local_of, std::size_t divisor = 2) {
+                          std::vector<std::uint32_t>& local_of, std::size_t divisor = 2,
+                          float target_error = 1.0f) {
   // A compact vertex array of the vertices used (meshoptimizer scales by all it is given).
   std::vector<std::uint32_t> global, local(input.size());
   std::vector<glm::vec3> positions;
@@ -191,11 +196,11 @@ Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& 
   for (std::uint32_t g : global) local_of[g] = ~0u;
   Simplified s;
   std::vector<std::uint32_t> dest(input.size());
-  const std::size_t target = input.size() / (3 * divisor) * 3;
+  const std::size_t target = divisor == 0 ? 0 : input.size() / (3 * divisor) * 3;
   float relative = 0.0f;
-  const std::size_t count =
-      meshopt_simplify(dest.data(), local.data(), local.size(), &positions[0].x, positions.size(),
-                       sizeof(glm::vec3), target, 1.0f, meshopt_SimplifyLockBorder, &relative);
+  const std::size_t count = meshopt_simplify(
+      dest.data(), local.data(), local.size(), &positions[0].x, positions.size(), sizeof(glm::vec3),
+      target, target_error, meshopt_SimplifyLockBorder, &relative);
   s.error = relative * meshopt_simplifyScale(&positions[0].x, positions.size(), sizeof(glm::vec3));
   s.indices.resize(count);
   for (std::size_t k = 0; k < count; ++k) s.indices[k] = global[dest[k]];
@@ -258,6 +263,18 @@ void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
     std::vector<std::uint32_t> mesh(out.indices.begin() + first,
                                     out.indices.begin() + first + count);
     float error = whole[n] ? 0.0f : node.error;
+    // First what simplifies without error (coplanar triangles: flat walls to their borders),
+    // then quarters or halves, whatever that costs.
+    if (!mesh.empty()) {
+      Simplified s = simplify_union(scene, mesh, local_of, 0, kExact);
+      if (10 * s.indices.size() <= 9 * mesh.size()) {
+        error += s.error;
+        mesh = std::move(s.indices);
+        out.levels.push_back({error, static_cast<std::uint32_t>(out.indices.size()),
+                              static_cast<std::uint32_t>(mesh.size())});
+        out.indices.insert(out.indices.end(), mesh.begin(), mesh.end());
+      }
+    }
     for (int l = 0; l < max_levels && !mesh.empty(); ++l) {
       Simplified s = simplify_union(scene, mesh, local_of, whole[n] ? 4 : 2);
       if (10 * s.indices.size() > 9 * mesh.size()) break;

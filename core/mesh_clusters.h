@@ -11,8 +11,10 @@
 //     error(node) = max(error(children)) + meshopt's result_error * meshopt_simplifyScale,
 // a world-space bound on how far its mesh lies from the original surface (meshoptimizer's
 // quadric estimate; tests/test_shadow_lod.cpp measures it). Errors grow toward the root. Each
-// node also keeps coarser levels of its own mesh, halved again and again with the same locked
-// border (error: the level before's plus the step's), for the faces that see it from far.
+// node also keeps coarser levels of its own mesh with the same locked border (error: the level
+// before's plus the step's): first what meshoptimizer reaches without error (coplanar
+// triangles down to their borders), then halved again and again, for the faces that see it
+// from far.
 //
 // The trees: one per large connected component (welded), and one for all the small ones. A
 // component's root also keeps levels of the whole component, simplified from its original

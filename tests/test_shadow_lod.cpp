@@ -257,9 +257,10 @@ TEST(ShadowLod, SimplifiedShadowsStayCloseToTheFullMeshes) {
 
 // What the faces draw: triangles over a batch of the walk's VPLs in the atlas itself, with every
 // triangle into every face (off), culled and with LOD. Measured (cornell + 159200-triangle
-// sphere, 16 surface VPLs, 64^2 faces): off 16 x 6 x 159232 = 15.3M; culled 2.34M; LOD 73k (a
+// sphere, 16 surface VPLs, 64^2 faces): off 16 x 6 x 159232 = 15.3M; culled 2.34M; LOD 33k (a
 // face that sees the sphere from far draws one of its whole-sphere levels). At 2.1M triangles
-// (725 rings): culled 29.5M, LOD 84k, and the batch's atlas took 17 ms against 7.1 s culled.
+// (725 rings), before the cheapest-cut planning: culled 29.5M, LOD 84k, the batch's atlas
+// 17 ms against 7.1 s culled. The Cornell box split 4^7 times (524k): culled 8.6M, LOD 182k.
 TEST(ShadowLod, TheFacesDrawFewerTrianglesWithLod) {
   Log log = quiet_log();
   const Scene s = cornell_with_sphere(200);
@@ -286,7 +287,7 @@ TEST(ShadowLod, TheFacesDrawFewerTrianglesWithLod) {
   std::printf("faces of 16 VPLs: %zu triangles drawn off, %zu culled, %zu with LOD\n", all,
               drawn[0], drawn[1]);
   EXPECT_LT(drawn[0], all);
-  EXPECT_LT(drawn[1], drawn[0] / 20);
+  EXPECT_LT(drawn[1], drawn[0] / 40);
   EXPECT_GT(drawn[1], 0u);
 }
 

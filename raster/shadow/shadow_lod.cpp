@@ -53,47 +53,73 @@ void ShadowLod::emit(std::uint32_t first, std::uint32_t count, ClusterSelection&
   out.offsets.push_back(offset);
 }
 
-void ShadowLod::select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
-                       float error_per_distance, float error_floor, ClusterSelection& out) const {
-  const std::vector<ClusterNode>& nodes = clusters_.nodes;
-  stack_.assign(clusters_.roots.rbegin(), clusters_.roots.rend());
-  while (!stack_.empty()) {
-    const ClusterNode& node = nodes[static_cast<std::size_t>(stack_.back())];
-    stack_.pop_back();
-    bool inside = true, outside = false;
-    for (const glm::vec4& p : planes) {
-      const glm::vec2 r = plane_range(p, node.bounds);
-      // A margin of float rounding (relative to the terms): culling only what is surely out.
-      const float margin =
-          1e-5f * (std::abs(p.w) + glm::dot(glm::abs(glm::vec3(p)),
-                                            glm::abs(node.bounds.hi) + glm::abs(node.bounds.lo)));
-      if (r.y < -margin) outside = true;
-      if (r.x < margin) inside = false;
-    }
-    if (outside) continue;
+// Per node visited: what it draws (a mesh range, its children, or nothing) and how many
+// triangles that is; the cheapest of its acceptable meshes and its children's plans.
+std::uint32_t ShadowLod::plan(std::int32_t id, const Query& q) const {
+  const ClusterNode& node = clusters_.nodes[static_cast<std::size_t>(id)];
+  Choice& c = choices_[static_cast<std::size_t>(id)];
+  bool inside = true, outside = false;
+  for (const glm::vec4& p : *q.planes) {
+    const glm::vec2 r = plane_range(p, node.bounds);
+    // A margin of float rounding (relative to the terms): culling only what is surely out.
+    const float margin =
+        1e-5f * (std::abs(p.w) + glm::dot(glm::abs(glm::vec3(p)),
+                                          glm::abs(node.bounds.hi) + glm::abs(node.bounds.lo)));
+    if (r.y < -margin) outside = true;
+    if (r.x < margin) inside = false;
+  }
+  c = {0, 0, false};
+  if (outside) return 0;
+  // The original triangles below: always right.
+  c.first = node.leaf_first;
+  c.count = node.leaf_count;
+  if (!simplify_) {
+    if (node.leaf() || inside) return c.count;
+  } else {
     const float allowed =
-        std::max(error_floor, error_per_distance * distance_to(node.bounds, origin));
-    // The acceptable mesh of the node with the fewest triangles: its own or a coarser level.
-    std::uint32_t first = 0, count = ~0u;
-    if (simplify_ && node.error <= allowed) {
-      first = node.mesh_first;
-      count = node.mesh_count;
+        std::max(q.error_floor, q.error_per_distance * distance_to(node.bounds, q.origin));
+    if (node.error <= allowed && node.mesh_count < c.count) {
+      c.first = node.mesh_first;
+      c.count = node.mesh_count;
     }
-    for (std::uint32_t l = 0; simplify_ && l < node.levels_count; ++l) {
+    for (std::uint32_t l = 0; l < node.levels_count; ++l) {
       const ClusterLevel& level = clusters_.levels[node.levels_first + l];
-      if (level.error <= allowed && level.count < count) {
-        first = level.first;
-        count = level.count;
+      if (level.error <= allowed && level.count < c.count) {
+        c.first = level.first;
+        c.count = level.count;
       }
     }
-    if (count != ~0u) {
-      emit(first, count, out);
-    } else if (node.leaf() || (inside && !simplify_)) {
-      emit(node.leaf_first, node.leaf_count, out); // the original triangles below
-    } else {
-      stack_.push_back(node.children[1]); // the first child first: leaves in order, merged
-      stack_.push_back(node.children[0]);
-    }
+    // A leaf, or a mesh too small for its children to do much better.
+    if (node.leaf() || c.count <= 3 * kSmallEnough) return c.count;
+  }
+  // (c stays valid: choices_ is not resized while planning.)
+  const std::uint32_t below = plan(node.children[0], q) + plan(node.children[1], q);
+  if (below < c.count) {
+    c.children = true;
+    c.count = below;
+  }
+  return c.count;
+}
+
+void ShadowLod::emit_plan(std::int32_t id, ClusterSelection& out) const {
+  const Choice& c = choices_[static_cast<std::size_t>(id)];
+  if (c.count == 0) return;
+  const ClusterNode& node = clusters_.nodes[static_cast<std::size_t>(id)];
+  if (!c.children) {
+    emit(c.first, c.count, out);
+    return;
+  }
+  emit_plan(node.children[0], out);
+  emit_plan(node.children[1], out);
+}
+
+void ShadowLod::select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
+                       float error_per_distance, float error_floor, ClusterSelection& out) const {
+  choices_.resize(clusters_.nodes.size());
+  const Query q{&planes, origin, error_per_distance, error_floor};
+  for (std::int32_t root : clusters_.roots) {
+    plan(root, q);
+    emit_plan(root, out);
   }
 }
 

@@ -1,8 +1,11 @@
 #pragma once
 // The cluster hierarchy of core/mesh_clusters.h on the GPU, and the choice of what one shadow
 // face draws: the nodes whose bounds meet the face's pyramid (clipped to the rectangle the face
-// is ever looked up on), each at the coarsest node of its subtree whose error is below
-//     max(error_per_distance * distance(VPL, node bounds), error_floor).
+// is ever looked up on), and of those the cut with the fewest triangles in which every mesh's
+// error is below
+//     max(error_per_distance * distance(VPL, node bounds), error_floor)
+// (per node: the cheaper of its cheapest acceptable mesh and its children's plans; the original
+// triangles are always acceptable).
 // With error_per_distance = f * (2 / R), the angle of a texel at a face's centre times a factor
 // f, a chosen node's mesh lies within f texels of the original surface as the VPL sees it.
 // Culling is exact: a node is left out only when its box lies wholly outside a plane of the
@@ -55,6 +58,20 @@ public:
   std::size_t gpu_bytes() const { return clusters_.indices.size() * sizeof(std::uint32_t); }
 
 private:
+  // A node's plan for one face (select()): a range of indices, or its children's plans.
+  struct Choice {
+    std::uint32_t first = 0, count = 0; // count: the triangles of the plan (0: nothing)
+    bool children = false;
+  };
+  struct Query {
+    const std::array<glm::vec4, 4>* planes;
+    glm::vec3 origin;
+    float error_per_distance, error_floor;
+  };
+  // A node's acceptable mesh of at most this many triangles is taken without a look below.
+  static constexpr std::uint32_t kSmallEnough = 64;
+  std::uint32_t plan(std::int32_t id, const Query& q) const;
+  void emit_plan(std::int32_t id, ClusterSelection& out) const;
   void emit(std::uint32_t first, std::uint32_t count, ClusterSelection& out) const;
 
   const GladGLContext* api_;
@@ -62,7 +79,7 @@ private:
   bool simplify_;
   Buffer indices_;
   VertexArray vao_;
-  mutable std::vector<std::int32_t> stack_; // select()'s traversal
+  mutable std::vector<Choice> choices_; // select()'s plans, per node
 };
 
 } // namespace irad::gl
