@@ -96,4 +96,31 @@ inline Texture make_float_texture(const GladGLContext& api, int width, int heigh
 // Throws irad::Error naming `what` unless the bound draw framebuffer is complete.
 void check_framebuffer(const GladGLContext& api, const char* what);
 
+// A DEPTH_COMPONENT32F 2D texture of the given size, nearest filtering, no comparison (read as
+// a value by texelFetch), left unbound: the shadow atlases' storage.
+inline Texture make_depth_texture(const GladGLContext& api, int width, int height) {
+  Texture t = make_texture(api);
+  api.BindTexture(GL_TEXTURE_2D, t.get());
+  api.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0, GL_DEPTH_COMPONENT,
+                 GL_FLOAT, nullptr);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  api.BindTexture(GL_TEXTURE_2D, 0);
+  return t;
+}
+
+// A framebuffer with `depth` (make_depth_texture) as its only attachment, left bound; throws
+// irad::Error naming `what` when incomplete.
+inline Framebuffer make_depth_framebuffer(const GladGLContext& api, GLuint depth,
+                                          const char* what) {
+  Framebuffer f = make_framebuffer(api);
+  api.BindFramebuffer(GL_FRAMEBUFFER, f.get());
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, depth, 0);
+  api.DrawBuffer(GL_NONE);
+  api.ReadBuffer(GL_NONE);
+  check_framebuffer(api, what);
+  return f;
+}
+
 } // namespace irad::gl

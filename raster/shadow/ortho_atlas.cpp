@@ -50,10 +50,7 @@ OrthoAtlas::OrthoAtlas(const GladGLContext& api, int resolution, int tiles, cons
           api, "ortho atlas",
           material_source(shaders::batched_source(shaders::ortho_atlas_vertex, tiles), features),
           material_source(shaders::batched_source(shaders::ortho_atlas_fragment, tiles), features)),
-      material_(program_), atlas_{make_texture(api), make_texture(api)}, fbo_{make_framebuffer(api),
-                                                                              make_framebuffer(
-                                                                                  api)},
-      block_(make_buffer(api)),
+      material_(program_), block_(make_buffer(api)),
       block_data_(static_cast<std::size_t>(tiles) * kBytesPerTile / sizeof(float), 0.0f) {
   if (tiles < 1 || capacity(api, resolution, tiles) < tiles)
     throw Error("", "orthographic shadow atlas",
@@ -61,19 +58,8 @@ OrthoAtlas::OrthoAtlas(const GladGLContext& api, int resolution, int tiles, cons
                     "^2 do not fit this OpenGL");
   const glm::ivec2 size = grid_ * resolution;
   for (int a = 0; a < 2; ++a) {
-    api.BindTexture(GL_TEXTURE_2D, atlas_[a].get());
-    api.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size.x, size.y, 0, GL_DEPTH_COMPONENT,
-                   GL_FLOAT, nullptr);
-    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    api.BindTexture(GL_TEXTURE_2D, 0);
-    api.BindFramebuffer(GL_FRAMEBUFFER, fbo_[a].get());
-    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, atlas_[a].get(),
-                             0);
-    api.DrawBuffer(GL_NONE);
-    api.ReadBuffer(GL_NONE);
-    check_framebuffer(api, "orthographic shadow atlas framebuffer");
+    atlas_[a] = make_depth_texture(api, size.x, size.y);
+    fbo_[a] = make_depth_framebuffer(api, atlas_[a].get(), "orthographic shadow atlas framebuffer");
   }
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "OrthoBatch");
   if (index == GL_INVALID_INDEX) throw Error("", "shader ortho atlas", "no block OrthoBatch");

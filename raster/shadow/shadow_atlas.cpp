@@ -84,11 +84,8 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
           material_source(shaders::batched_source(shaders::batched_shadow_vertex, batch), features),
           material_source(shaders::batched_source(shaders::batched_shadow_fragment, batch),
                           features)),
-      material_(program_), atlas_{make_texture(api), make_texture(api)}, fbo_{make_framebuffer(api),
-                                                                              make_framebuffer(
-                                                                                  api)},
-      block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f), lod_options_(lod),
-      u_face_(program_.uniform("u_face")) {
+      material_(program_), block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f),
+      lod_options_(lod), u_face_(program_.uniform("u_face")) {
   const glm::ivec2 size = grid_ * block_;
   GLint uniform_block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
@@ -98,19 +95,8 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
                 "a batch of " + std::to_string(batch) + " VPLs with " + std::to_string(resolution) +
                     "^2 faces does not fit this OpenGL");
   for (int a = 0; a < 2; ++a) {
-    api.BindTexture(GL_TEXTURE_2D, atlas_[a].get());
-    api.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size.x, size.y, 0, GL_DEPTH_COMPONENT,
-                   GL_FLOAT, nullptr);
-    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-    api.BindTexture(GL_TEXTURE_2D, 0);
-    api.BindFramebuffer(GL_FRAMEBUFFER, fbo_[a].get());
-    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, atlas_[a].get(),
-                             0);
-    api.DrawBuffer(GL_NONE);
-    api.ReadBuffer(GL_NONE);
-    check_framebuffer(api, "shadow atlas framebuffer");
+    atlas_[a] = make_depth_texture(api, size.x, size.y);
+    fbo_[a] = make_depth_framebuffer(api, atlas_[a].get(), "shadow atlas framebuffer");
   }
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "ShadowBatch");
   if (index == GL_INVALID_INDEX) throw Error("", "shader batched shadow", "no block ShadowBatch");

@@ -32,20 +32,8 @@ ShadowCache::ShadowCache(const GladGLContext& api, int resolution, int batch, co
 void ShadowCache::make_page(int rows, Texture& texture, Framebuffer& fbo) const {
   const GladGLContext& api = *api_;
   const glm::ivec2 size = glm::ivec2(columns_, rows) * block_;
-  texture = make_texture(api);
-  api.BindTexture(GL_TEXTURE_2D, texture.get());
-  api.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, size.x, size.y, 0, GL_DEPTH_COMPONENT,
-                 GL_FLOAT, nullptr);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_NONE);
-  api.BindTexture(GL_TEXTURE_2D, 0);
-  fbo = make_framebuffer(api);
-  api.BindFramebuffer(GL_FRAMEBUFFER, fbo.get());
-  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, texture.get(), 0);
-  api.DrawBuffer(GL_NONE);
-  api.ReadBuffer(GL_NONE);
-  check_framebuffer(api, "shadow cache page");
+  texture = make_depth_texture(api, size.x, size.y);
+  fbo = make_depth_framebuffer(api, texture.get(), "shadow cache page");
 }
 
 void ShadowCache::add_page() {
