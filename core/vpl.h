@@ -40,6 +40,10 @@ struct Vpl {
   glm::vec4 mirror_plane{0.0f}; // mirrored VPL: (n, w), n toward the side it lights
 
   bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
+  // Whether any channel of the intensity is positive (a black VPL draws no pass).
+  bool carries_light() const {
+    return intensity.x > 0.0f || intensity.y > 0.0f || intensity.z > 0.0f;
+  }
 };
 
 // glTF KHR_lights_punctual spot falloff: smoothstep-free quadratic ramp between the cones.

@@ -32,10 +32,6 @@ double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
-bool carries_light(const Vpl& v) {
-  return v.intensity.x > 0.0f || v.intensity.y > 0.0f || v.intensity.z > 0.0f;
-}
-
 // The interleaved set of a particle: a hash of its index, so every set holds a random share of
 // each reflection depth. Measured against the alternatives: i mod k^2 fixes the leading base-2
 // digits of Phi_2(i) within a set (every set lights from one strip of the light: 4x the error at
@@ -230,7 +226,7 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector
   for (std::size_t k = 0; k < vpls.size(); ++k) {
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) break;
     const Vpl& vpl = *vpls[k];
-    if (carries_light(vpl)) {
+    if (vpl.carries_light()) {
       if (timer) timer->begin(gl::PassTimer::Shadow);
       glm::mat3 frame;
       const GLuint cube = shadow_for(k, frame);
@@ -390,7 +386,7 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
   path = {};
   std::vector<Vpl> in_atlas;
   for (const Vpl& v : vpls) {
-    if (!carries_light(v)) continue;
+    if (!v.carries_light()) continue;
     if (im.shadow_cache && v.kind != VplKind::Directional && v.mirror < 0) {
       in_atlas.push_back(v);
       continue;

@@ -195,7 +195,7 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
     im.passes += im.batched->draw(many, [](const Vpl&) { return 0; },
                                   {im.gbuffer.get(), nullptr, bind_slot}, im.gpu, nullptr, {});
   for (const Vpl& vpl : alone) {
-    if (!(vpl.intensity.x > 0.0f || vpl.intensity.y > 0.0f || vpl.intensity.z > 0.0f)) continue;
+    if (!vpl.carries_light()) continue;
     if (vpl.kind == VplKind::Directional) {
       im.directional->shadow(vpl, im.gpu);
       bind_slot();

@@ -4,14 +4,6 @@
 
 namespace irad::gl {
 
-namespace {
-
-bool carries_light(const Vpl& v) {
-  return v.intensity.x > 0.0f || v.intensity.y > 0.0f || v.intensity.z > 0.0f;
-}
-
-} // namespace
-
 std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, const Scene& scene,
                                                    float clamp, int batch, int resolution,
                                                    int ortho_resolution,
@@ -133,7 +125,7 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
   };
   for (std::size_t k = 0; k < vpls.size(); ++k) {
     const Vpl& vpl = *vpls[k];
-    if (carries_light(vpl)) {
+    if (vpl.carries_light()) {
       if (vpl.kind == VplKind::Directional) {
         const bool known =
             std::find(directions.begin(), directions.end(), vpl.normal) != directions.end();
