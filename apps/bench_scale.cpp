@@ -138,8 +138,9 @@ void run_scale_study(const BenchOptions& o, Log& log) {
 void run_shadow_lod_error(const BenchOptions& o, Log& log) {
   const std::string path = o.out_dir + "/shadow_lod_error.csv";
   std::ofstream out(path);
-  out << "scene,triangles,paths,vpls,width,height,shadow_lod,texels,seconds_raster_per_vpl,"
-         "seconds_shadow_per_vpl,relmse_vs_rtvpl,relmse4_vs_rtvpl,mean_ratio_vs_rtvpl,"
+  out << "scene,triangles,paths,vpls,width,height,shadow_lod,texels,occlusion,"
+         "seconds_raster_per_vpl,seconds_shadow_per_vpl,shadow_triangles_per_vpl,relmse_vs_rtvpl,"
+         "relmse4_vs_rtvpl,mean_ratio_vs_rtvpl,"
          "relmse_vs_off,mean_ratio_vs_off\n";
   const int size = o.size > 0 ? o.size : 128;
   const std::uint32_t paths = o.quick ? 4 : 16;
@@ -151,9 +152,12 @@ void run_shadow_lod_error(const BenchOptions& o, Log& log) {
     const View view = make_view(s.cameras.at(0), s.bounds, size, size);
     const Image traced = trace_vpls(s, rays, view, vpls, {0.05f, 0});
     Image off;
-    const ShadowLodOptions settings[] = {{ShadowLodMode::Off, 0.0f}, {ShadowLodMode::Cull, 0.0f},
-                                         {ShadowLodMode::On, 0.25f}, {ShadowLodMode::On, 0.5f},
-                                         {ShadowLodMode::On, 1.0f},  {ShadowLodMode::On, 2.0f}};
+    // Occlusion culling (the default) on and off where it applies; it leaves the image as it is.
+    const ShadowLodOptions settings[] = {
+        {ShadowLodMode::Off, 0.0f, false}, {ShadowLodMode::Cull, 0.0f, false},
+        {ShadowLodMode::Cull, 0.0f, true}, {ShadowLodMode::On, 0.5f, false},
+        {ShadowLodMode::On, 0.25f, true},  {ShadowLodMode::On, 0.5f, true},
+        {ShadowLodMode::On, 1.0f, true},   {ShadowLodMode::On, 2.0f, true}};
     for (const ShadowLodOptions& lod : settings) {
       const ShadowLodMode mode = lod.mode;
       RasterOptions ro;
@@ -167,18 +171,20 @@ void run_shadow_lod_error(const BenchOptions& o, Log& log) {
       const double n = static_cast<double>(std::max<std::size_t>(t.passes, 1));
       const ImageMetrics rt = compare_images(image, traced), rt4 = compare_images(image, traced, 4);
       const ImageMetrics full = compare_images(image, off);
-      out << fmt::format("{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6g},{:.6g},{:.6f},{:.6g},"
-                         "{:.6f}\n",
+      const double triangles = static_cast<double>(t.shadow_triangles) / n;
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.0f},{:.6g},{:.6g},{:.6f},"
+                         "{:.6g},{:.6f}\n",
                          name, s.triangle_count(), paths, vpls.vpls.size(), size, size,
-                         mode_name(mode), lod.texels, (t.passes_seconds + t.readback) / n,
-                         t.shadow_gpu / n, rt.relmse, rt4.relmse, rt.mean_ratio[1], full.relmse,
-                         full.mean_ratio[1]);
+                         mode_name(mode), lod.texels, lod.occlusion ? 1 : 0,
+                         (t.passes_seconds + t.readback) / n, t.shadow_gpu / n, triangles,
+                         rt.relmse, rt4.relmse, rt.mean_ratio[1], full.relmse, full.mean_ratio[1]);
       out.flush();
-      log.info(fmt::format("bench: {} shadow-lod {} ({} texels): {:.2f} ms/VPL (shadow {:.2f}); "
-                           "relMSE against rt-vpl {:.4g} (4x4 blocks {:.4g}), against off {:.3g}",
-                           name, mode_name(mode), lod.texels,
+      log.info(fmt::format("bench: {} shadow-lod {} ({} texels, occlusion {}): {:.2f} ms/VPL "
+                           "(shadow {:.2f}, {:.0f} triangles); relMSE against rt-vpl {:.4g} (4x4 "
+                           "blocks {:.4g}), against off {:.3g}",
+                           name, mode_name(mode), lod.texels, lod.occlusion ? "on" : "off",
                            1e3 * (t.passes_seconds + t.readback) / n, 1e3 * t.shadow_gpu / n,
-                           rt.relmse, rt4.relmse, full.relmse));
+                           triangles, rt.relmse, rt4.relmse, full.relmse));
     }
   }
   if (!out) throw Error(path, "", "cannot write");

@@ -49,6 +49,7 @@ struct RenderArgs {
   int interleave = 4;
   int batch = RasterOptions{}.batch;
   std::string shadow_lod = "on";
+  std::string shadow_occlusion = "on";
   std::string jitter = "off";
   int gl_device = -1;
   bool partial = false;
@@ -155,6 +156,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"interleave", args.interleave},
           {"batch", args.batch},
           {"shadow_lod", args.shadow_lod},
+          {"shadow_occlusion", args.shadow_occlusion == "on"},
           {"jitter", args.jitter == "on"},
           {"clamp", args.clamp},
           {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},
@@ -234,6 +236,7 @@ int run_render(const RenderArgs& args) {
   request.raster.interleave = args.interleave;
   request.raster.batch = args.batch;
   request.raster.shadow_lod.mode = parse_shadow_lod(args.shadow_lod);
+  request.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
   request.raster.jitter = args.jitter == "on";
   request.pt.pixel_footprint = args.jitter == "on"; // pt: each sample at a uniform pixel point
   request.progress = !args.quiet && isatty(STDERR_FILENO);
@@ -356,6 +359,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Raster, batched: the shadow faces draw only the clusters they see (cull, the "
                   "same image) and those simplified below half a texel (on); off: every triangle")
       ->check(CLI::IsMember({"on", "cull", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--shadow-occlusion", args->shadow_occlusion,
+                  "Raster, batched, shadow-lod on or cull: each face draws its nearest clusters "
+                  "first and leaves out those they hide (the same image)")
+      ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--jitter", args->jitter,
                   "Raster: every VPL pass and the emitters at a sub-pixel offset from the path's "

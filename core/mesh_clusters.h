@@ -52,6 +52,9 @@ struct ShadowLodOptions {
   // On: the error a drawn level may have, in texels at the centre of a face at the cluster's
   // distance (docs/performance.md measures the image error against it).
   float texels = 0.5f;
+  // Cull and On: a face draws its nearest clusters first and leaves out those the depths then
+  // stored hide (exact: the same image; raster/shadow/shadow_occlusion.h).
+  bool occlusion = true;
 };
 
 // A coarser level of a node: indices [first, first + count), error as ClusterNode::error.
@@ -97,9 +100,12 @@ struct MeshClusters {
 };
 
 struct ClusterOptions {
-  std::uint32_t leaf_triangles = 1024; // at most this many per leaf
-  bool simplify = true;                // false: inner nodes' meshes are their original triangles
-  int max_levels = 8;                  // coarser levels per node at most
+  // At most this many per leaf. Smaller leaves cull tighter against a face's pyramid and the
+  // depths already drawn: on zdm2 (58k triangles, 256x256, 64^2 faces) 128 left 16k triangles per
+  // VPL against 33k with 1024 (docs/performance.md); 64 drew fewer still but cost more per range.
+  std::uint32_t leaf_triangles = 128;
+  bool simplify = true; // false: inner nodes' meshes are their original triangles
+  int max_levels = 8;   // coarser levels per node at most
 };
 
 // The hierarchy over the triangles of Opaque materials (Mask and Blend ones keep their alpha

@@ -357,7 +357,9 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
       im.batched ? im.batched_passes(view, list, timer ? &*timer : nullptr, progress)
                  : im.vpl_passes(view, list, draw_now, im.shadow->texel_angle(),
                                  timer ? &*timer : nullptr, progress);
-  return im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
+  Image image = im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
+  if (timings && im.batched) timings->shadow_triangles = im.batched->shadow_triangles();
+  return image;
 }
 
 void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width,

@@ -56,6 +56,9 @@ struct RasterTimings {
   double passes_seconds = 0.0; // wall clock: shadow maps, shading passes and emitters
   double readback = 0.0;       // wall clock: the final readback (waits for the GPU)
   std::size_t passes = 0;      // VPLs drawn
+  // render(): triangles the batched cube faces drew from the shadow hierarchy, all VPLs together
+  // (0 when the faces draw the whole scene: shadow-lod off, --batch 1, animated scenes).
+  std::size_t shadow_triangles = 0;
   // GPU time of the shadow-map and shading passes (GL_TIME_ELAPSED), only with gpu_timers.
   double shadow_gpu = -1.0;
   double shading_gpu = -1.0;

@@ -61,6 +61,7 @@ void BatchedPasses::flush(std::vector<Entry>& batch, const DeferredTarget& into,
   if (timer) timer->begin(PassTimer::Shadow);
   if (!vpls_.empty())
     atlas_.render(vpls_.data(), static_cast<int>(vpls_.size()), gpu, frames_, fars_, blocks_);
+  if (!vpls_.empty()) shadow_triangles_ += atlas_.cluster_triangles();
   if (!directional.empty()) draw_ortho(directional, gpu);
   if (timer) timer->end();
   for (std::size_t c = 0; c < cubes.size(); ++c) {
@@ -117,6 +118,7 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
   int blocks = 0;
   std::vector<glm::vec3> directions; // the batch's distinct directions
   std::size_t drawn = 0;
+  shadow_triangles_ = 0;
   const auto send = [&] {
     drawn += batch.size();
     flush(batch, into, gpu, timer);

@@ -51,6 +51,9 @@ public:
     return batch == requested_ && resolution == atlas_.resolution() &&
            ortho_resolution == (ortho_ ? ortho_->resolution() : 0);
   }
+  // Triangles the cube faces drew from the cluster hierarchy since the last draw() began (0
+  // without one): what the shadow level of detail leaves of the scene.
+  std::size_t shadow_triangles() const { return shadow_triangles_; }
   // Whether directional VPLs can be drawn here (an orthographic atlas was made).
   bool directional() const { return ortho_ != nullptr; }
 
@@ -100,6 +103,7 @@ private:
   std::vector<glm::mat4> lookups_;
   std::vector<glm::ivec2> origins_;
   std::vector<AtlasVpl> shaded_;
+  std::size_t shadow_triangles_ = 0;
 };
 
 } // namespace irad::gl

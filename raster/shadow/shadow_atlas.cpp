@@ -3,6 +3,7 @@
 #include "core/error.h"
 #include "raster/glsl/batched_shaders.h"
 #include "raster/shadow/shadow_cube.h"
+#include "raster/shadow/shadow_occlusion.h"
 
 #include <algorithm>
 #include <cmath>
@@ -129,16 +130,94 @@ void ShadowAtlas::draw_clusters(int n, const GpuScene& scene) {
   // A twentieth of the shading passes' constant depth bias (2e-4 of the diagonal).
   const float floor = 1e-5f * bounds_.diagonal();
   cluster_triangles_ = 0;
-  for (const Face& f : faces_) {
+  picks_.resize(faces_.size());
+  near_.resize(faces_.size());
+  totals_.assign(faces_.size(), 0);
+  taken_.assign(faces_.size(), 0);
+  for (std::size_t i = 0; i < faces_.size(); ++i) {
+    const Face& f = faces_[i];
+    picks_[i].clear();
     if (f.rect.x > f.rect.z) continue; // never looked up
-    selection_.clear();
-    lod_->select(face_planes(f.view_projection, f.rect, resolution_), f.origin, per_distance, floor,
-                 selection_);
-    cluster_triangles_ += selection_.triangles;
-    api.Uniform1i(u_face_, f.instance);
-    lod_->draw(selection_);
+    lod_->pick(face_planes(f.view_projection, f.rect, resolution_), f.origin, per_distance, floor,
+               picks_[i]);
+    if (lod_options_.occlusion) sort_by_distance(f, picks_[i]);
+    for (const ClusterPick& p : picks_[i]) totals_[i] += p.count;
+  }
+  if (!lod_options_.occlusion) {
+    draw_faces(picks_);
+  } else {
+    // Round by round, nearest first, each round culled against the depths of those before.
+    for (std::size_t r = 0; r < kRounds.size(); ++r) {
+      for (std::size_t i = 0; i < faces_.size(); ++i)
+        take_nearest(i, r + 1 == kRounds.size() ? 2.0 : kRounds[r], near_[i]);
+      if (r > 0) cull_occluded(near_);
+      draw_faces(near_);
+    }
   }
   api.Uniform1i(u_face_, -1);
+}
+
+void ShadowAtlas::sort_by_distance(const Face& f, std::vector<ClusterPick>& picks) const {
+  const auto distance = [&](const ClusterPick& p) {
+    return distance_to(lod_->clusters().nodes[static_cast<std::size_t>(p.node)].bounds, f.origin);
+  };
+  std::sort(picks.begin(), picks.end(),
+            [&](const ClusterPick& a, const ClusterPick& b) { return distance(a) < distance(b); });
+}
+
+void ShadowAtlas::take_nearest(std::size_t face, double share, std::vector<ClusterPick>& out) {
+  std::vector<ClusterPick>& picks = picks_[face];
+  out.clear();
+  const double target = share * static_cast<double>(totals_[face]);
+  // Whole picks up to the share (one that would pass it waits for a round with the depths of
+  // those before it: a large far mesh is what occlusion culling is for), but at least one.
+  std::size_t taken = 0;
+  while (taken < picks.size() &&
+         (taken_[face] == 0 || static_cast<double>(taken_[face] + picks[taken].count) <= target))
+    taken_[face] += picks[taken++].count;
+  out.assign(picks.begin(), picks.begin() + static_cast<std::ptrdiff_t>(taken));
+  picks.erase(picks.begin(), picks.begin() + static_cast<std::ptrdiff_t>(taken));
+}
+
+void ShadowAtlas::cull_occluded(std::vector<std::vector<ClusterPick>>& per_face) {
+  const GladGLContext& api = *api_;
+  int rows = 0; // the atlas rows the faces use
+  for (const Face& f : faces_)
+    if (f.rect.x <= f.rect.z) rows = std::max(rows, f.offset.y + static_cast<int>(f.rect.w));
+  const glm::ivec2 size = grid_ * block_;
+  depth_.resize(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(rows));
+  api.PixelStorei(GL_PACK_ALIGNMENT, 4);
+  api.ReadPixels(0, 0, size.x, rows, GL_DEPTH_COMPONENT, GL_FLOAT, depth_.data());
+  for (std::size_t i = 0; i < faces_.size(); ++i) {
+    const Face& f = faces_[i];
+    if (per_face[i].empty()) continue;
+    const FaceDepthBound bound(depth_.data(), size, f.offset, glm::ivec4(f.rect), resolution_);
+    std::erase_if(per_face[i], [&](const ClusterPick& p) {
+      return !bound.may_show(lod_->clusters().nodes[static_cast<std::size_t>(p.node)].bounds,
+                             f.view_projection, resolution_, f.origin, f.inv_far);
+    });
+  }
+}
+
+void ShadowAtlas::draw_faces(std::vector<std::vector<ClusterPick>>& per_face) {
+  stream_.clear();
+  ranges_.clear();
+  for (std::vector<ClusterPick>& picks : per_face) {
+    // In buffer order: the vertex cache sees neighbouring clusters together.
+    std::sort(picks.begin(), picks.end(),
+              [](const ClusterPick& a, const ClusterPick& b) { return a.first < b.first; });
+    const std::size_t first = lod_->gather(picks, stream_);
+    ranges_.emplace_back(first, stream_.size() - first);
+  }
+  if (stream_.empty()) return;
+  const GladGLContext& api = *api_;
+  lod_->upload(stream_);
+  cluster_triangles_ += stream_.size() / 3;
+  for (std::size_t i = 0; i < faces_.size(); ++i) {
+    if (ranges_[i].second == 0) continue;
+    api.Uniform1i(u_face_, faces_[i].instance);
+    lod_->draw_stream(ranges_[i].first, ranges_[i].second);
+  }
 }
 
 void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
@@ -174,7 +253,8 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
       std::memcpy(matrices + 16 * i, &cube.view_projection[f][0][0], 16 * sizeof(float));
       std::memcpy(rects + 4 * i, &rect[0], 4 * sizeof(float));
       std::memcpy(offsets + 4 * i, &offset[0], 2 * sizeof(float));
-      faces_.push_back({i, cube.view_projection[f], rect, vpls[s]->position});
+      faces_.push_back({i, cube.view_projection[f], rect, vpls[s]->position, glm::ivec2(offset),
+                        1.0f / cube.far});
     }
   }
   // A new store per batch (no wait for the draw that read the last one).

@@ -26,6 +26,7 @@
 #include "raster/scene/material_glsl.h"
 #include "raster/shadow/shadow_lod.h"
 
+#include <array>
 #include <glm/glm.hpp>
 #include <memory>
 #include <vector>
@@ -80,11 +81,28 @@ private:
     glm::mat4 view_projection;
     glm::vec4 rect;
     glm::vec3 origin;
+    glm::ivec2 offset; // atlas texel - face texel
+    float inv_far;
   };
+  // With occlusion culling, a face draws its clusters nearest first in rounds, round r up to
+  // this share of its triangles (the last: the rest), each after the depths of the rounds before
+  // were read back (docs/performance.md measures the choice).
+  static constexpr std::array<double, 3> kRounds = {0.25, 0.5, 1.0};
   // The hierarchy of `scene`, made on first use; false when the faces draw everything.
   bool prepare_lod(const GpuScene& scene);
-  // The opaque triangles face by face from the hierarchy, the alpha-tested ones instanced.
+  // The opaque triangles face by face from the hierarchy, the alpha-tested ones instanced; with
+  // ShadowLodOptions::occlusion in two passes: every face's nearest clusters, then the rest that
+  // the depths read back do not hide (raster/shadow/shadow_occlusion.h).
   void draw_clusters(int n, const GpuScene& scene);
+  void sort_by_distance(const Face& f, std::vector<ClusterPick>& picks) const;
+  // Moves the nearest of picks_[face] into `out` until the face's drawn triangles reach `share`
+  // of its total.
+  void take_nearest(std::size_t face, double share, std::vector<ClusterPick>& out);
+  // Reads the atlas's depths back and drops from per_face what they hide.
+  void cull_occluded(std::vector<std::vector<ClusterPick>>& per_face);
+  // Draws each face's picks (per_face[i] for faces_[i], sorted on the way) from one index
+  // stream.
+  void draw_faces(std::vector<std::vector<ClusterPick>>& per_face);
   glm::ivec2 block_origin(int b) const { return glm::ivec2(b % grid_.x, b / grid_.x) * block_; }
 
   const GladGLContext* api_;
@@ -107,6 +125,11 @@ private:
   const GpuScene* lod_scene_ = nullptr; // the scene lod_ is of
   std::vector<Face> faces_;             // of the last render()
   ClusterSelection selection_;
+  std::vector<std::vector<ClusterPick>> picks_, near_;      // per face of faces_
+  std::vector<std::size_t> totals_, taken_;                 // per face: indices picked, taken
+  std::vector<std::uint32_t> stream_;                       // draw_faces' indices
+  std::vector<std::pair<std::size_t, std::size_t>> ranges_; // per face: first, count
+  std::vector<float> depth_; // the atlas read back (occlusion culling)
   std::size_t cluster_triangles_ = 0;
 };
 

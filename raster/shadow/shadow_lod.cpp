@@ -18,6 +18,21 @@ glm::vec2 plane_range(const glm::vec4& plane, const Bounds& b) {
 
 } // namespace
 
+void add_pick(const ClusterPick& pick, ClusterSelection& out) {
+  if (pick.count == 0) return;
+  const auto* offset =
+      reinterpret_cast<const char*>(std::uintptr_t(pick.first) * sizeof(std::uint32_t));
+  out.triangles += pick.count / 3;
+  if (!out.counts.empty() &&
+      static_cast<const char*>(out.offsets.back()) + out.counts.back() * sizeof(std::uint32_t) ==
+          offset) {
+    out.counts.back() += static_cast<GLsizei>(pick.count);
+    return;
+  }
+  out.counts.push_back(static_cast<GLsizei>(pick.count));
+  out.offsets.push_back(offset);
+}
+
 std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm::vec4& rect,
                                      int resolution) {
   // Clip c = M p (rows of M), face pixel times w: pw = (c.xy + c.w) R / 2; inside where
@@ -37,20 +52,32 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
                  clusters_.indices.data(), GL_STATIC_DRAW);
   api.BindBuffer(GL_ARRAY_BUFFER, 0);
   vao_ = gpu.vertex_array_with(indices_);
+  stream_ = make_buffer(api);
+  stream_vao_ = gpu.vertex_array_with(stream_);
 }
 
-void ShadowLod::emit(std::uint32_t first, std::uint32_t count, ClusterSelection& out) const {
-  if (count == 0) return;
-  const auto* offset = reinterpret_cast<const char*>(std::uintptr_t(first) * sizeof(std::uint32_t));
-  out.triangles += count / 3;
-  if (!out.counts.empty() &&
-      static_cast<const char*>(out.offsets.back()) + out.counts.back() * sizeof(std::uint32_t) ==
-          offset) {
-    out.counts.back() += static_cast<GLsizei>(count);
-    return;
+std::size_t ShadowLod::gather(const std::vector<ClusterPick>& picks,
+                              std::vector<std::uint32_t>& stream) const {
+  const std::size_t first = stream.size();
+  for (const ClusterPick& p : picks) {
+    const auto begin = clusters_.indices.begin() + static_cast<std::ptrdiff_t>(p.first);
+    stream.insert(stream.end(), begin, begin + static_cast<std::ptrdiff_t>(p.count));
   }
-  out.counts.push_back(static_cast<GLsizei>(count));
-  out.offsets.push_back(offset);
+  return first;
+}
+
+void ShadowLod::upload(const std::vector<std::uint32_t>& stream) {
+  api_->BindBuffer(GL_ARRAY_BUFFER, stream_.get()); // not the bound VAO's element buffer
+  api_->BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(stream.size() * sizeof(std::uint32_t)),
+                   stream.data(), GL_STREAM_DRAW);
+  api_->BindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+void ShadowLod::draw_stream(std::size_t first, std::size_t count) const {
+  if (count == 0) return;
+  api_->BindVertexArray(stream_vao_.get());
+  api_->DrawElements(GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
 }
 
 // Per node visited: what it draws (a mesh range, its children, or nothing) and how many
@@ -101,26 +128,34 @@ std::uint32_t ShadowLod::plan(std::int32_t id, const Query& q) const {
   return c.count;
 }
 
-void ShadowLod::emit_plan(std::int32_t id, ClusterSelection& out) const {
+void ShadowLod::emit_plan(std::int32_t id, std::vector<ClusterPick>& out) const {
   const Choice& c = choices_[static_cast<std::size_t>(id)];
   if (c.count == 0) return;
   const ClusterNode& node = clusters_.nodes[static_cast<std::size_t>(id)];
   if (!c.children) {
-    emit(c.first, c.count, out);
+    out.push_back({c.first, c.count, id});
     return;
   }
   emit_plan(node.children[0], out);
   emit_plan(node.children[1], out);
 }
 
-void ShadowLod::select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
-                       float error_per_distance, float error_floor, ClusterSelection& out) const {
+void ShadowLod::pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
+                     float error_per_distance, float error_floor,
+                     std::vector<ClusterPick>& out) const {
   choices_.resize(clusters_.nodes.size());
   const Query q{&planes, origin, error_per_distance, error_floor};
   for (std::int32_t root : clusters_.roots) {
     plan(root, q);
     emit_plan(root, out);
   }
+}
+
+void ShadowLod::select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
+                       float error_per_distance, float error_floor, ClusterSelection& out) const {
+  picks_.clear();
+  pick(planes, origin, error_per_distance, error_floor, picks_);
+  for (const ClusterPick& p : picks_) add_pick(p, out);
 }
 
 void ShadowLod::draw(const ClusterSelection& selection) const {

@@ -32,6 +32,16 @@ struct ClusterSelection {
   }
 };
 
+// One node's part of a face's cut: indices [first, first + count) of ShadowLod's buffer (its
+// mesh, a coarser level or its original triangles), whose triangles lie in the node's bounds.
+struct ClusterPick {
+  std::uint32_t first = 0, count = 0;
+  std::int32_t node = -1;
+};
+
+// Appends a pick's range to `out`, merged with the last range when they touch.
+void add_pick(const ClusterPick& pick, ClusterSelection& out);
+
 // The four planes a * p + d >= 0 of the pyramid that face pixels p of [x0, x1] x [y0, y1]
 // (rect) see through the face view-projection `view_projection` (R texels per edge):
 // pixel = (ndc + 1) R / 2, as the batched shadow vertex shader computes it.
@@ -49,8 +59,21 @@ public:
   // simplification, exact up to rounding, serves even a VPL inside a node's bounds.
   void select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
               float error_per_distance, float error_floor, ClusterSelection& out) const;
+  // The same cut as select(), node by node (for occlusion culling: raster/shadow/
+  // shadow_occlusion.h), appended to `out` in depth-first order.
+  void pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
+            float error_per_distance, float error_floor, std::vector<ClusterPick>& out) const;
   // Draws `selection` (the bound program's state is the caller's).
   void draw(const ClusterSelection& selection) const;
+
+  // Many faces' picks as one index stream (llvmpipe pays per range of a multi-draw, about as
+  // much as for a hundred triangles): gather() appends the picks' indices to `stream` and
+  // returns where they start, upload() hands the stream to the GL (a new store each time),
+  // draw_stream() draws [first, first + count) of the last upload.
+  std::size_t gather(const std::vector<ClusterPick>& picks,
+                     std::vector<std::uint32_t>& stream) const;
+  void upload(const std::vector<std::uint32_t>& stream);
+  void draw_stream(std::size_t first, std::size_t count) const;
 
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
   // drawn by the caller.
@@ -71,15 +94,17 @@ private:
   // A node's acceptable mesh of at most this many triangles is taken without a look below.
   static constexpr std::uint32_t kSmallEnough = 64;
   std::uint32_t plan(std::int32_t id, const Query& q) const;
-  void emit_plan(std::int32_t id, ClusterSelection& out) const;
-  void emit(std::uint32_t first, std::uint32_t count, ClusterSelection& out) const;
+  void emit_plan(std::int32_t id, std::vector<ClusterPick>& out) const;
 
   const GladGLContext* api_;
   MeshClusters clusters_;
   bool simplify_;
   Buffer indices_;
   VertexArray vao_;
-  mutable std::vector<Choice> choices_; // select()'s plans, per node
+  Buffer stream_;
+  VertexArray stream_vao_;
+  mutable std::vector<Choice> choices_;    // select()'s plans, per node
+  mutable std::vector<ClusterPick> picks_; // select()'s scratch
 };
 
 } // namespace irad::gl
