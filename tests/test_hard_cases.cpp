@@ -12,6 +12,7 @@
 #include "raster/context/shader_program.h"
 #include "raster/image/target.h"
 #include "raster/raster_renderer.h"
+#include "tests/test_rooms.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
@@ -80,16 +81,7 @@ double mean_rgb(const Image& image) {
   return sum / (3.0 * static_cast<double>(image.pixels().size()));
 }
 
-// Six inward-facing quads (counter-clockwise seen from inside) closing the box [lo, hi].
-void add_room(Scene& s, const glm::vec3& lo, const glm::vec3& hi, std::uint32_t material) {
-  const float x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
-  add_quad(s, {x0, y0, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y0, z0}, material); // floor, +y
-  add_quad(s, {x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1}, material); // ceiling, -y
-  add_quad(s, {x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, material); // z0, +z
-  add_quad(s, {x0, y0, z1}, {x0, y1, z1}, {x1, y1, z1}, {x1, y0, z1}, material); // z1, -z
-  add_quad(s, {x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1}, material); // x0, +x
-  add_quad(s, {x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0}, material); // x1, -x
-}
+using test_support::add_room;
 const char* const room_wall_names[6] = {"floor",    "ceiling",   "wall z=0",
                                         "wall z=2", "wall x=lo", "wall x=hi"};
 

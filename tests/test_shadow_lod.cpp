@@ -13,6 +13,7 @@
 #include "raster/scene/gpu_scene.h"
 #include "raster/shadow/shadow_atlas.h"
 #include "tests/side_by_side.h"
+#include "tests/test_rooms.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
 
@@ -296,15 +297,7 @@ TEST(ShadowLod, TheFacesDrawFewerTrianglesWithLod) {
 // in room A) with every quad split 4^5 times, so that the shadow faces draw simplified walls
 // (each room is one closed box: its root mesh is 12 triangles at error 0).
 
-void add_room(Scene& s, const glm::vec3& lo, const glm::vec3& hi, std::uint32_t material) {
-  const float x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
-  add_quad(s, {x0, y0, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y0, z0}, material);
-  add_quad(s, {x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1}, material);
-  add_quad(s, {x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, material);
-  add_quad(s, {x0, y0, z1}, {x0, y1, z1}, {x1, y1, z1}, {x1, y0, z1}, material);
-  add_quad(s, {x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1}, material);
-  add_quad(s, {x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0}, material);
-}
+using test_support::add_room;
 
 struct Lit {
   std::size_t pixels = 0;

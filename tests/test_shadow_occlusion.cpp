@@ -7,6 +7,7 @@
 #include "core/view.h"
 #include "raster/raster_renderer.h"
 #include "raster/shadow/shadow_occlusion.h"
+#include "tests/test_rooms.h"
 #include "walk/quasi_random_walk.h"
 
 #include <cmath>
@@ -84,15 +85,7 @@ TEST(ShadowOcclusion, BoxesOutsideTheFaceOrAcrossTheVplsPlane) {
   EXPECT_TRUE(face.shows(box({-1.0f, -1.0f, -1.0f}, {1.0f, 1.0f, 1.0f})));
 }
 
-void add_room(Scene& s, const glm::vec3& lo, const glm::vec3& hi, std::uint32_t material) {
-  const float x0 = lo.x, y0 = lo.y, z0 = lo.z, x1 = hi.x, y1 = hi.y, z1 = hi.z;
-  add_quad(s, {x0, y0, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y0, z0}, material);
-  add_quad(s, {x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1}, material);
-  add_quad(s, {x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, material);
-  add_quad(s, {x0, y0, z1}, {x0, y1, z1}, {x1, y1, z1}, {x1, y0, z1}, material);
-  add_quad(s, {x0, y0, z0}, {x0, y1, z0}, {x0, y1, z1}, {x0, y0, z1}, material);
-  add_quad(s, {x1, y0, z0}, {x1, y0, z1}, {x1, y1, z1}, {x1, y1, z0}, material);
-}
+using test_support::add_room;
 
 // A closed room (a 2 m cube, its quads split 4^2 times) with the light and every VPL inside,
 // and outside it, behind its +x wall, a sphere of 39600 triangles: the only face that sees the
