@@ -8,6 +8,7 @@
 #include "core/image_io.h"
 #include "core/image_metrics.h"
 #include "core/scene_builder.h"
+#include "core/sphere_mesh.h"
 #include "core/view.h"
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
@@ -52,9 +53,9 @@ Sweep sweep_for(const BenchOptions& o, const std::string& name) {
                 256, 4096, {16, 32, 64, 128, 256, 512, 1024}, {16, 64, 256}, {4, 16, 64, 256, 1024},
                 7};
   if (name == "large") s.raster_max = o.quick ? 16u : 64u;
-  if (is_real_scene(name)) {
+  if (is_real_scene(name) || name == "sphere2m") {
     s = o.quick ? Sweep{64, 256, {16}, {16}, {4, 16}, 0}
-                : Sweep{128, 1024, {16, 64}, {16, 64}, {4, 16, 64, 256}, 0};
+                : Sweep{128, 1024, {16, 64, 256}, {16, 64, 256}, {4, 16, 64, 256}, 0};
     s.every_sequence = false;
     s.k1_max = 16;
   }
@@ -82,9 +83,18 @@ BenchScene make_scene(const std::string& name, const BenchOptions& o, const Swee
     s = load_gltf(o.cornell, log); // the Cornell box, every triangle split 4^levels times
     subdivide(s, sw.large_levels);
     s.source = "cornell_subdivided";
+  } else if (name == "sphere2m") {
+    // The Cornell box with a UV sphere of 2.1M triangles (8k quick) in front of the tall block:
+    // the scale study's curved series at its largest (apps/bench_scale.cpp).
+    s = load_gltf(o.cornell, log);
+    add_sphere(s, {0.3f, 0.33f, 0.3f}, 0.09f, sphere_rings_for(o.quick ? 8192 : 2097152),
+               add_material(s, glm::vec3(0.7f)));
+    finish(s);
+    s.source = "cornell_sphere";
   } else {
     throw Error("", "--scene",
-                "unknown bench scene '" + name + "' (cornell, sphere, large, zdm2, godot)");
+                "unknown bench scene '" + name +
+                    "' (cornell, sphere, large, sphere2m, zdm2, godot)");
   }
   return {name, std::move(s), since(t0)};
 }
