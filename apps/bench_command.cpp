@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <memory>
 
 namespace irad::apps {
@@ -67,6 +68,7 @@ void add_bench_command(CLI::App& app, Commands& commands) {
         return 0;
       }
       if (options->scale_only) {
+        std::filesystem::create_directories(options->out_dir);
         const bool real =
             std::any_of(options->scenes.begin(), options->scenes.end(), is_real_scene);
         if (real)
