@@ -150,6 +150,9 @@ void ShadowAtlas::draw_clusters(int n, const GpuScene& scene) {
     for (std::size_t r = 0; r < kRounds.size(); ++r) {
       for (std::size_t i = 0; i < faces_.size(); ++i)
         take_nearest(i, r + 1 == kRounds.size() ? 2.0 : kRounds[r], near_[i]);
+      const bool any = std::any_of(near_.begin(), near_.end(),
+                                   [](const std::vector<ClusterPick>& p) { return !p.empty(); });
+      if (!any) continue;
       if (r > 0) cull_occluded(near_);
       draw_faces(near_);
     }
@@ -158,11 +161,14 @@ void ShadowAtlas::draw_clusters(int n, const GpuScene& scene) {
 }
 
 void ShadowAtlas::sort_by_distance(const Face& f, std::vector<ClusterPick>& picks) const {
-  const auto distance = [&](const ClusterPick& p) {
-    return distance_to(lod_->clusters().nodes[static_cast<std::size_t>(p.node)].bounds, f.origin);
-  };
-  std::sort(picks.begin(), picks.end(),
-            [&](const ClusterPick& a, const ClusterPick& b) { return distance(a) < distance(b); });
+  std::vector<std::pair<float, ClusterPick>> keyed;
+  keyed.reserve(picks.size());
+  for (const ClusterPick& p : picks)
+    keyed.emplace_back(
+        distance_to(lod_->clusters().nodes[static_cast<std::size_t>(p.node)].bounds, f.origin), p);
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < picks.size(); ++i) picks[i] = keyed[i].second;
 }
 
 void ShadowAtlas::take_nearest(std::size_t face, double share, std::vector<ClusterPick>& out) {
