@@ -148,6 +148,7 @@ void log_row(const BenchRow& r, Log& log) {
     line += fmt::format(" (shadow {:.3f}, shading {:.3f})", 1e3 * r.shadow / vpls,
                         1e3 * r.shading / vpls);
   if (r.peak_mib > 0) line += fmt::format("  peak {:.0f} MiB", r.peak_mib);
+  if (r.setup > 0) line += fmt::format("  set-up {:.2f} s", r.setup);
   log.info(line);
 }
 
@@ -180,6 +181,9 @@ void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows,
     raster_options.gpu_timers = true;
     raster_options.interleave = interleave;
     RasterRenderer raster(g.b.scene, raster_options);
+    const auto t_setup = Clock::now();
+    raster.render(g.view, quasi_random_walk(g.b.scene, g.rays, {1, 64}, log));
+    const double setup = since(t_setup);
     const char* estimator = interleave == 1 ? "raster-k1" : "raster";
     for (SequenceKind seq :
          {SequenceKind::Halton, SequenceKind::ScrambledHalton, SequenceKind::Random}) {
@@ -188,6 +192,7 @@ void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows,
         BenchRow row = base_row(g.b, g.bvh, estimator);
         row.sequence = sequence_name(seq);
         row.paths = n;
+        row.setup = setup;
         const auto t0 = Clock::now();
         const VplSet vpls = quasi_random_walk(g.b.scene, g.rays, {n, 64, seq, 1}, log);
         row.walk = since(t0);
@@ -282,14 +287,15 @@ void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path)
   std::ofstream out(path);
   out << "scene,triangles,estimator,sequence,paths,spp,vpls,width,height,seconds_load,"
          "seconds_walk,seconds_shadow_gpu,seconds_shading_gpu,seconds_readback,seconds_trace,"
-         "seconds_total,vpls_per_second,rmse,relmse,mean_ratio,seconds_bvh,peak_mib\n";
+         "seconds_total,vpls_per_second,rmse,relmse,mean_ratio,seconds_bvh,peak_mib,"
+         "seconds_setup\n";
   for (const BenchRow& r : rows)
     out << fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f},{:.1f}\n",
+                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f},{:.1f},{:.4f}\n",
                        r.scene, r.triangles, r.estimator, r.sequence, r.paths, r.spp, r.vpls,
                        r.width, r.height, r.load, r.walk, r.shadow, r.shading, r.readback, r.trace,
                        r.total, r.vpls_per_second, r.rmse, r.relmse, r.mean_ratio, r.bvh,
-                       r.peak_mib);
+                       r.peak_mib, r.setup);
   if (!out) throw Error(path, "", "cannot write");
 }
 

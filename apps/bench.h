@@ -38,11 +38,14 @@ struct BenchRow {
   double vpls_per_second = 0;
   double rmse = 0, relmse = 0, mean_ratio = 0;
   double peak_mib = 0; // the process's peak resident set during the row (apps/peak_memory.h)
+  // raster: the renderer's first render of one path before the rows (shaders, the shadow
+  // cluster hierarchy), not in `total`: a set-up cost like `bvh`.
+  double setup = 0;
 };
 
-// Runs the sweep, writes OUT/bench.csv (and plots), returns the rows. zdm2 and godot run a
-// smaller sweep (raster with Halton only, N in {16, 64}; pt up to 256 spp) and leave their lit
-// copy in OUT (lit_NAME.gltf).
+// Runs the sweep, writes OUT/bench.csv (and plots), returns the rows. zdm2, godot and sphere2m
+// run a smaller sweep (raster and rt-vpl with Halton only, N in {16, 64, 256}; pt up to 256
+// spp); zdm2 and godot leave their lit copy in OUT (lit_NAME.gltf).
 std::vector<BenchRow> run_bench(const BenchOptions& options, Log& log);
 
 void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path);
