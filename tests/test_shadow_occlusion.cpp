@@ -122,8 +122,13 @@ TEST(ShadowOcclusion, WhatAWallHidesIsNotDrawnAndNoPixelChanges) {
                 name, vpls.vpls.size(), drawn[0], drawn[1]);
     EXPECT_TRUE(images[0].pixels() == images[1].pixels()) << name; // the same bits
     EXPECT_GT(drawn[1], 0u) << name;
-    // Measured (llvmpipe, 64^2 faces, 75 VPLs): cull 2.77M -> 70.6k triangles, on 25.6k -> 7.8k.
-    EXPECT_LT(drawn[1], drawn[0] / (mode == ShadowLodMode::Cull ? 20 : 2)) << name;
+    // Measured (llvmpipe, 64^2 faces, 75 VPLs): cull 2.77M -> 70.6k triangles. With LOD the
+    // sphere is a whole-sphere level from the VPLs' distance: 25.6k triangles, 341 per VPL,
+    // too few for the readbacks (ShadowAtlas::kOcclusionTrianglesPerVpl): drawn as they are.
+    if (mode == ShadowLodMode::Cull)
+      EXPECT_LT(drawn[1], drawn[0] / 20) << name;
+    else
+      EXPECT_EQ(drawn[1], drawn[0]) << name;
   }
 }
 

@@ -126,38 +126,46 @@ void ShadowAtlas::draw_clusters(int n, const GpuScene& scene) {
                   [&](const Material& m) { material_.bind_alpha(api, scene, m); }, 6 * n);
     material_.bind_alpha(api, scene, Material{}); // opaque: nothing absent
   }
+  pick_faces();
+  std::size_t picked = 0;
+  for (std::size_t t : totals_) picked += t / 3;
+  if (lod_options_.occlusion && picked >= kOcclusionTrianglesPerVpl * static_cast<std::size_t>(n))
+    draw_in_rounds();
+  else
+    draw_faces(picks_);
+  api.Uniform1i(u_face_, -1);
+}
+
+void ShadowAtlas::pick_faces() {
   const float per_distance = lod_options_.texels * texel_angle();
   // A twentieth of the shading passes' constant depth bias (2e-4 of the diagonal).
   const float floor = 1e-5f * bounds_.diagonal();
   cluster_triangles_ = 0;
   picks_.resize(faces_.size());
-  near_.resize(faces_.size());
   totals_.assign(faces_.size(), 0);
-  taken_.assign(faces_.size(), 0);
   for (std::size_t i = 0; i < faces_.size(); ++i) {
     const Face& f = faces_[i];
     picks_[i].clear();
     if (f.rect.x > f.rect.z) continue; // never looked up
     lod_->pick(face_planes(f.view_projection, f.rect, resolution_), f.origin, per_distance, floor,
                picks_[i]);
-    if (lod_options_.occlusion) sort_by_distance(f, picks_[i]);
     for (const ClusterPick& p : picks_[i]) totals_[i] += p.count;
   }
-  if (!lod_options_.occlusion) {
-    draw_faces(picks_);
-  } else {
-    // Round by round, nearest first, each round culled against the depths of those before.
-    for (std::size_t r = 0; r < kRounds.size(); ++r) {
-      for (std::size_t i = 0; i < faces_.size(); ++i)
-        take_nearest(i, r + 1 == kRounds.size() ? 2.0 : kRounds[r], near_[i]);
-      const bool any = std::any_of(near_.begin(), near_.end(),
-                                   [](const std::vector<ClusterPick>& p) { return !p.empty(); });
-      if (!any) continue;
-      if (r > 0) cull_occluded(near_);
-      draw_faces(near_);
-    }
+}
+
+void ShadowAtlas::draw_in_rounds() {
+  near_.resize(faces_.size());
+  taken_.assign(faces_.size(), 0);
+  for (std::size_t i = 0; i < faces_.size(); ++i) sort_by_distance(faces_[i], picks_[i]);
+  for (std::size_t r = 0; r < kRounds.size(); ++r) {
+    for (std::size_t i = 0; i < faces_.size(); ++i)
+      take_nearest(i, r + 1 == kRounds.size() ? 2.0 : kRounds[r], near_[i]);
+    const bool any = std::any_of(near_.begin(), near_.end(),
+                                 [](const std::vector<ClusterPick>& p) { return !p.empty(); });
+    if (!any) continue;
+    if (r > 0) cull_occluded(near_); // against the depths of the rounds before
+    draw_faces(near_);
   }
-  api.Uniform1i(u_face_, -1);
 }
 
 void ShadowAtlas::sort_by_distance(const Face& f, std::vector<ClusterPick>& picks) const {

@@ -88,12 +88,22 @@ private:
   // this share of its triangles (the last: the rest), each after the depths of the rounds before
   // were read back (docs/performance.md measures the choice).
   static constexpr std::array<double, 3> kRounds = {0.25, 0.5, 1.0};
+  // ... but only for a batch whose faces picked at least this many triangles per VPL: each
+  // readback waits for the GL (about 0.2 ms per VPL on llvmpipe, the cost of some 2000
+  // triangles), and culling took 30 % on zdm2 (23k per VPL; a subdivided Cornell box of 8k
+  // triangles, a few hundred per VPL, drew its shadows in 0.24 ms per VPL without the rounds
+  // and 0.40-0.48 with them).
+  static constexpr std::size_t kOcclusionTrianglesPerVpl = 8000;
   // The hierarchy of `scene`, made on first use; false when the faces draw everything.
   bool prepare_lod(const GpuScene& scene);
   // The opaque triangles face by face from the hierarchy, the alpha-tested ones instanced; with
   // ShadowLodOptions::occlusion in two passes: every face's nearest clusters, then the rest that
   // the depths read back do not hide (raster/shadow/shadow_occlusion.h).
   void draw_clusters(int n, const GpuScene& scene);
+  // Each face's cut through the hierarchy into picks_ (totals_: their indices).
+  void pick_faces();
+  // picks_ nearest first in the rounds of kRounds, each culled against the rounds before.
+  void draw_in_rounds();
   void sort_by_distance(const Face& f, std::vector<ClusterPick>& picks) const;
   // Moves the nearest of picks_[face] into `out` until the face's drawn triangles reach `share`
   // of its total.
