@@ -294,7 +294,16 @@ float distance_to(const Bounds& b, const glm::vec3& p) {
   return glm::length(glm::max(glm::max(b.lo - p, p - b.hi), glm::vec3(0.0f)));
 }
 
-MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& options) {
+std::uint32_t automatic_leaf_triangles(std::size_t triangles) {
+  std::uint32_t leaf = 128;
+  while (leaf < 1024 && static_cast<std::size_t>(leaf) * 512 < triangles) leaf *= 2;
+  return leaf;
+}
+
+MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& requested) {
+  ClusterOptions options = requested;
+  if (options.leaf_triangles == 0)
+    options.leaf_triangles = automatic_leaf_triangles(scene.triangle_count());
   Builder b{scene, options, {}, {}, {}, {}};
   const std::vector<std::uint32_t> welded = weld_positions(scene);
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {

@@ -100,13 +100,18 @@ struct MeshClusters {
 };
 
 struct ClusterOptions {
-  // At most this many per leaf. Smaller leaves cull tighter against a face's pyramid and the
-  // depths already drawn: on zdm2 (58k triangles, 256x256, 64^2 faces) 128 left 16k triangles per
-  // VPL against 33k with 1024 (docs/performance.md); 64 drew fewer still but cost more per range.
-  std::uint32_t leaf_triangles = 128;
+  // At most this many per leaf; 0: automatic_leaf_triangles. Smaller leaves cull tighter
+  // against a face's pyramid and the depths already drawn, larger ones leave fewer region
+  // borders, which every level keeps exactly (docs/performance.md measures both).
+  std::uint32_t leaf_triangles = 0;
   bool simplify = true; // false: inner nodes' meshes are their original triangles
   int max_levels = 8;   // coarser levels per node at most
 };
+
+// About 512 leaves, 128 to 1024 triangles each (a power of two). On zdm2 (58k triangles,
+// 256x256, 64^2 faces) leaves of 128 left 16k triangles per VPL against 33k with 1024; on the
+// 2.1M-triangle scale scenes 1024 drew their shadows in half the time of 128 (the borders).
+std::uint32_t automatic_leaf_triangles(std::size_t triangles);
 
 // The hierarchy over the triangles of Opaque materials (Mask and Blend ones keep their alpha
 // test, drawn apart by the caller). The caller decides about animated scenes (the tree is of the
