@@ -1,13 +1,14 @@
 // The Python module `irad` (pybind11): irad.load -> Scene, irad.render -> (image, stats),
-// irad.walk -> (VPLs, stats), irad.compare, irad.read_exr, irad.write_exr, irad.Error. A thin
-// layer over the library (lib/irad/irad.h): every error is irad::Error, raised as irad.Error
-// with the CLI's one line as its text.
+// irad.walk -> (VPLs, stats), irad.walkthrough -> frames, irad.compare, irad.read_exr,
+// irad.write_exr, irad.Error. A thin layer over the library (lib/irad/irad.h): every error is
+// irad::Error, raised as irad.Error with the CLI's one line as its text.
 #include "arrays.h"
 #include "core/animation.h"
 #include "core/environment/environment_file.h"
 #include "core/light_sampler.h"
 #include "irad/irad.h"
 #include "render_call.h"
+#include "walkthrough_frames.h"
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -158,6 +159,27 @@ void bind_functions(py::module_& m) {
       "path"_a, "image"_a, "Writes a float32 (h, w, 3) or (h, w, 4) array as an EXR file");
 }
 
+void bind_walkthrough(py::module_& m) {
+  py::class_<WalkthroughFrames>(m, "Walkthrough", "Frames of irad.walkthrough, an iterator")
+      .def("__iter__", [](WalkthroughFrames& w) -> WalkthroughFrames& { return w; })
+      .def("__next__", &WalkthroughFrames::next)
+      .def_property_readonly("mode", &WalkthroughFrames::mode)
+      .def_property_readonly("paths", &WalkthroughFrames::paths);
+  m.def(
+      "walkthrough",
+      [](const Scene& scene, std::pair<int, int> frames, const std::string& mode,
+         std::uint32_t paths, std::pair<int, int> size, float fps, float orbit,
+         const std::string& camera, const std::string& gl, bool warm_up) {
+        return std::make_unique<WalkthroughFrames>(
+            scene, WalkthroughKeywords{frames, mode, paths, size, fps, orbit, camera, gl, warm_up});
+      },
+      "scene"_a, py::kw_only(), "frames"_a = std::pair<int, int>{0, 60}, "mode"_a = "auto",
+      "paths"_a = 64u, "size"_a = std::pair<int, int>{256, 256}, "fps"_a = 30.0f, "orbit"_a = 0.0f,
+      "camera"_a = "", "gl"_a = "auto", "warm_up"_a = true,
+      "The real-time frames of `irad walkthrough` (frames (A, B), B exclusive): an iterator of "
+      "float32 arrays (h, w, 3)");
+}
+
 } // namespace
 
 } // namespace irad::python
@@ -167,4 +189,5 @@ PYBIND11_MODULE(irad, m) {
   py::register_exception<irad::Error>(m, "Error", PyExc_RuntimeError);
   irad::python::bind_scene(m);
   irad::python::bind_functions(m);
+  irad::python::bind_walkthrough(m);
 }

@@ -155,3 +155,25 @@ def test_ctrl_c_cancels_a_render_quickly():
     _, err = p.communicate(timeout=30)
     assert time.monotonic() - sent < 5.0
     assert p.returncode != 0 and "KeyboardInterrupt" in err
+
+
+def test_walkthrough_frames_equal_the_cli_frames(cornell, tmp_path):
+    subprocess.run([IRAD, "walkthrough", CORNELL, "-o", str(tmp_path / "%04d.exr"), "--frames",
+                    "0:3", "--size", "32x24", "--paths", "8", "--quiet"], check=True,
+                   stdout=subprocess.DEVNULL)
+    frames = irad.walkthrough(cornell, frames=(0, 3), size=(32, 24), paths=8)
+    assert frames.mode == "ring" and frames.paths == 8
+    images = list(frames)
+    assert len(images) == 3
+    for i, image in enumerate(images):
+        assert image.shape == (24, 32, 3)
+        assert np.array_equal(image, irad.read_exr(str(tmp_path / f"{i:04d}.exr"))[..., :3])
+
+
+def test_walkthrough_refuses_bad_values(cornell):
+    with pytest.raises(irad.Error, match="frames"):
+        irad.walkthrough(cornell, frames=(3, 3))
+    with pytest.raises(irad.Error, match="mode"):
+        irad.walkthrough(cornell, mode="nope")
+    with pytest.raises(irad.Error, match="fps"):
+        irad.walkthrough(cornell, fps=0.0)
