@@ -122,13 +122,17 @@ def test_compare_refuses_different_sizes():
         irad.compare(np.zeros((4, 4, 3), np.float32), np.zeros((4, 5, 3), np.float32))
 
 
-def test_two_threads_render_as_one_after_the_other(cornell):
-    jobs = [dict(size=(24, 24), paths=16), dict(size=(24, 24), paths=16, estimator="pt", spp=2)]
-    alone = [irad.render(cornell, **job)[0] for job in jobs]
+@pytest.mark.parametrize("second", [dict(), dict(estimator="pt", spp=2)])
+def test_two_threads_render_two_scenes_as_one_after_the_other(cornell, second):
+    # Two rasters at once: one GL context each, on their own threads.
+    mirror = irad.load(os.path.join(ROOT, "data", "cornell_mirror.gltf"))
+    jobs = [(cornell, dict(size=(64, 64), paths=64)),
+            (mirror, dict(size=(64, 64), paths=64, **second))]
+    alone = [irad.render(scene, **job)[0] for scene, job in jobs]
     results = [None, None]
 
     def run(i):
-        results[i] = irad.render(cornell, **jobs[i])[0]
+        results[i] = irad.render(jobs[i][0], **jobs[i][1])[0]
 
     threads = [threading.Thread(target=run, args=(i,)) for i in range(2)]
     for t in threads:
