@@ -31,7 +31,9 @@ Estimator parse_estimator(const std::string& name);
 const char* estimator_name(Estimator estimator);
 
 // (done, total): raster VPL passes, pt image rows. Called on the thread that called render(),
-// never concurrently; it must not throw.
+// never concurrently; it must not throw. pt reports the rows finished whenever the calling
+// thread (one of its workers) finishes one, so the last report may come before the last row,
+// and a tiny image may give none.
 using ProgressCallback = std::function<void(std::size_t done, std::size_t total)>;
 
 struct RenderOptions {
