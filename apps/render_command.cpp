@@ -5,9 +5,10 @@
 #include "apps/commands.h"
 #include "apps/lighting_options.h"
 #include "apps/options.h"
-#include "apps/render_pipeline.h"
+#include "apps/progress_line.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "irad/render.h"
 
 #include <atomic>
 #include <csignal>
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
@@ -110,13 +112,7 @@ std::string partial_name(const std::string& output) {
   std::_Exit(128 + signal); // not reached for SIGINT and SIGTERM
 }
 
-Estimator parse_estimator(const std::string& name) {
-  if (name == "rt-vpl") return Estimator::RtVpl;
-  if (name == "pt") return Estimator::Pt;
-  return Estimator::Raster;
-}
-
-nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
+nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const RenderResult& r) {
   nlohmann::json seconds = {{"load", r.seconds.load}, {"total", r.seconds.total}};
   if (args.estimator == "pt") {
     seconds["trace"] = r.seconds.trace;
@@ -125,9 +121,9 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
             {"spp", args.spp},
             {"seed", args.seed},
             {"size", {r.view.width, r.view.height}},
-            {"triangles", r.scene.triangle_count()},
+            {"triangles", scene.triangle_count()},
             {"camera", r.camera.name},
-            {"lights", lights_json(r.scene)},
+            {"lights", lights_json(scene)},
             {"seconds", seconds}};
   }
   seconds["walk"] = r.seconds.walk;
@@ -135,7 +131,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
   if (args.estimator == "raster") {
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
-    if (r.scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h
+    if (scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h
   } else {
     seconds["trace"] = r.seconds.trace;
   }
@@ -151,7 +147,7 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"l_max", r.vpls.l_max},
           {"depth_capped", r.vpls.depth_capped},
           {"size", {r.view.width, r.view.height}},
-          {"triangles", r.scene.triangle_count()},
+          {"triangles", scene.triangle_count()},
           {"shadow_res", shadow_resolution_for(args.shadow_res, r.view.width, r.view.height)},
           {"interleave", args.interleave},
           {"batch", args.batch},
@@ -159,12 +155,12 @@ nlohmann::json stats_json(const RenderArgs& args, const RenderResult& r) {
           {"shadow_occlusion", args.shadow_occlusion == "on"},
           {"jitter", args.jitter == "on"},
           {"clamp", args.clamp},
-          {"clamp_distance", args.clamp * r.scene.bounds.diagonal()},
+          {"clamp_distance", args.clamp * scene.bounds.diagonal()},
           {"camera", r.camera.name},
           {"gl", r.gl},
           {"clamped_fraction", r.clamped_fraction},
           {"bias_compensation", args.bias_compensation},
-          {"lights", lights_json(r.scene)},
+          {"lights", lights_json(scene)},
           {"seconds", seconds}};
 }
 
@@ -195,7 +191,7 @@ void write_stats(const std::string& path, const nlohmann::json& stats) {
   throw Error(path, "--stats", "cannot write: " + reason);
 }
 
-void print_summary(const RenderArgs& args, const RenderResult& r) {
+void print_summary(const RenderArgs& args, const Scene& scene, const RenderResult& r) {
   if (args.estimator == "pt") {
     std::fprintf(stderr, "irad: %s: %dx%d, pt %u spp in %.2f s (load %.2f, trace %.2f)\n",
                  args.scene.c_str(), r.view.width, r.view.height, args.spp, r.seconds.total,
@@ -210,7 +206,7 @@ void print_summary(const RenderArgs& args, const RenderResult& r) {
                r.vpls.paths, r.vpls.vpls.size(), r.vpls.l_max, r.vpls.rho_bar, r.seconds.total,
                r.seconds.load, r.seconds.walk, args.estimator == "raster" ? "raster" : "trace",
                stage,
-               args.estimator == "raster" && r.scene.has_specular()
+               args.estimator == "raster" && scene.has_specular()
                    ? fmt::format(", mirrors {:.2f}", r.seconds.trace).c_str()
                    : "");
 }
@@ -220,37 +216,38 @@ int run_render(const RenderArgs& args) {
   log.set_quiet(args.quiet);
   RenderRequest request;
   request.scene_path = args.scene;
-  if (!args.size.empty()) request.size = parse_size_option(args.size);
-  request.camera = args.camera;
-  request.gltf_scene = args.gltf_scene;
-  request.own_camera = parse_look_at(args.look, args.camera);
-  request.time = args.time;
-  request.walk.paths = args.paths;
-  request.walk.sequence = parse_sequence(args.sequence);
-  request.walk.seed = args.seed;
-  request.walk.allocation = parse_light_allocation(args.light_allocation, "--light-allocation");
-  request.raster.shadow_resolution = args.shadow_res;
-  request.raster.clamp = args.clamp;
-  request.raster.backend = parse_backend(args.gl);
-  request.raster.gl_device = args.gl_device;
-  request.raster.interleave = args.interleave;
-  request.raster.batch = args.batch;
-  request.raster.shadow_lod.mode = parse_shadow_lod(args.shadow_lod);
-  request.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
-  request.raster.jitter = args.jitter == "on";
-  request.pt.pixel_footprint = args.jitter == "on"; // pt: each sample at a uniform pixel point
-  request.progress = !args.quiet && isatty(STDERR_FILENO);
-  request.estimator = parse_estimator(args.estimator);
-  request.pt.spp = args.spp;
-  request.pt.seed = args.seed;
-  request.pt.threads = args.threads;
-  request.bias_compensation = args.bias_compensation;
-  request.bias_samples = args.bias_samples;
-  request.clamped_fraction = !args.stats.empty();
-  request.limits.max_triangles = args.max_triangles;
-  request.limits.max_file_bytes = args.max_file_mib << 20;
-  request.limits.max_texture_size = args.max_texture_size;
-  request.lighting = lighting_options(args.lighting);
+  if (!args.size.empty()) request.render.size = parse_size_option(args.size);
+  request.render.camera = args.camera;
+  request.scene.gltf_scene = args.gltf_scene;
+  request.scene.own_camera = parse_look_at(args.look, args.camera);
+  request.scene.time = args.time;
+  request.render.walk.paths = args.paths;
+  request.render.walk.sequence = parse_sequence(args.sequence);
+  request.render.walk.seed = args.seed;
+  request.render.walk.allocation =
+      parse_light_allocation(args.light_allocation, "--light-allocation");
+  request.render.raster.shadow_resolution = args.shadow_res;
+  request.render.raster.clamp = args.clamp;
+  request.render.raster.backend = parse_backend(args.gl);
+  request.render.raster.gl_device = args.gl_device;
+  request.render.raster.interleave = args.interleave;
+  request.render.raster.batch = args.batch;
+  request.render.raster.shadow_lod.mode = parse_shadow_lod(args.shadow_lod);
+  request.render.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
+  request.render.raster.jitter = args.jitter == "on";
+  request.render.pt.pixel_footprint =
+      args.jitter == "on"; // pt: each sample at a uniform pixel point
+  request.render.estimator = parse_estimator(args.estimator);
+  request.render.pt.spp = args.spp;
+  request.render.pt.seed = args.seed;
+  request.render.pt.threads = args.threads;
+  request.render.bias_compensation = args.bias_compensation;
+  request.render.bias_samples = args.bias_samples;
+  request.render.clamped_fraction = !args.stats.empty();
+  request.scene.limits.max_triangles = args.max_triangles;
+  request.scene.limits.max_file_bytes = args.max_file_mib << 20;
+  request.scene.limits.max_texture_size = args.max_texture_size;
+  request.scene.lighting = lighting_options(args.lighting);
   if (args.max_triangles < 1) throw Error("", "--max-triangles", "must be at least 1");
   if (args.max_file_mib < 1 || args.max_file_mib > 4095)
     throw Error("", "--max-file-size", "must lie in [1, 4095] MiB");
@@ -264,8 +261,13 @@ int run_render(const RenderArgs& args) {
   if (!args.stats.empty()) require_writable(args.stats, "--stats");
 
   const InterruptHandler interrupt_handler;
-  request.cancel = &g_interrupted;
-  const RenderResult r = render_scene(request, log);
+  request.render.cancel = &g_interrupted;
+  const FileRender f = [&] {
+    ProgressLine progress(!args.quiet && isatty(STDERR_FILENO)); // erased when the render ends
+    if (progress.enabled()) request.render.progress = std::ref(progress);
+    return render_file(request, log);
+  }();
+  const RenderResult& r = f.result;
   PngOptions png;
   png.exposure = args.exposure;
   png.tone_map = args.tone_map == "reinhard" ? ToneMap::Reinhard : ToneMap::Clamp;
@@ -284,8 +286,8 @@ int run_render(const RenderArgs& args) {
     die_by(signal);
   }
   for (const std::string& o : args.outputs) write_image(o, r.image, png);
-  if (!args.stats.empty()) write_stats(args.stats, stats_json(args, r));
-  if (!args.quiet) print_summary(args, r);
+  if (!args.stats.empty()) write_stats(args.stats, stats_json(args, f.scene, r));
+  if (!args.quiet) print_summary(args, f.scene, r);
   // A signal after the image was complete: the outputs are whole; end as the signal asks.
   if (g_interrupted.load()) die_by(g_signal);
   return 0;

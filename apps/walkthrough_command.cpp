@@ -3,17 +3,16 @@
 // the N most recent path images; path images keep the camera they were drawn with), reshade
 // (everything redrawn every frame)
 // and cached (each frame replaces one path's VPLs and their shadow maps and re-shades all of
-// them from the current camera), see apps/walkthrough_engine.h. glTF animations play at
+// them from the current camera), see lib/irad/walkthrough.h. glTF animations play at
 // t = frame / fps; the camera can also orbit the scene (--orbit degrees per second).
 #include "apps/commands.h"
 #include "apps/lighting_options.h"
 #include "apps/options.h"
-#include "apps/render_pipeline.h"
-#include "apps/walkthrough_engine.h"
 #include "apps/window_viewer.h"
 #include "core/error.h"
-#include "core/gltf/loader.h"
 #include "core/image_io.h"
+#include "irad/scene_setup.h"
+#include "irad/walkthrough.h"
 
 #include <chrono>
 #include <cstdio>
@@ -110,10 +109,11 @@ int run_walkthrough(const WalkthroughArgs& args) {
   if (!args.window) check_pattern(args.output);
   const std::optional<Camera> own_camera = parse_look_at(args.look, args.camera);
   const std::unique_ptr<WindowViewer> viewer = open_window(args);
-  const LightingOptions lighting = lighting_options(args.lighting);
-  Scene scene = load_gltf(args.scene, log, {}, args.gltf_scene);
-  light_scene(scene, lighting, log);
-  if (own_camera) use_own_camera(scene, *own_camera);
+  SceneOptions scene_options;
+  scene_options.gltf_scene = args.gltf_scene;
+  scene_options.lighting = lighting_options(args.lighting);
+  scene_options.own_camera = own_camera;
+  Scene scene = load_scene(args.scene, scene_options, log);
   const Camera& chosen = select_camera(scene, args.camera);
   const std::size_t camera = static_cast<std::size_t>(&chosen - scene.cameras.data());
   WalkthroughSettings settings;

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-namespace irad::apps {
+namespace irad {
 
 enum class WalkMode { Ring, Cached, Reshade };
 WalkMode parse_walk_mode(const std::string& name);
@@ -79,4 +79,4 @@ private:
   int posed_frame_ = -1;
 };
 
-} // namespace irad::apps
+} // namespace irad

@@ -1,4 +1,4 @@
-#include "apps/walkthrough_engine.h"
+#include "irad/walkthrough.h"
 
 #include "core/animation.h"
 #include "core/error.h"
@@ -7,7 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-namespace irad::apps {
+namespace irad {
 
 namespace {
 
@@ -137,4 +137,4 @@ VplSet Walkthrough::all_vpls() const {
   return all;
 }
 
-} // namespace irad::apps
+} // namespace irad

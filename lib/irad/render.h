@@ -1,0 +1,93 @@
+#pragma once
+// One image of a scene with one of the three estimators: walk -> raster (or rt-vpl, or pt),
+// with the per-stage times and counts of the render (what `irad render --stats` writes).
+//   raster  instant radiosity: the quasi-random walk's VPLs rasterized with shadow maps (OpenGL)
+//   rt-vpl  the same VPLs with exact (ray-traced) visibility, on the CPU
+//   pt      the path-traced reference, on the CPU
+// The image is linear float RGBA; the same scene, options and thread count give the same bits.
+// Errors throw irad::Error("FILE", "ELEMENT", "MESSAGE"); warnings go to the Log.
+#include "core/image.h"
+#include "core/log.h"
+#include "core/scene.h"
+#include "core/view.h"
+#include "core/vpl.h"
+#include "irad/scene_setup.h"
+#include "raster/raster_renderer.h"
+#include "walk/path_tracer.h"
+#include "walk/quasi_random_walk.h"
+
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+
+namespace irad {
+
+enum class Estimator { Raster, RtVpl, Pt };
+// "raster", "rt-vpl" or "pt"; throws irad::Error naming --estimator for any other name.
+Estimator parse_estimator(const std::string& name);
+const char* estimator_name(Estimator estimator);
+
+// (done, total): raster VPL passes, pt image rows. Called on the thread that called render(),
+// never concurrently; it must not throw. pt reports the rows finished whenever the calling
+// thread (one of its workers) finishes one, so the last report may come before the last row,
+// and a tiny image may give none.
+using ProgressCallback = std::function<void(std::size_t done, std::size_t total)>;
+
+struct RenderOptions {
+  Estimator estimator = Estimator::Raster;
+  std::optional<std::pair<int, int>> size; // WxH; default from the camera's aspect, 512 high
+  std::string camera;                      // name or index; empty: the first camera
+  WalkOptions walk;
+  RasterOptions raster;           // clamp and shadow resolution (clamp also for rt-vpl)
+  PathTracerOptions pt;           // spp, seed, threads
+  bool bias_compensation = false; // add the clamp's residual (walk/bias_compensation.h)
+  std::uint32_t bias_samples = 16;
+  bool clamped_fraction = false; // estimate the share of light the clamp removes
+  ProgressCallback progress;     // nullptr: no progress reports
+  // Cancellation, two ways. `cancel`: a flag any thread or a signal handler may set. When it
+  // becomes true, the render stops early: no further stage starts, the running one returns what
+  // it has, and the result says cancelled. `cancel_requested`: asked on the calling thread
+  // before each stage and at every progress step; true cancels in the same way.
+  const std::atomic<bool>* cancel = nullptr;
+  std::function<bool()> cancel_requested;
+};
+
+struct StageSeconds {
+  // trace: pt and rt-vpl, or the raster's ray-traced pass over visible mirrors
+  double load = 0, walk = 0, raster = 0, readback = 0, trace = 0, compensation = 0, total = 0;
+};
+
+struct RenderResult {
+  Camera camera;
+  View view;
+  VplSet vpls; // empty for pt
+  // When cancelled: what was accumulated (pt, rt-vpl: pixels not done are 0, alpha too).
+  Image image;
+  StageSeconds seconds;   // load: the camera, view and ray-tracing structure (render_file: also
+                          // the loading)
+  bool cancelled = false; // stopped early by a cancellation
+  std::size_t passes = 0; // VPL passes drawn (raster)
+  double clamped_fraction = -1.0; // when requested (not with mirrors)
+  std::string gl;                 // GL renderer (raster)
+};
+
+// Renders `scene` (load_scene's, posed and lit) as `options` say. Throws irad::Error on bad
+// options and when a finished image holds NaN or Inf pixels.
+RenderResult render(const Scene& scene, const RenderOptions& options, Log& log);
+
+// What `irad render` does: load_scene, then render.
+struct RenderRequest {
+  std::string scene_path;
+  SceneOptions scene;
+  RenderOptions render;
+};
+struct FileRender {
+  Scene scene;
+  RenderResult result;
+};
+FileRender render_file(const RenderRequest& request, Log& log);
+
+} // namespace irad

@@ -1,0 +1,191 @@
+#include "irad/render.h"
+
+#include "core/error.h"
+#include "walk/bias_compensation.h"
+#include "walk/mirror_pass.h"
+#include "walk/ray_scene.h"
+#include "walk/vpl_tracer.h"
+
+#include <chrono>
+#include <fmt/format.h>
+
+namespace irad {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// The one flag the stages poll. Without a cancel_requested callback it is the caller's `cancel`
+// itself (a signal handler's flag reaches every stage at once); with one, it is the render's own
+// flag, set when the callback or `cancel` says so at a stage boundary or a progress step.
+class StopFlag {
+public:
+  explicit StopFlag(const RenderOptions& o) : token_(o.cancel), callback_(o.cancel_requested) {}
+  StopFlag(const StopFlag&) = delete;
+  StopFlag& operator=(const StopFlag&) = delete;
+
+  const std::atomic<bool>* flag() const { return callback_ ? &own_ : token_; }
+  // Asks the callback (calling thread only); true once cancelled.
+  bool poll() {
+    if (callback_ && !own_.load() && ((token_ != nullptr && token_->load()) || callback_()))
+      own_.store(true);
+    const std::atomic<bool>* f = flag();
+    return f != nullptr && f->load();
+  }
+
+private:
+  const std::atomic<bool>* token_;
+  std::function<bool()> callback_;
+  std::atomic<bool> own_{false};
+};
+
+// Everything one render() shares between its stages.
+struct Stages {
+  const Scene& scene;
+  const RenderOptions& options;
+  Log& log;
+  StopFlag stop;
+  RenderResult& r;
+
+  bool cancelled() {
+    r.cancelled = r.cancelled || stop.poll();
+    return r.cancelled;
+  }
+  void progress(std::size_t done, std::size_t total) {
+    if (options.progress) options.progress(done, total);
+    stop.poll();
+  }
+};
+
+void run_pt(Stages& s, const RayScene& rays) {
+  const auto t0 = Clock::now();
+  PathTracerOptions pt = s.options.pt;
+  pt.cancel = s.stop.flag();
+  s.r.image = path_trace(s.scene, rays, s.r.view, pt, [&](int done, int rows) {
+    s.progress(static_cast<std::size_t>(done), static_cast<std::size_t>(rows));
+  });
+  s.r.seconds.trace = since(t0);
+}
+
+void run_raster(Stages& s, const RayScene& rays) {
+  const auto t0 = Clock::now();
+  RasterOptions options = s.options.raster;
+  options.cancel = s.stop.flag();
+  options.gl_messages = [&s](const std::string& message) { s.log.warn(message); };
+  RasterRenderer raster(s.scene, options);
+  s.r.gl = raster.description();
+  RasterTimings timings;
+  s.r.image = raster.render(s.r.view, s.r.vpls, &timings,
+                            [&s](std::size_t done, std::size_t total) { s.progress(done, total); });
+  s.r.seconds.raster = since(t0);
+  s.r.seconds.readback = timings.readback;
+  s.r.passes = timings.passes;
+  if (s.scene.has_specular() && !s.cancelled()) { // visible mirrors: walk/mirror_pass.h
+    const auto t1 = Clock::now();
+    add_mirror_pass(s.scene, rays, s.r.view, s.r.vpls,
+                    {s.options.raster.clamp, s.options.pt.threads, s.stop.flag()}, s.r.image);
+    s.r.seconds.trace = since(t1);
+  }
+}
+
+void run_rt_vpl(Stages& s, const RayScene& rays) {
+  const auto t0 = Clock::now();
+  s.r.image = trace_vpls(s.scene, rays, s.r.view, s.r.vpls,
+                         {s.options.raster.clamp, s.options.pt.threads, s.stop.flag()});
+  s.r.seconds.trace = since(t0);
+}
+
+// Adds the clamp's residual R(x) to the clamped image.
+void compensate(Stages& s, const RayScene& rays) {
+  const auto t0 = Clock::now();
+  BiasCompensationOptions options;
+  options.clamp = s.options.raster.clamp;
+  options.samples = s.options.bias_samples;
+  options.seed = s.options.pt.seed;
+  options.threads = s.options.pt.threads;
+  const Image residual = clamp_residual(s.scene, rays, s.r.view, s.r.vpls, options);
+  for (std::size_t i = 0; i < residual.pixels().size(); ++i)
+    s.r.image.pixels()[i] += glm::vec4(glm::vec3(residual.pixels()[i]), 0.0f);
+  s.r.seconds.compensation = since(t0);
+}
+
+// The walk, one of the VPL estimators, and what the options add to it.
+void run_vpl_estimator(Stages& s, const RayScene& rays) {
+  const auto t0 = Clock::now();
+  s.r.vpls = quasi_random_walk(s.scene, rays, s.options.walk, s.log);
+  s.r.seconds.walk = since(t0);
+  if (s.cancelled()) return; // interrupted during the walk: nothing was rendered
+  if (s.options.estimator == Estimator::Raster)
+    run_raster(s, rays);
+  else
+    run_rt_vpl(s, rays);
+  if (s.options.bias_compensation && !s.cancelled()) compensate(s, rays);
+  // Not with mirrors (the estimate ignores mirrored VPLs): the stats show -1.
+  if (s.options.clamped_fraction && !s.scene.has_specular() && !s.cancelled())
+    s.r.clamped_fraction =
+        clamped_fraction(s.scene, rays, s.r.view, s.r.vpls, s.options.raster.clamp);
+}
+
+} // namespace
+
+Estimator parse_estimator(const std::string& name) {
+  if (name == "raster") return Estimator::Raster;
+  if (name == "rt-vpl") return Estimator::RtVpl;
+  if (name == "pt") return Estimator::Pt;
+  throw Error("", "--estimator", "'" + name + "' is not raster, rt-vpl or pt");
+}
+
+const char* estimator_name(Estimator estimator) {
+  switch (estimator) {
+  case Estimator::Raster:
+    return "raster";
+  case Estimator::RtVpl:
+    return "rt-vpl";
+  case Estimator::Pt:
+    break;
+  }
+  return "pt";
+}
+
+RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) {
+  RenderResult r;
+  Stages s{scene, options, log, StopFlag(options), r};
+  const auto t0 = Clock::now();
+  r.camera = select_camera(scene, options.camera);
+  const auto [width, height] = image_size(r.camera, options.size);
+  r.view = make_view(r.camera, scene.bounds, width, height);
+  const RayScene rays(scene);
+  r.seconds.load = since(t0);
+  if (scene.has_specular() && options.bias_compensation)
+    throw Error(scene.source, "--bias-compensation",
+                "the clamp's residual does not handle mirrors (specular materials) yet");
+
+  if (s.cancelled()) {
+    // Interrupted while loading: nothing was rendered.
+  } else if (options.estimator == Estimator::Pt) {
+    run_pt(s, rays);
+  } else {
+    run_vpl_estimator(s, rays);
+  }
+  r.seconds.total = since(t0);
+  if (s.cancelled()) return r;
+  if (const std::size_t bad = r.image.non_finite_count(); bad > 0)
+    throw Error(scene.source, "image",
+                fmt::format("{} pixels are NaN or Inf; nothing written", bad));
+  return r;
+}
+
+FileRender render_file(const RenderRequest& request, Log& log) {
+  const auto t0 = Clock::now();
+  FileRender f{load_scene(request.scene_path, request.scene, log), {}};
+  const double load = since(t0);
+  f.result = render(f.scene, request.render, log);
+  f.result.seconds.load += load;
+  f.result.seconds.total += load;
+  return f;
+}
+
+} // namespace irad
