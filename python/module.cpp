@@ -83,6 +83,9 @@ void bind_scene(py::module_& m) {
           "light_power", [](const Scene& s) { return LightSampler(s).total_power(); },
           "radiant power of every light (the walk's Phi: depth-0 VPLs carry Phi/N each)")
       .def_property_readonly(
+          "rho_bar", [](const Scene& s) { return mean_albedo(s); },
+          "the mean albedo the walk's particle counts n_j = floor(rho_bar^j N) use")
+      .def_property_readonly(
           "duration", [](const Scene& s) { return s.animation ? s.animation->end() : 0.0f; },
           "seconds of the glTF animation (its last key); 0 without one")
       .def("__repr__", [](const Scene& s) {

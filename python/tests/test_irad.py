@@ -49,6 +49,10 @@ def test_scene_summary(cornell):
     assert len(cornell.cameras) >= 1
     assert cornell.lights["emissive_triangles"] > 0
     assert cornell.duration == 0.0
+    # The walk's rho_bar, as the render's stats report it.
+    _, stats = irad.render(cornell, size=(8, 8), paths=4)
+    assert 0.0 < cornell.rho_bar < 1.0
+    assert cornell.rho_bar == pytest.approx(stats["rho_bar"], rel=1e-6)
 
 
 def test_vpl_power_sums_to_the_emitters_power(cornell):
