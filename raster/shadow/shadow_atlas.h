@@ -14,12 +14,10 @@
 // faces each. Texels no face covers keep the clear value 1 (far: never shadowed).
 //
 // With ShadowLodMode Cull or On (core/mesh_clusters.h) the opaque triangles are drawn face by
-// face from a cluster hierarchy (raster/shadow/shadow_lod.h): one draw per face of the clusters
-// it sees (Cull: the same image), at the coarsest level whose error stays below
-// ShadowLodOptions::texels texels at the VPL's distance (On), and with occlusion culling those
-// the depths already drawn do not hide (raster/shadow/shadow_occlusion.h). The face comes from a
-// uniform then instead of gl_InstanceID; alpha-tested materials stay one instanced draw of all
-// faces.
+// face from a cluster hierarchy (raster/shadow/shadow_lod.h): one glMultiDrawElements per face of
+// the clusters it sees (Cull: the same image), at the coarsest level whose error stays below
+// ShadowLodOptions::texels texels at the VPL's distance (On). The face comes from a uniform then
+// instead of gl_InstanceID; alpha-tested materials stay one instanced draw of all faces.
 #include "core/bounds.h"
 #include "core/mesh_clusters.h"
 #include "core/vpl.h"
@@ -134,8 +132,9 @@ private:
   ShadowLodOptions lod_options_;
   GLint u_face_;
   std::unique_ptr<ShadowLod> lod_;
-  const GpuScene* lod_scene_ = nullptr;                     // the scene lod_ is of
-  std::vector<Face> faces_;                                 // of the last render()
+  const GpuScene* lod_scene_ = nullptr; // the scene lod_ is of
+  std::vector<Face> faces_;             // of the last render()
+  ClusterSelection selection_;
   std::vector<std::vector<ClusterPick>> picks_, near_;      // per face of faces_
   std::vector<std::size_t> totals_, taken_;                 // per face: indices picked, taken
   std::vector<std::uint32_t> stream_;                       // draw_faces' indices

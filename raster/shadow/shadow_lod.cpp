@@ -18,6 +18,21 @@ glm::vec2 plane_range(const glm::vec4& plane, const Bounds& b) {
 
 } // namespace
 
+void add_pick(const ClusterPick& pick, ClusterSelection& out) {
+  if (pick.count == 0) return;
+  const auto* offset =
+      reinterpret_cast<const char*>(std::uintptr_t(pick.first) * sizeof(std::uint32_t));
+  out.triangles += pick.count / 3;
+  if (!out.counts.empty() &&
+      static_cast<const char*>(out.offsets.back()) + out.counts.back() * sizeof(std::uint32_t) ==
+          offset) {
+    out.counts.back() += static_cast<GLsizei>(pick.count);
+    return;
+  }
+  out.counts.push_back(static_cast<GLsizei>(pick.count));
+  out.offsets.push_back(offset);
+}
+
 std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm::vec4& rect,
                                      int resolution) {
   // Clip c = M p (rows of M), face pixel times w: pw = (c.xy + c.w) R / 2; inside where
@@ -30,7 +45,14 @@ std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm
 
 ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters,
                      bool simplify)
-    : api_(&api), clusters_(std::move(clusters)), simplify_(simplify), stream_(make_buffer(api)) {
+    : api_(&api), clusters_(std::move(clusters)), simplify_(simplify), indices_(make_buffer(api)) {
+  api.BindBuffer(GL_ARRAY_BUFFER, indices_.get()); // not the bound VAO's element buffer
+  api.BufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(clusters_.indices.size() * sizeof(std::uint32_t)),
+                 clusters_.indices.data(), GL_STATIC_DRAW);
+  api.BindBuffer(GL_ARRAY_BUFFER, 0);
+  vao_ = gpu.vertex_array_with(indices_);
+  stream_ = make_buffer(api);
   stream_vao_ = gpu.vertex_array_with(stream_);
 }
 
@@ -127,6 +149,20 @@ void ShadowLod::pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& or
     plan(root, q);
     emit_plan(root, out);
   }
+}
+
+void ShadowLod::select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
+                       float error_per_distance, float error_floor, ClusterSelection& out) const {
+  picks_.clear();
+  pick(planes, origin, error_per_distance, error_floor, picks_);
+  for (const ClusterPick& p : picks_) add_pick(p, out);
+}
+
+void ShadowLod::draw(const ClusterSelection& selection) const {
+  if (selection.counts.empty()) return;
+  api_->BindVertexArray(vao_.get());
+  api_->MultiDrawElements(GL_TRIANGLES, selection.counts.data(), GL_UNSIGNED_INT,
+                          selection.offsets.data(), static_cast<GLsizei>(selection.counts.size()));
 }
 
 } // namespace irad::gl

@@ -1,6 +1,6 @@
 #pragma once
-// The cluster hierarchy of core/mesh_clusters.h for the shadow faces: the choice of what one
-// face draws, the nodes whose bounds meet the face's pyramid (clipped to the rectangle the face
+// The cluster hierarchy of core/mesh_clusters.h on the GPU, and the choice of what one shadow
+// face draws: the nodes whose bounds meet the face's pyramid (clipped to the rectangle the face
 // is ever looked up on), and of those the cut with the fewest triangles in which every mesh's
 // error is below
 //     max(error_per_distance * distance(VPL, node bounds), error_floor)
@@ -9,8 +9,8 @@
 // With error_per_distance = f * (2 / R), the angle of a texel at a face's centre times a factor
 // f, a chosen node's mesh lies within f texels of the original surface as the VPL sees it.
 // Culling is exact: a node is left out only when its box lies wholly outside a plane of the
-// face's pyramid, where GL would clip all of it. The picked index ranges are copied into one
-// stream of indices per round of faces and drawn with one glDrawElements per face.
+// face's pyramid, where GL would clip all of it. The selected index ranges are drawn with one
+// glMultiDrawElements over one index buffer (ranges that touch are merged).
 #include "core/mesh_clusters.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/gpu_scene.h"
@@ -20,12 +20,27 @@
 
 namespace irad::gl {
 
-// One node's part of a face's cut: indices [first, first + count) of MeshClusters::indices (its
+// What one face draws: index ranges of ShadowLod's buffer.
+struct ClusterSelection {
+  std::vector<GLsizei> counts;
+  std::vector<const void*> offsets; // bytes
+  std::size_t triangles = 0;
+  void clear() {
+    counts.clear();
+    offsets.clear();
+    triangles = 0;
+  }
+};
+
+// One node's part of a face's cut: indices [first, first + count) of ShadowLod's buffer (its
 // mesh, a coarser level or its original triangles), whose triangles lie in the node's bounds.
 struct ClusterPick {
   std::uint32_t first = 0, count = 0;
   std::int32_t node = -1;
 };
+
+// Appends a pick's range to `out`, merged with the last range when they touch.
+void add_pick(const ClusterPick& pick, ClusterSelection& out);
 
 // The four planes a * p + d >= 0 of the pyramid that face pixels p of [x0, x1] x [y0, y1]
 // (rect) see through the face view-projection `view_projection` (R texels per edge):
@@ -35,23 +50,26 @@ std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm
 
 class ShadowLod {
 public:
-  // Keeps `clusters` (of gpu's scene) and a vertex array of gpu's vertices for the index stream;
-  // `simplify`: whether the inner nodes' meshes may be drawn (false: culling only, the original
-  // triangles).
+  // Uploads `clusters` (of gpu's scene) as one index buffer; `simplify`: whether the inner
+  // nodes' meshes may be drawn (false: culling only, the original triangles).
   ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters, bool simplify);
 
-  // Appends to `out`, node by node in depth-first order, the cut of the face with pyramid
-  // `planes` seen from `origin`. error_floor: an error no shadow test can tell (far below the
-  // depth bias), so that coplanar simplification, exact up to rounding, serves even a VPL inside
-  // a node's bounds.
+  // Appends to `out` the ranges of the face with pyramid `planes` seen from `origin`.
+  // error_floor: an error no shadow test can tell (far below the depth bias), so that coplanar
+  // simplification, exact up to rounding, serves even a VPL inside a node's bounds.
+  void select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
+              float error_per_distance, float error_floor, ClusterSelection& out) const;
+  // The same cut as select(), node by node (for occlusion culling: raster/shadow/
+  // shadow_occlusion.h), appended to `out` in depth-first order.
   void pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
             float error_per_distance, float error_floor, std::vector<ClusterPick>& out) const;
+  // Draws `selection` (the bound program's state is the caller's).
+  void draw(const ClusterSelection& selection) const;
 
-  // Many faces' picks as one index stream, one draw per face (on zdm2 as fast as a multi-draw
-  // of the ranges; it keeps the draws per face at one): gather() appends the picks' indices to
-  // `stream` and returns where they start, upload() hands the stream to the GL (a new store each
-  // time), draw_stream() draws [first, first + count) of the last upload (the bound program's
-  // state is the caller's).
+  // Many faces' picks as one index stream (llvmpipe pays per range of a multi-draw, about as
+  // much as for a hundred triangles): gather() appends the picks' indices to `stream` and
+  // returns where they start, upload() hands the stream to the GL (a new store each time),
+  // draw_stream() draws [first, first + count) of the last upload.
   std::size_t gather(const std::vector<ClusterPick>& picks,
                      std::vector<std::uint32_t>& stream) const;
   void upload(const std::vector<std::uint32_t>& stream);
@@ -60,9 +78,10 @@ public:
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
   // drawn by the caller.
   const MeshClusters& clusters() const { return clusters_; }
+  std::size_t gpu_bytes() const { return clusters_.indices.size() * sizeof(std::uint32_t); }
 
 private:
-  // A node's plan for one face (pick()): a range of indices, or its children's plans.
+  // A node's plan for one face (select()): a range of indices, or its children's plans.
   struct Choice {
     std::uint32_t first = 0, count = 0; // count: the triangles of the plan (0: nothing)
     bool children = false;
@@ -80,9 +99,12 @@ private:
   const GladGLContext* api_;
   MeshClusters clusters_;
   bool simplify_;
+  Buffer indices_;
+  VertexArray vao_;
   Buffer stream_;
   VertexArray stream_vao_;
-  mutable std::vector<Choice> choices_; // pick()'s plans, per node
+  mutable std::vector<Choice> choices_;    // select()'s plans, per node
+  mutable std::vector<ClusterPick> picks_; // select()'s scratch
 };
 
 } // namespace irad::gl
