@@ -214,23 +214,17 @@ void ShadowAtlas::cull_occluded(std::vector<std::vector<ClusterPick>>& per_face)
 }
 
 void ShadowAtlas::draw_faces(std::vector<std::vector<ClusterPick>>& per_face) {
-  stream_.clear();
-  ranges_.clear();
-  for (std::vector<ClusterPick>& picks : per_face) {
-    // In buffer order: the vertex cache sees neighbouring clusters together.
+  for (std::size_t i = 0; i < faces_.size(); ++i) {
+    std::vector<ClusterPick>& picks = per_face[i];
+    if (picks.empty()) continue;
+    // In buffer order, so that ranges that touch become one.
     std::sort(picks.begin(), picks.end(),
               [](const ClusterPick& a, const ClusterPick& b) { return a.first < b.first; });
-    const std::size_t first = lod_->gather(picks, stream_);
-    ranges_.emplace_back(first, stream_.size() - first);
-  }
-  if (stream_.empty()) return;
-  const GladGLContext& api = *api_;
-  lod_->upload(stream_);
-  cluster_triangles_ += stream_.size() / 3;
-  for (std::size_t i = 0; i < faces_.size(); ++i) {
-    if (ranges_[i].second == 0) continue;
-    api.Uniform1i(u_face_, faces_[i].instance);
-    lod_->draw_stream(ranges_[i].first, ranges_[i].second);
+    selection_.clear();
+    for (const ClusterPick& p : picks) add_pick(p, selection_);
+    cluster_triangles_ += selection_.triangles;
+    api_->Uniform1i(u_face_, faces_[i].instance);
+    lod_->draw(selection_);
   }
 }
 

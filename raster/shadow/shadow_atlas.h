@@ -110,8 +110,8 @@ private:
   void take_nearest(std::size_t face, double share, std::vector<ClusterPick>& out);
   // Reads the atlas's depths back and drops from per_face what they hide.
   void cull_occluded(std::vector<std::vector<ClusterPick>>& per_face);
-  // Draws each face's picks (per_face[i] for faces_[i], sorted on the way) from one index
-  // stream.
+  // Draws each face's picks (per_face[i] for faces_[i], sorted on the way), one multi-draw per
+  // face.
   void draw_faces(std::vector<std::vector<ClusterPick>>& per_face);
   glm::ivec2 block_origin(int b) const { return glm::ivec2(b % grid_.x, b / grid_.x) * block_; }
 
@@ -135,11 +135,9 @@ private:
   const GpuScene* lod_scene_ = nullptr; // the scene lod_ is of
   std::vector<Face> faces_;             // of the last render()
   ClusterSelection selection_;
-  std::vector<std::vector<ClusterPick>> picks_, near_;      // per face of faces_
-  std::vector<std::size_t> totals_, taken_;                 // per face: indices picked, taken
-  std::vector<std::uint32_t> stream_;                       // draw_faces' indices
-  std::vector<std::pair<std::size_t, std::size_t>> ranges_; // per face: first, count
-  std::vector<float> depth_; // the atlas read back (occlusion culling)
+  std::vector<std::vector<ClusterPick>> picks_, near_; // per face of faces_
+  std::vector<std::size_t> totals_, taken_;            // per face: indices picked, taken
+  std::vector<float> depth_;                           // the atlas read back (occlusion culling)
   std::size_t cluster_triangles_ = 0;
 };
 

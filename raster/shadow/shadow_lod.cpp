@@ -52,32 +52,6 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
                  clusters_.indices.data(), GL_STATIC_DRAW);
   api.BindBuffer(GL_ARRAY_BUFFER, 0);
   vao_ = gpu.vertex_array_with(indices_);
-  stream_ = make_buffer(api);
-  stream_vao_ = gpu.vertex_array_with(stream_);
-}
-
-std::size_t ShadowLod::gather(const std::vector<ClusterPick>& picks,
-                              std::vector<std::uint32_t>& stream) const {
-  const std::size_t first = stream.size();
-  for (const ClusterPick& p : picks) {
-    const auto begin = clusters_.indices.begin() + static_cast<std::ptrdiff_t>(p.first);
-    stream.insert(stream.end(), begin, begin + static_cast<std::ptrdiff_t>(p.count));
-  }
-  return first;
-}
-
-void ShadowLod::upload(const std::vector<std::uint32_t>& stream) {
-  api_->BindBuffer(GL_ARRAY_BUFFER, stream_.get()); // not the bound VAO's element buffer
-  api_->BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(stream.size() * sizeof(std::uint32_t)),
-                   stream.data(), GL_STREAM_DRAW);
-  api_->BindBuffer(GL_ARRAY_BUFFER, 0);
-}
-
-void ShadowLod::draw_stream(std::size_t first, std::size_t count) const {
-  if (count == 0) return;
-  api_->BindVertexArray(stream_vao_.get());
-  api_->DrawElements(GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
 }
 
 // Per node visited: what it draws (a mesh range, its children, or nothing) and how many

@@ -66,15 +66,6 @@ public:
   // Draws `selection` (the bound program's state is the caller's).
   void draw(const ClusterSelection& selection) const;
 
-  // Many faces' picks as one index stream (llvmpipe pays per range of a multi-draw, about as
-  // much as for a hundred triangles): gather() appends the picks' indices to `stream` and
-  // returns where they start, upload() hands the stream to the GL (a new store each time),
-  // draw_stream() draws [first, first + count) of the last upload.
-  std::size_t gather(const std::vector<ClusterPick>& picks,
-                     std::vector<std::uint32_t>& stream) const;
-  void upload(const std::vector<std::uint32_t>& stream);
-  void draw_stream(std::size_t first, std::size_t count) const;
-
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
   // drawn by the caller.
   const MeshClusters& clusters() const { return clusters_; }
@@ -101,8 +92,6 @@ private:
   bool simplify_;
   Buffer indices_;
   VertexArray vao_;
-  Buffer stream_;
-  VertexArray stream_vao_;
   mutable std::vector<Choice> choices_;    // select()'s plans, per node
   mutable std::vector<ClusterPick> picks_; // select()'s scratch
 };
