@@ -125,13 +125,6 @@ void ShadowLod::pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& or
   }
 }
 
-void ShadowLod::select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
-                       float error_per_distance, float error_floor, ClusterSelection& out) const {
-  picks_.clear();
-  pick(planes, origin, error_per_distance, error_floor, picks_);
-  for (const ClusterPick& p : picks_) add_pick(p, out);
-}
-
 void ShadowLod::draw(const ClusterSelection& selection) const {
   if (selection.counts.empty()) return;
   api_->BindVertexArray(vao_.get());

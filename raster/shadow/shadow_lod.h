@@ -54,13 +54,10 @@ public:
   // nodes' meshes may be drawn (false: culling only, the original triangles).
   ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters, bool simplify);
 
-  // Appends to `out` the ranges of the face with pyramid `planes` seen from `origin`.
+  // Appends to `out`, node by node in depth-first order, the cut of the face with pyramid
+  // `planes` seen from `origin` (for occlusion culling: raster/shadow/shadow_occlusion.h).
   // error_floor: an error no shadow test can tell (far below the depth bias), so that coplanar
   // simplification, exact up to rounding, serves even a VPL inside a node's bounds.
-  void select(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
-              float error_per_distance, float error_floor, ClusterSelection& out) const;
-  // The same cut as select(), node by node (for occlusion culling: raster/shadow/
-  // shadow_occlusion.h), appended to `out` in depth-first order.
   void pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
             float error_per_distance, float error_floor, std::vector<ClusterPick>& out) const;
   // Draws `selection` (the bound program's state is the caller's).
@@ -72,7 +69,7 @@ public:
   std::size_t gpu_bytes() const { return clusters_.indices.size() * sizeof(std::uint32_t); }
 
 private:
-  // A node's plan for one face (select()): a range of indices, or its children's plans.
+  // A node's plan for one face (pick()): a range of indices, or its children's plans.
   struct Choice {
     std::uint32_t first = 0, count = 0; // count: the triangles of the plan (0: nothing)
     bool children = false;
@@ -92,8 +89,7 @@ private:
   bool simplify_;
   Buffer indices_;
   VertexArray vao_;
-  mutable std::vector<Choice> choices_;    // select()'s plans, per node
-  mutable std::vector<ClusterPick> picks_; // select()'s scratch
+  mutable std::vector<Choice> choices_; // pick()'s plans, per node
 };
 
 } // namespace irad::gl
