@@ -3,6 +3,7 @@
 #include "apps/peak_memory.h"
 
 #include "core/analytic_scenes.h"
+#include "core/clamp_field.h"
 #include "core/error.h"
 #include "core/gltf/loader.h"
 #include "core/image_io.h"
@@ -13,6 +14,7 @@
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
+#include "walk/screen_compensation.h"
 #include "walk/vpl_tracer.h"
 
 #include <algorithm>
@@ -118,6 +120,7 @@ void score(BenchRow& row, const Image& image, const Image& ref) {
   const ImageMetrics m = compare_images(image, ref);
   row.rmse = m.rmse;
   row.relmse = m.relmse;
+  row.relmse_block4 = compare_images(image, ref, 4).relmse;
   row.mean_ratio = (m.mean_ratio[0] + m.mean_ratio[1] + m.mean_ratio[2]) / 3.0;
   row.width = image.width();
   row.height = image.height();
@@ -170,12 +173,36 @@ struct Target {
   double bvh; // seconds to build `rays`
 };
 
-// The default raster (interleaved, k = 4) over every sequence (or Halton only), and the
-// reference mode (every VPL shades every pixel) with Halton, so both meet the other estimators
-// on one plot. The large and real scenes' raster passes are slow on a CPU: they take fewer N.
+// The VPL estimators as `irad render` runs them: the walk's VPLs with the local clamp
+// (core/clamp_field.h), or the global one (`local` false).
+VplSet bench_walk(const Target& g, std::uint32_t n, SequenceKind seq, bool local, Log& log) {
+  VplSet vpls = quasi_random_walk(g.b.scene, g.rays, {n, 64, seq, 1}, log);
+  if (local) apply_local_clamp(vpls, g.b.scene.bounds.diagonal(), {8, 0.5f, 0.05f, 1e-4f});
+  return vpls;
+}
+
+// Adds the screen-space compensation of the clamp (walk/screen_compensation.h) to `image`.
+void bench_compensate(const Target& g, const VplSet& vpls, Image& image, BenchRow& row) {
+  if (g.b.scene.has_specular()) return;
+  const auto t0 = Clock::now();
+  const Image residual = screen_space_residual(g.b.scene, g.rays, g.view, vpls, image, {});
+  for (std::size_t i = 0; i < image.pixels().size(); ++i)
+    image.pixels()[i] += glm::vec4(glm::vec3(residual.pixels()[i]), 0.0f);
+  row.compensation = since(t0);
+}
+
+// The default raster (interleaved, k = 4, the local clamp and its screen-space compensation) over
+// every sequence (or Halton only), the reference mode (every VPL shades every pixel) and the
+// global clamp without compensation with Halton, so all meet the other estimators on one plot.
+// The large and real scenes' raster passes are slow on a CPU: they take fewer N.
 void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
-  for (int interleave : {4, 1}) {
-    const std::vector<std::uint32_t> paths = raster_paths(sw, interleave);
+  struct Variant {
+    int interleave;
+    bool local; // the local clamp and its compensation
+  };
+  for (const auto [interleave, local] : {Variant{4, true}, Variant{1, true}, Variant{4, false}}) {
+    // The global clamp's variant only over the reference mode's N (it is there for comparison).
+    const std::vector<std::uint32_t> paths = raster_paths(sw, local ? interleave : 1);
     if (paths.empty()) continue;
     RasterOptions raster_options;
     raster_options.gpu_timers = true;
@@ -184,20 +211,22 @@ void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows,
     const auto t_setup = Clock::now();
     raster.render(g.view, quasi_random_walk(g.b.scene, g.rays, {1, 64}, log));
     const double setup = since(t_setup);
-    const char* estimator = interleave == 1 ? "raster-k1" : "raster";
+    const char* estimator = !local ? "raster-global" : interleave == 1 ? "raster-k1" : "raster";
     for (SequenceKind seq :
          {SequenceKind::Halton, SequenceKind::ScrambledHalton, SequenceKind::Random}) {
-      if ((interleave == 1 || !sw.every_sequence) && seq != SequenceKind::Halton) continue;
+      if ((interleave == 1 || !local || !sw.every_sequence) && seq != SequenceKind::Halton)
+        continue;
       for (std::uint32_t n : paths) {
         BenchRow row = base_row(g.b, g.bvh, estimator);
         row.sequence = sequence_name(seq);
         row.paths = n;
         row.setup = setup;
         const auto t0 = Clock::now();
-        const VplSet vpls = quasi_random_walk(g.b.scene, g.rays, {n, 64, seq, 1}, log);
+        const VplSet vpls = bench_walk(g, n, seq, local, log);
         row.walk = since(t0);
         RasterTimings t;
-        const Image image = raster.render(g.view, vpls, &t);
+        Image image = raster.render(g.view, vpls, &t);
+        if (local) bench_compensate(g, vpls, image, row);
         row.total = since(t0);
         row.vpls = t.passes;
         row.shadow = t.shadow_gpu;
@@ -219,11 +248,12 @@ void bench_rt_vpl(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows,
     row.sequence = "halton";
     row.paths = n;
     const auto t0 = Clock::now();
-    const VplSet vpls = quasi_random_walk(g.b.scene, g.rays, {n, 64}, log);
+    const VplSet vpls = bench_walk(g, n, SequenceKind::Halton, true, log);
     row.walk = since(t0);
     const auto t1 = Clock::now();
-    const Image image = trace_vpls(g.b.scene, g.rays, g.view, vpls, {0.05f, 0});
+    Image image = trace_vpls(g.b.scene, g.rays, g.view, vpls, {0.05f, 0});
     row.trace = since(t1);
+    bench_compensate(g, vpls, image, row);
     row.total = since(t0);
     row.vpls = vpls.vpls.size();
     row.vpls_per_second = static_cast<double>(row.vpls) / row.trace;
@@ -288,14 +318,14 @@ void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path)
   out << "scene,triangles,estimator,sequence,paths,spp,vpls,width,height,seconds_load,"
          "seconds_walk,seconds_shadow_gpu,seconds_shading_gpu,seconds_readback,seconds_trace,"
          "seconds_total,vpls_per_second,rmse,relmse,mean_ratio,seconds_bvh,peak_mib,"
-         "seconds_setup\n";
+         "seconds_setup,relmse_block4,seconds_compensation\n";
   for (const BenchRow& r : rows)
     out << fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f},{:.1f},{:.4f}\n",
+                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f},{:.1f},{:.4f},{:.6g},{:.4f}\n",
                        r.scene, r.triangles, r.estimator, r.sequence, r.paths, r.spp, r.vpls,
                        r.width, r.height, r.load, r.walk, r.shadow, r.shading, r.readback, r.trace,
                        r.total, r.vpls_per_second, r.rmse, r.relmse, r.mean_ratio, r.bvh,
-                       r.peak_mib, r.setup);
+                       r.peak_mib, r.setup, r.relmse_block4, r.compensation);
   if (!out) throw Error(path, "", "cannot write");
 }
 

@@ -29,15 +29,20 @@ struct BenchOptions {
 struct BenchRow {
   std::string scene;
   std::size_t triangles = 0;
-  std::string estimator; // raster, rt-vpl, pt
-  std::string sequence;  // halton, scrambled-halton, random ("" for pt)
+  // raster, raster-k1 (interleave 1), rt-vpl: the local clamp and the screen-space
+  // compensation, as `irad render`; raster-global: the global clamp, no compensation (the
+  // default before issue 14); pt
+  std::string estimator;
+  std::string sequence; // halton, scrambled-halton, random ("" for pt)
   std::uint32_t paths = 0, spp = 0;
   std::size_t vpls = 0;
   int width = 0, height = 0;
   double load = 0, bvh = 0, walk = 0, shadow = -1, shading = -1, readback = 0, trace = 0, total = 0;
   double vpls_per_second = 0;
   double rmse = 0, relmse = 0, mean_ratio = 0;
-  double peak_mib = 0; // the process's peak resident set during the row (apps/peak_memory.h)
+  double relmse_block4 = 0; // relMSE of the 4x4-block means
+  double compensation = 0;  // seconds of the screen-space compensation (in `total`)
+  double peak_mib = 0;      // the process's peak resident set during the row (apps/peak_memory.h)
   // raster: the renderer's first render of one path before the rows (shaders, the shadow
   // cluster hierarchy), not in `total`: a set-up cost like `bvh`.
   double setup = 0;

@@ -65,7 +65,7 @@ void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out
   for (const BenchRow& r : rows) scenes.insert(r.scene);
   for (const std::string& scene : scenes) {
     // Error against time: raster (Halton), rt-vpl, pt.
-    std::map<std::string, Series> by_estimator;
+    std::map<std::string, Series> by_estimator, by_estimator_block;
     std::map<std::string, Series> by_sequence;
     for (const BenchRow& r : rows) {
       if (r.scene != scene || !(r.relmse > 0.0)) continue;
@@ -75,6 +75,11 @@ void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out
         s.file = fmt::format("{}/plot_{}_time_{}.dat", out_dir, scene, r.estimator);
         s.x.push_back(r.total);
         s.y.push_back(r.relmse);
+        Series& b = by_estimator_block[r.estimator];
+        b.title = r.estimator;
+        b.file = fmt::format("{}/plot_{}_time_block4_{}.dat", out_dir, scene, r.estimator);
+        b.x.push_back(r.total);
+        b.y.push_back(r.relmse_block4);
       }
       if (r.estimator == "raster") {
         Series& s = by_sequence[r.sequence];
@@ -83,8 +88,9 @@ void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out
         s.y.push_back(r.relmse);
       }
     }
-    std::vector<Series> time_series, path_series;
+    std::vector<Series> time_series, block_series, path_series;
     for (auto& [name, s] : by_estimator) time_series.push_back(s);
+    for (auto& [name, s] : by_estimator_block) block_series.push_back(s);
     for (auto& [name, s] : by_sequence) {
       s.title = fmt::format("{} (slope {:.2f})", name, loglog_slope(s.x, s.y));
       path_series.push_back(s);
@@ -92,6 +98,10 @@ void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out
     if (!time_series.empty())
       plot(fmt::format("{}/error_vs_time_{}.png", out_dir, scene), scene + ": error against time",
            "seconds", "relMSE", time_series, log);
+    if (!block_series.empty())
+      plot(fmt::format("{}/error_vs_time_block4_{}.png", out_dir, scene),
+           scene + ": error of the 4x4-block means against time", "seconds", "relMSE (4x4 blocks)",
+           block_series, log);
     if (!path_series.empty())
       plot(fmt::format("{}/error_vs_paths_{}.png", out_dir, scene),
            scene + ": raster error against the number of paths N", "paths N", "relMSE", path_series,

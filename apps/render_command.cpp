@@ -31,6 +31,9 @@ struct RenderArgs {
   std::uint32_t paths = 256;
   int shadow_res = 0;
   float clamp = 0.05f;
+  std::string clamp_mode = "local";
+  int clamp_neighbours = 8;
+  float clamp_scale = 0.5f;
   std::string camera;
   std::string gltf_scene;
   LookAtArgs look;
@@ -45,6 +48,7 @@ struct RenderArgs {
   unsigned threads = 0;
   bool bias_compensation = false;
   std::uint32_t bias_samples = 16;
+  std::string compensation = "screen";
   std::string gl = "auto";
   std::string sequence = "halton";
   std::string light_allocation = "power";
@@ -127,7 +131,8 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
             {"seconds", seconds}};
   }
   seconds["walk"] = r.seconds.walk;
-  if (args.bias_compensation) seconds["compensation"] = r.seconds.compensation;
+  if (args.bias_compensation || args.compensation != "off")
+    seconds["compensation"] = r.seconds.compensation;
   if (args.estimator == "raster") {
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
@@ -155,11 +160,14 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"shadow_occlusion", args.shadow_occlusion == "on"},
           {"jitter", args.jitter == "on"},
           {"clamp", args.clamp},
-          {"clamp_distance", args.clamp * scene.bounds.diagonal()},
+          {"clamp_distance", args.clamp * scene.bounds.diagonal()}, // local: the cap
+          {"clamp_mode", args.clamp_mode},
           {"camera", r.camera.name},
           {"gl", r.gl},
           {"clamped_fraction", r.clamped_fraction},
           {"bias_compensation", args.bias_compensation},
+          {"compensation", args.bias_compensation ? "traced" : args.compensation},
+          {"compensation_fallback", r.compensation_fallback},
           {"lights", lights_json(scene)},
           {"seconds", seconds}};
 }
@@ -228,6 +236,9 @@ int run_render(const RenderArgs& args) {
       parse_light_allocation(args.light_allocation, "--light-allocation");
   request.render.raster.shadow_resolution = args.shadow_res;
   request.render.raster.clamp = args.clamp;
+  request.render.local_clamp = args.clamp_mode == "local";
+  request.render.clamp_neighbours = args.clamp_neighbours;
+  request.render.clamp_scale = args.clamp_scale;
   request.render.raster.backend = parse_backend(args.gl);
   request.render.raster.gl_device = args.gl_device;
   request.render.raster.interleave = args.interleave;
@@ -241,7 +252,8 @@ int run_render(const RenderArgs& args) {
   request.render.pt.spp = args.spp;
   request.render.pt.seed = args.seed;
   request.render.pt.threads = args.threads;
-  request.render.bias_compensation = args.bias_compensation;
+  request.render.bias_compensation = args.bias_compensation || args.compensation == "traced";
+  request.render.screen_compensation = args.compensation == "screen";
   request.render.bias_samples = args.bias_samples;
   request.render.clamped_fraction = !args.stats.empty();
   request.scene.limits.max_triangles = args.max_triangles;
@@ -310,7 +322,19 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Shadow cube face resolution (0: a quarter of the image side, 64..1024)")
       ->capture_default_str();
   cmd->add_option("--clamp", args->clamp,
-                  "Clamp distance d_min as a fraction of the scene's bounding diagonal")
+                  "Clamp distance d_min as a fraction of the scene's bounding diagonal (local: "
+                  "the largest d_min)")
+      ->capture_default_str();
+  cmd->add_option("--clamp-mode", args->clamp_mode,
+                  "local: d_min follows the VPLs' spacing (--clamp-scale times the distance to "
+                  "the --clamp-neighbours-th nearest VPL); global: --clamp everywhere")
+      ->check(CLI::IsMember({"local", "global"}))
+      ->capture_default_str();
+  cmd->add_option("--clamp-neighbours", args->clamp_neighbours, "local clamp: k")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--clamp-scale", args->clamp_scale, "local clamp: d_min / r_k")
+      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index (default: the first)");
   cmd->add_option("--scene", args->gltf_scene,
@@ -342,6 +366,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--seed", args->seed, "Random seed (pt, scrambled-halton, random)")
       ->capture_default_str();
   cmd->add_option("--threads", args->threads, "pt, rt-vpl: CPU threads (0: all cores)")
+      ->capture_default_str();
+  cmd->add_option("--compensation", args->compensation,
+                  "raster, rt-vpl: add back what the clamp removes; screen: from the image where "
+                  "the camera sees the gather hits; traced: ray-traced gather paths")
+      ->check(CLI::IsMember({"off", "screen", "traced"}))
       ->capture_default_str();
   cmd->add_flag("--bias-compensation", args->bias_compensation,
                 "raster, rt-vpl: add back what the clamp removes (short ray-traced gather paths)");

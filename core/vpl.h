@@ -21,9 +21,12 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 
 namespace irad {
+
+class ClampField; // core/clamp_field.h
 
 enum class VplKind : std::uint8_t { Surface, TwoSided, Point, Spot, Directional };
 
@@ -38,6 +41,9 @@ struct Vpl {
   float cos_outer = 0.0f;
   std::int32_t mirror = -1;     // mirrored VPL: index in VplSet::mirrors; -1: ordinary
   glm::vec4 mirror_plane{0.0f}; // mirrored VPL: (n, w), n toward the side it lights
+  // d_min of this VPL in world units (core/clamp_field.h, the local clamp); 0: the estimator's
+  // global clamp (a fraction of the bounding diagonal). Unused for unclamped kinds.
+  float clamp_distance = 0.0f;
 
   bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
   // Whether any channel of the intensity is positive (a black VPL draws no pass).
@@ -45,6 +51,14 @@ struct Vpl {
     return intensity.x > 0.0f || intensity.y > 0.0f || intensity.z > 0.0f;
   }
 };
+
+// The squared clamp distance d_min^2 of v in the estimator's geometry term: 0 for the unclamped
+// kinds, else its own clamp_distance or, without one, global_dmin (world units).
+inline float clamp_distance2(const Vpl& v, float global_dmin) {
+  if (!v.clamped()) return 0.0f;
+  const float d = v.clamp_distance > 0.0f ? v.clamp_distance : global_dmin;
+  return d * d;
+}
 
 // glTF KHR_lights_punctual spot falloff: smoothstep-free quadratic ramp between the cones.
 inline float spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
@@ -63,6 +77,9 @@ struct VplSet {
   // The mirror polygons of the scene (core/mirrors.h), which mirrored VPLs index; empty without
   // mirrors. Mirrored copies are not counted in `planned`.
   std::vector<MirrorPolygon> mirrors;
+  // The local clamp (core/clamp_field.h) the VPLs' clamp_distance came from, for the estimators
+  // that need d(y) away from the VPLs (the clamp's residual); null with the global clamp.
+  std::shared_ptr<const ClampField> clamp_field;
 };
 
 } // namespace irad

@@ -1,5 +1,6 @@
 #include "irad/render.h"
 
+#include "core/clamp_field.h"
 #include "core/error.h"
 #include "walk/bias_compensation.h"
 #include "walk/mirror_pass.h"
@@ -112,17 +113,48 @@ void compensate(Stages& s, const RayScene& rays) {
   s.r.seconds.compensation = since(t0);
 }
 
+// Adds the clamp's residual at raster speed: from the clamped image itself where the camera sees
+// the gather hits (walk/screen_compensation.h).
+void compensate_on_screen(Stages& s, const RayScene& rays) {
+  const auto t0 = Clock::now();
+  ScreenCompensationOptions options;
+  options.clamp = s.options.raster.clamp;
+  options.samples = s.options.screen_samples;
+  options.iterations = s.options.screen_iterations;
+  options.seed = s.options.pt.seed;
+  options.threads = s.options.pt.threads;
+  ScreenCompensationStats stats;
+  const Image residual =
+      screen_space_residual(s.scene, rays, s.r.view, s.r.vpls, s.r.image, options, &stats);
+  for (std::size_t i = 0; i < residual.pixels().size(); ++i)
+    s.r.image.pixels()[i] += glm::vec4(glm::vec3(residual.pixels()[i]), 0.0f);
+  s.r.compensation_fallback =
+      stats.in_reach > 0 ? double(stats.fallback) / double(stats.in_reach) : 0.0;
+  s.r.seconds.compensation = since(t0);
+}
+
+// The local clamp (core/clamp_field.h) over the walk's VPLs: their clamp distances, and the field
+// the residual evaluates at its gather hits.
+void assign_local_clamp(Stages& s) {
+  apply_local_clamp(s.r.vpls, s.scene.bounds.diagonal(),
+                    {s.options.clamp_neighbours, s.options.clamp_scale, s.options.raster.clamp});
+}
+
 // The walk, one of the VPL estimators, and what the options add to it.
 void run_vpl_estimator(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
   s.r.vpls = quasi_random_walk(s.scene, rays, s.options.walk, s.log);
+  if (s.options.local_clamp) assign_local_clamp(s);
   s.r.seconds.walk = since(t0);
   if (s.cancelled()) return; // interrupted during the walk: nothing was rendered
   if (s.options.estimator == Estimator::Raster)
     run_raster(s, rays);
   else
     run_rt_vpl(s, rays);
-  if (s.options.bias_compensation && !s.cancelled()) compensate(s, rays);
+  if (s.options.bias_compensation && !s.cancelled())
+    compensate(s, rays);
+  else if (s.options.screen_compensation && !s.cancelled())
+    compensate_on_screen(s, rays);
   // Not with mirrors (the estimate ignores mirrored VPLs): the stats show -1.
   if (s.options.clamped_fraction && !s.scene.has_specular() && !s.cancelled())
     s.r.clamped_fraction =

@@ -8,7 +8,7 @@ namespace irad {
 
 glm::vec3 mirror_radiance(const Scene& scene, const RayScene& rays, const VplSet& vpls,
                           std::size_t triangle, const glm::vec3& position, const glm::vec3& dir,
-                          float dmin2, float eps) {
+                          float dmin, float eps) {
   glm::vec3 n = geometric_normal(scene, triangle);
   if (glm::dot(n, dir) > 0.0f) n = -n; // the side the ray arrived from
   glm::vec3 throughput = scene.material_of(triangle).base_color;
@@ -19,7 +19,7 @@ glm::vec3 mirror_radiance(const Scene& scene, const RayScene& rays, const VplSet
     return scene.has_environment() ? throughput * scene.environment->radiance(reflected)
                                    : glm::vec3(0.0f);
   const ShadingPoint x = shading_point(scene, *hit, origin, reflected);
-  return throughput * (x.emission + gather_vpls(rays, x, vpls, dmin2, eps));
+  return throughput * (x.emission + gather_vpls(rays, x, vpls, dmin, eps));
 }
 
 void add_mirror_pass(const Scene& scene, const RayScene& rays, const View& view, const VplSet& vpls,
@@ -35,7 +35,7 @@ void add_mirror_pass(const Scene& scene, const RayScene& rays, const View& view,
       const auto hit = rays.intersect(ray.origin, dir, view.znear, 2.0f * view.zfar);
       if (!hit || !scene.material_of(hit->triangle).specular) continue;
       const glm::vec3 c = mirror_radiance(scene, rays, vpls, hit->triangle,
-                                          ray.origin + hit->t * dir, dir, dmin * dmin, eps);
+                                          ray.origin + hit->t * dir, dir, dmin, eps);
       image.at(x, y) += glm::vec4(c, 0.0f);
     }
   });

@@ -19,7 +19,7 @@ namespace irad {
 // (walk/vpl_gather.h) of the first diffuse surface. 0 when the ray leaves the scene.
 glm::vec3 mirror_radiance(const Scene& scene, const RayScene& rays, const VplSet& vpls,
                           std::size_t triangle, const glm::vec3& position, const glm::vec3& dir,
-                          float dmin2, float eps);
+                          float dmin, float eps); // dmin: the global clamp (gather_vpls)
 
 struct MirrorPassOptions {
   float clamp = 0.05f;  // d_min as a fraction of the bounding diagonal (as RasterOptions::clamp)

@@ -48,7 +48,7 @@ glm::vec3 gather_directional(const RayScene& rays, const ShadingPoint& x, const 
   return v.intensity * cos_x;
 }
 
-glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin2,
+glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps) {
   glm::vec3 sum(0.0f);
   for (const Vpl& v : vpls.vpls) {
@@ -71,7 +71,7 @@ glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet&
                                           x.position, eps)
                       : rays.occluded(x.position, -w, eps, dist - eps))
       continue;
-    const float g = e * cos_x / glm::max(dist2, v.clamped() ? dmin2 : 0.0f);
+    const float g = e * cos_x / glm::max(dist2, clamp_distance2(v, dmin));
     sum += v.intensity * g;
   }
   return sum * x.albedo * std::numbers::inv_pi_v<float>;

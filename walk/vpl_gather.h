@@ -24,9 +24,10 @@ ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec
 // The VPLs' reflected radiance at x toward the viewer:
 //   rho(x)/pi * sum_k I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)   (core/vpl.h),
 // with V from shadow rays (for a mirrored VPL, V through its mirror polygon: walk/mirror_walk.h).
-// x must not lie on a mirror (a mirror reflects nothing diffusely: walk/mirror_pass.h). dmin2:
-// squared clamp distance; eps: the scene's ray offset.
-glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin2,
+// x must not lie on a mirror (a mirror reflects nothing diffusely: walk/mirror_pass.h). d_min: the
+// VPL's own clamp_distance, else dmin (the global clamp, world units; core/vpl.h
+// clamp_distance2); eps: the scene's ray offset.
+glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps);
 
 // E_k of core/vpl.h: the VPL's emission profile toward a direction with cosine cos_y (1 for a

@@ -19,10 +19,10 @@ Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, con
       glm::vec3 c(0.0f);
       if (const auto hit = rays.intersect(ray.origin, dir, view.znear, 2.0f * view.zfar)) {
         const ShadingPoint p = shading_point(scene, *hit, ray.origin, dir);
-        c = p.emission + (scene.material_of(hit->triangle).specular
-                              ? mirror_radiance(scene, rays, vpls, hit->triangle, p.position, dir,
-                                                dmin * dmin, eps)
-                              : gather_vpls(rays, p, vpls, dmin * dmin, eps));
+        c = p.emission +
+            (scene.material_of(hit->triangle).specular
+                 ? mirror_radiance(scene, rays, vpls, hit->triangle, p.position, dir, dmin, eps)
+                 : gather_vpls(rays, p, vpls, dmin, eps));
       } else {
         c = background_radiance(scene, dir);
       }

@@ -15,6 +15,7 @@
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
+#include "walk/screen_compensation.h"
 
 #include <atomic>
 #include <cstddef>
@@ -41,10 +42,20 @@ struct RenderOptions {
   std::optional<std::pair<int, int>> size; // WxH; default from the camera's aspect, 512 high
   std::string camera;                      // name or index; empty: the first camera
   WalkOptions walk;
-  RasterOptions raster;           // clamp and shadow resolution (clamp also for rt-vpl)
+  RasterOptions raster; // clamp and shadow resolution (clamp also for rt-vpl)
+  // The clamp distance of the VPL estimators: local (core/clamp_field.h: d(y) = min(cap,
+  // clamp_scale * r_k(y)), r_k the distance to the k-th nearest VPL, cap = raster.clamp of the
+  // bounding diagonal) or global (raster.clamp of the diagonal everywhere).
+  bool local_clamp = true;
+  int clamp_neighbours = 8;
+  float clamp_scale = 0.5f;
   PathTracerOptions pt;           // spp, seed, threads
   bool bias_compensation = false; // add the clamp's residual (walk/bias_compensation.h)
   std::uint32_t bias_samples = 16;
+  // The same residual at raster speed (walk/screen_compensation.h); bias_compensation wins.
+  bool screen_compensation = true;
+  std::uint32_t screen_samples = 8;
+  int screen_iterations = 3;
   bool clamped_fraction = false; // estimate the share of light the clamp removes
   ProgressCallback progress;     // nullptr: no progress reports
   // Cancellation, two ways. `cancel`: a flag any thread or a signal handler may set. When it
@@ -71,7 +82,9 @@ struct RenderResult {
   bool cancelled = false; // stopped early by a cancellation
   std::size_t passes = 0; // VPL passes drawn (raster)
   double clamped_fraction = -1.0; // when requested (not with mirrors)
-  std::string gl;                 // GL renderer (raster)
+  // screen compensation: the share of its gather samples in reach evaluated exactly (hidden)
+  double compensation_fallback = -1.0;
+  std::string gl; // GL renderer (raster)
 };
 
 // Renders `scene` (load_scene's, posed and lit) as `options` say. Throws irad::Error on bad

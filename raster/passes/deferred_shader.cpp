@@ -21,7 +21,7 @@ constexpr GLint gbuffer_unit = 3;
 constexpr GLint ortho_unit = 6;
 
 // The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 144 bytes).
-void write_vpl(float* out, const AtlasVpl& a, float dmin) {
+void write_vpl(float* out, const AtlasVpl& a, float dmin2) {
   const Vpl& vpl = *a.vpl;
   std::memset(out, 0, kFloatsPerVpl * sizeof(float));
   std::memcpy(out + 0, &vpl.position[0], 3 * sizeof(float));
@@ -30,7 +30,7 @@ void write_vpl(float* out, const AtlasVpl& a, float dmin) {
   const bool directional = vpl.kind == VplKind::Directional;
   out[12] = directional ? a.texel : vpl.cos_inner;
   out[13] = directional ? a.half_width : vpl.cos_outer;
-  out[14] = dmin * dmin;
+  out[14] = dmin2;
   out[15] = a.far;
   const std::int32_t ints[8] = {
       static_cast<std::int32_t>(vpl.kind), 0, 0, 0, a.blocks.x, a.blocks.y, a.blocks.z, a.blocks.w};
@@ -81,8 +81,8 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
 void DeferredShader::upload(const AtlasVpl* vpls, int n) {
   if (n > batch_) throw Error("", "deferred vpl", "more VPLs than the batch holds");
   for (int s = 0; s < n; ++s) {
-    const float dmin = vpls[s].vpl->clamped() ? clamp_ * diagonal_ : 0.0f;
-    write_vpl(vpl_data_.data() + kFloatsPerVpl * static_cast<std::size_t>(s), vpls[s], dmin);
+    const float dmin2 = clamp_distance2(*vpls[s].vpl, clamp_ * diagonal_);
+    write_vpl(vpl_data_.data() + kFloatsPerVpl * static_cast<std::size_t>(s), vpls[s], dmin2);
   }
   // A new store per batch (no wait for the draws that read the last one).
   api_->BindBuffer(GL_UNIFORM_BUFFER, vpl_block_.get());

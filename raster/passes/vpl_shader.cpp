@@ -81,14 +81,13 @@ void VplShader::draw_pass(const Vpl& vpl, GLuint shadow_cube, float texel_angle,
   const GladGLContext& api = *api_;
   set_additive_state(api);
   program_.use();
-  const float dmin = vpl.clamped() ? clamp_ * diagonal_ : 0.0f;
   api.UniformMatrix4fv(view_projection_, 1, GL_FALSE, glm::value_ptr(view_projection));
   api.Uniform3fv(position_, 1, glm::value_ptr(vpl.position));
   api.Uniform3fv(normal_, 1, glm::value_ptr(vpl.normal));
   api.Uniform3fv(intensity_, 1, glm::value_ptr(vpl.intensity));
   api.Uniform1i(kind_, static_cast<GLint>(vpl.kind));
   api.Uniform2f(spot_cos_, vpl.cos_inner, vpl.cos_outer);
-  api.Uniform1f(dmin2_, dmin * dmin);
+  api.Uniform1f(dmin2_, clamp_distance2(vpl, clamp_ * diagonal_));
   api.UniformMatrix3fv(frame_, 1, GL_FALSE, glm::value_ptr(frame));
   api.Uniform1f(bias_texel_, texel_angle);
   api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);

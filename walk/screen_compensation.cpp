@@ -1,0 +1,167 @@
+#include "walk/screen_compensation.h"
+
+#include "core/clamp_field.h"
+#include "core/error.h"
+#include "core/light_sampler.h"
+#include "core/rng.h"
+#include "walk/parallel_rows.h"
+#include "walk/vpl_gather.h"
+
+#include <atomic>
+#include <vector>
+
+namespace irad {
+
+namespace {
+
+// One gather sample of a pixel with weight (1 - d^2/d(y)^2) > 0: y's value is the image at
+// pixel `lookup`, or (lookup < 0) the exactly evaluated `value`.
+struct GatherSample {
+  int lookup = -1;
+  float weight = 0.0f;
+  glm::vec3 value{0.0f};
+};
+
+struct PixelSamples {
+  glm::vec3 albedo{0.0f}; // rho(x)
+  std::vector<GatherSample> samples;
+};
+
+struct Context {
+  const Scene& scene;
+  const RayScene& rays;
+  const View& view;
+  const VplSet& vpls;
+  float dmin; // the global clamp, world units
+  float eps;
+
+  float reach() const { return vpls.clamp_field ? vpls.clamp_field->cap() : dmin; }
+  float clamp_at(const glm::vec3& y) const {
+    return vpls.clamp_field ? vpls.clamp_field->at(y) : dmin;
+  }
+
+  // The pixel whose image value is the radiance leaving y toward the camera, or -1 when the
+  // camera does not see y's side `n` (outside the image, behind the camera, or hidden).
+  int camera_pixel(const glm::vec3& y, const glm::vec3& n) const {
+    const glm::vec4 clip = view.projection * view.view * glm::vec4(y, 1.0f);
+    if (!(clip.w > 0.0f)) return -1;
+    const float px = (clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(view.width);
+    const float py = (0.5f - clip.y / clip.w * 0.5f) * static_cast<float>(view.height);
+    if (!(px >= 0.0f && py >= 0.0f && px < float(view.width) && py < float(view.height))) return -1;
+    glm::vec3 to_eye;
+    float distance;
+    if (view.orthographic) {
+      to_eye = -view.forward;
+      distance = glm::dot(y - view.eye, view.forward);
+    } else {
+      to_eye = view.eye - y;
+      distance = glm::length(to_eye);
+      to_eye /= distance;
+    }
+    if (!(glm::dot(n, to_eye) > 0.0f) || !(distance > 2.0f * eps)) return -1;
+    if (rays.occluded(y + eps * n, to_eye, 0.0f, distance - 2.0f * eps)) return -1;
+    const int ix = static_cast<int>(px), iy = static_cast<int>(py);
+    if (scene_specular_at(ix, iy)) return -1;
+    return iy * view.width + ix;
+  }
+
+  // Mirrors reflect: their pixels hold another surface's light. Filled before the gathers.
+  std::vector<std::uint8_t> specular;
+  bool scene_specular_at(int x, int y) const {
+    return !specular.empty() && specular[std::size_t(y) * std::size_t(view.width) + x] != 0;
+  }
+};
+
+void gather_pixel(const Context& c, int px, int py, std::uint32_t count, std::uint64_t seed,
+                  PixelSamples& out, ScreenCompensationStats& stats) {
+  const CameraRay ray = pixel_ray(c.view, px, py);
+  const auto hit = c.rays.intersect(ray.origin, ray.direction, c.view.znear, 2.0f * c.view.zfar);
+  if (!hit || c.scene.material_of(hit->triangle).specular) return;
+  const ShadingPoint x = shading_point(c.scene, *hit, ray.origin, ray.direction);
+  out.albedo = x.albedo;
+  Pcg32 rng(mix64(seed ^ (static_cast<std::uint64_t>(py) * c.view.width + px)), 0);
+  const glm::vec3 origin = x.position + c.eps * x.geometric;
+  for (std::uint32_t s = 0; s < count; ++s) {
+    const double u = rng.next_double(), v = rng.next_double();
+    const glm::vec3 w = cosine_direction(x.normal, u, v);
+    if (glm::dot(w, x.geometric) <= 0.0f) continue;
+    ++stats.gathers;
+    const auto h = c.rays.intersect(origin, w, 0.0f, c.reach());
+    if (!h || c.scene.material_of(h->triangle).specular) continue;
+    const ShadingPoint y = shading_point(c.scene, *h, origin, w);
+    const float dy = c.clamp_at(y.position);
+    const float weight = dy > 0.0f ? 1.0f - h->t * h->t / (dy * dy) : 0.0f;
+    if (!(weight > 0.0f)) continue;
+    ++stats.in_reach;
+    GatherSample g;
+    g.weight = weight;
+    g.lookup = c.camera_pixel(y.position, y.geometric);
+    if (g.lookup < 0) {
+      ++stats.fallback;
+      g.value = y.emission + gather_vpls(c.rays, y, c.vpls, c.dmin, c.eps);
+    }
+    out.samples.push_back(g);
+  }
+}
+
+} // namespace
+
+Image screen_space_residual(const Scene& scene, const RayScene& rays, const View& view,
+                            const VplSet& vpls, const Image& clamped,
+                            const ScreenCompensationOptions& options,
+                            ScreenCompensationStats* stats) {
+  if (clamped.width() != view.width || clamped.height() != view.height)
+    throw Error("", "bias compensation", "the image and the view differ in size");
+  if (options.iterations < 1) throw Error("", "bias compensation", "needs >= 1 iteration");
+  Context c{scene, rays, view, vpls, options.clamp * scene.bounds.diagonal(), rays.epsilon(), {}};
+  const std::size_t n = std::size_t(view.width) * std::size_t(view.height);
+  if (scene.has_specular()) {
+    c.specular.assign(n, 0);
+    parallel_rows(view.height, options.threads, [&](int y) {
+      for (int x = 0; x < view.width; ++x) {
+        const CameraRay ray = pixel_ray(view, x, y);
+        const auto h = rays.intersect(ray.origin, ray.direction, view.znear, 2.0f * view.zfar);
+        c.specular[std::size_t(y) * view.width + x] = h && scene.material_of(h->triangle).specular;
+      }
+    });
+  }
+  Image residual(view.width, view.height);
+  if (c.reach() <= 0.0f || options.samples == 0) return residual;
+
+  std::vector<PixelSamples> pixels(n);
+  std::vector<ScreenCompensationStats> row_stats(std::size_t(view.height));
+  const std::uint64_t seed = mix64(options.seed ^ 0x73637265656eULL);
+  parallel_rows(view.height, options.threads, [&](int y) {
+    for (int x = 0; x < view.width; ++x)
+      gather_pixel(c, x, y, options.samples, seed, pixels[std::size_t(y) * view.width + x],
+                   row_stats[std::size_t(y)]);
+  });
+
+  // R_{k+1} = rho E[w (image + R_k)(y)]; the fallback samples' values are fixed.
+  const float inv_samples = 1.0f / static_cast<float>(options.samples);
+  Image next(view.width, view.height);
+  for (int k = 0; k < options.iterations; ++k) {
+    parallel_rows(view.height, options.threads, [&](int y) {
+      for (int x = 0; x < view.width; ++x) {
+        const std::size_t i = std::size_t(y) * view.width + x;
+        glm::vec3 sum(0.0f);
+        for (const GatherSample& g : pixels[i].samples)
+          sum +=
+              g.weight * (g.lookup < 0 ? g.value
+                                       : glm::vec3(clamped.pixels()[std::size_t(g.lookup)]) +
+                                             glm::vec3(residual.pixels()[std::size_t(g.lookup)]));
+        next.pixels()[i] = glm::vec4(pixels[i].albedo * sum * inv_samples, 0.0f);
+      }
+    });
+    std::swap(residual, next);
+  }
+  if (stats != nullptr)
+    for (const ScreenCompensationStats& r : row_stats) {
+      stats->gathers += r.gathers;
+      stats->in_reach += r.in_reach;
+      stats->fallback += r.fallback;
+    }
+  return residual;
+}
+
+} // namespace irad

@@ -1,0 +1,53 @@
+#pragma once
+// The clamp's residual at raster speed: screen-space bias compensation (after Novák, Engelhardt &
+// Dachsbacher 2011) with an exact fallback. The residual of walk/bias_compensation.h,
+//   R(x) = rho(x) E_w[(1 - d^2 / d(y)^2)+ L(y -> x)]   (w cosine-distributed, y its hit, d =
+//   |x-y|),
+// needs the radiance leaving the gather hit y. For a diffuse surface that radiance is the same
+// toward x as toward the camera, so where the camera sees y the clamped image itself holds it:
+// L(y -> x) = image(pixel of y). Only the y the camera does not see (hidden, outside the image,
+// or where it sees a mirror) are evaluated exactly: L_e(y) + the clamped VPLs' radiance with
+// shadow rays (walk/vpl_gather.h). Each gather sample costs two short rays instead of a shadow ray
+// per VPL. Mirrors: no residual on a mirror pixel, and a gather ray that hits a mirror counts 0
+// (the light a mirror reflects within d(y) is left out).
+//
+// The recursion of R (the light the clamp removes at y itself) comes from iterating:
+//   R_0 = 0,  R_{k+1}(x) = rho(x) E[(1 - d^2/d(y)^2)+ (image + R_k)(y)],
+// the same gather samples each time; `iterations` = 1 is Kollig & Keller's first level. A fallback
+// sample carries no recursion (its R(y) is left out: the second-order term of a hidden point).
+//
+// Where the image's pixel and y differ: y's value is that of the pixel its projection falls in
+// (the surface at that pixel's centre, within a pixel of y), and the image is the estimator's own
+// (interleaved, resolved) answer, so the residual inherits its light-set error, not more.
+#include "core/image.h"
+#include "core/scene.h"
+#include "core/view.h"
+#include "core/vpl.h"
+#include "walk/ray_scene.h"
+
+#include <cstdint>
+
+namespace irad {
+
+struct ScreenCompensationOptions {
+  float clamp = 0.05f;       // the global d_min as a fraction of the diagonal (as the estimators)
+  std::uint32_t samples = 8; // gather directions per pixel
+  int iterations = 3;        // levels of the recursion (>= 1)
+  std::uint64_t seed = 0;
+  unsigned threads = 0; // 0: all cores
+};
+
+struct ScreenCompensationStats {
+  std::uint64_t gathers = 0;  // gather rays traced
+  std::uint64_t in_reach = 0; // of them, hits closer than d(y): the samples with weight > 0
+  std::uint64_t fallback = 0; // of those, evaluated exactly (hidden from the camera)
+};
+
+// R(x) at the visible point of every pixel centre (alpha 0), for `clamped` (the VPL estimator's
+// image of `vpls` in `view`, emitters included).
+Image screen_space_residual(const Scene& scene, const RayScene& rays, const View& view,
+                            const VplSet& vpls, const Image& clamped,
+                            const ScreenCompensationOptions& options,
+                            ScreenCompensationStats* stats = nullptr);
+
+} // namespace irad
