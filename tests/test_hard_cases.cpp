@@ -320,26 +320,31 @@ struct TwoRooms {
   Camera in_a;
 };
 
-TwoRooms two_rooms() {
+// At k times the size (every coordinate, the cameras with it; radiance is unchanged).
+TwoRooms two_rooms(float k = 1.0f) {
   TwoRooms r;
   Scene& s = r.scene;
   s.source = "two_rooms";
   const std::uint32_t wall = add_material(s, glm::vec3(0.6f));
   const std::uint32_t light = add_material(s, glm::vec3(0.6f), glm::vec3(5.0f));
-  add_room(s, {0.0f, 0.0f, 0.0f}, {2.0f, 2.0f, 2.0f}, wall);     // room A: quads 0..5
-  add_room(s, {2.002f, 0.0f, 0.0f}, {4.002f, 2.0f, 2.0f}, wall); // room B: quads 6..11
+  // Room A: quads 0..5, room B: quads 6..11.
+  add_room(s, k * glm::vec3(0.0f), k * glm::vec3(2.0f), wall);
+  add_room(s, k * glm::vec3(2.002f, 0.0f, 0.0f), k * glm::vec3(4.002f, 2.0f, 2.0f), wall);
   // Ceiling light of room A, facing down, 1 mm below the ceiling.
-  add_quad(s, {0.7f, 1.999f, 0.7f}, {1.3f, 1.999f, 0.7f}, {1.3f, 1.999f, 1.3f},
-           {0.7f, 1.999f, 1.3f}, light);
+  add_quad(s, k * glm::vec3(0.7f, 1.999f, 0.7f), k * glm::vec3(1.3f, 1.999f, 0.7f),
+           k * glm::vec3(1.3f, 1.999f, 1.3f), k * glm::vec3(0.7f, 1.999f, 1.3f), light);
   finish(s);
-  r.in_b = look_at({3.95f, 1.05f, 1.03f}, {2.002f, 0.9f, 1.0f}, {0, 1, 0}, 1.5f);
-  r.in_a = look_at({0.05f, 1.05f, 1.03f}, {2.0f, 0.9f, 1.0f}, {0, 1, 0}, 1.5f);
+  r.in_b = look_at(k * glm::vec3(3.95f, 1.05f, 1.03f), k * glm::vec3(2.002f, 0.9f, 1.0f), {0, 1, 0},
+                   1.5f);
+  r.in_a =
+      look_at(k * glm::vec3(0.05f, 1.05f, 1.03f), k * glm::vec3(2.0f, 0.9f, 1.0f), {0, 1, 0}, 1.5f);
   return r;
 }
 
 // Where light shows in an image of room B: in all and per wall of B, the number of non-zero
 // pixels, the largest value (max over R, G, B) and the largest distance of such a pixel's surface
-// point (the pixel-centre ray's hit) from the shared wall x = 2.002.
+// point (the pixel-centre ray's hit) from the shared wall x = 2.002 (in the unscaled scene's
+// metres: the scene is two_rooms(k)).
 struct Leak {
   std::size_t pixels = 0;
   double max = 0.0, sum = 0.0, reach = 0.0;
@@ -347,7 +352,7 @@ struct Leak {
   std::array<double, 6> wall_max{}, wall_reach{};
 };
 
-Leak measure_leak(const Image& image, const RayScene& rays, const View& view) {
+Leak measure_leak(const Image& image, const RayScene& rays, const View& view, float k = 1.0f) {
   Leak leak;
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
@@ -366,7 +371,7 @@ Leak measure_leak(const Image& image, const RayScene& rays, const View& view) {
         continue;
       }
       const std::size_t w = quad - 6;
-      const double reach = double((ray.origin + hit->t * dir).x) - 2.002;
+      const double reach = double((ray.origin + hit->t * dir).x) / k - 2.002;
       leak.reach = std::max(leak.reach, reach);
       ++leak.wall_pixels[w];
       leak.wall_max[w] = std::max(leak.wall_max[w], v);
@@ -449,6 +454,63 @@ TEST(HardCases, RasterShadowsHoldAtATwoMillimetreWall) {
   const TwoRoomImages r = render_two_rooms();
   EXPECT_LT(r.raster[0].reach, 0.005);
   EXPECT_LT(r.raster[0].pixels, 10u);
+}
+
+// The leak as `irad render` makes it by default (RasterOptions{}: batch 16, interleave 4, shadow
+// faces of a quarter of the image side, 64 here, shadow LOD and occlusion on), with --batch 1 and
+// with --interleave 1, at 1x, 10x and 0.1x the scene's size, as the ratio of the mean radiance of
+// room B's image to that of room A's (the same mode and VPLs).
+struct ModeLeak {
+  const char* name;
+  RasterOptions options;
+  std::array<double, 3> ratio{}; // per scale
+};
+
+TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
+  Log log = quiet_log();
+  const float scales[3] = {1.0f, 10.0f, 0.1f};
+  std::array<ModeLeak, 3> modes{
+      {{"default", {}, {}}, {"--batch 1", {}, {}}, {"--interleave 1", {}, {}}}};
+  modes[1].options.batch = 1;
+  modes[2].options.interleave = 1;
+  for (std::size_t j = 0; j < std::size(scales); ++j) {
+    const TwoRooms rooms = two_rooms(scales[j]);
+    const Scene& s = rooms.scene;
+    const RayScene rays(s);
+    const VplSet set = quasi_random_walk(s, rays, {128, 64}, log);
+    const View view_b = make_view(rooms.in_b, s.bounds, 64, 64);
+    const View view_a = make_view(rooms.in_a, s.bounds, 32, 32);
+    EXPECT_EQ(measure_leak(trace_vpls(s, rays, view_b, set, {0.05f, 0}), rays, view_b).pixels, 0u);
+    for (ModeLeak& m : modes) {
+      RasterRenderer raster(s, m.options);
+      const Image b = raster.render(view_b, set);
+      const double room_a = mean_rgb(raster.render(view_a, set));
+      m.ratio[j] = mean_rgb(b) / room_a;
+      const Leak leak = measure_leak(b, rays, view_b, scales[j]);
+      std::printf("two rooms at %gx, %s: leak %.4g of room A's mean %.3g, %zu lit pixels, max "
+                  "%.3g (%.3g x room A), up to %.3f m from the wall\n",
+                  scales[j], m.name, m.ratio[j], room_a, leak.pixels, leak.max, leak.max / room_a,
+                  leak.reach);
+    }
+  }
+  // Measured (llvmpipe, 64^2 faces, N = 128): default and --batch 1 2.70e-4 (119 pixels, max
+  // 0.043 x room A's mean, up to 0.23 m from the wall: the resolve spreads it), --interleave 1
+  // 3.39e-4 (34 pixels, max 0.19 x, up to 2.4 cm: half a texel's footprint at the VPLs'
+  // distance), at every scale. THE RASTER STILL LEAKS: issue 14 asks for below 1e-4. The cause is
+  // one distance per shadow texel, taken at its centre: across the texel the distance of a wall
+  // seen at theta varies by dist * (2 / R) * tan(theta), far more than 2 mm. These bounds (~1.3x)
+  // only keep the leak from growing.
+  const double bound[] = {3.5e-4, 3.5e-4, 4.5e-4};
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    EXPECT_LT(modes[i].ratio[0], bound[i]) << modes[i].name;
+    // Every tolerance is a fraction of the diagonal: measured within 1.1e-3 of 1x
+    // (--interleave 1 at 0.1x; the others within 1e-6); bound ~10x.
+    for (int j = 1; j < 3; ++j) {
+      std::printf("%s: leak at %gx / at 1x = %.6f\n", modes[i].name, scales[j],
+                  modes[i].ratio[j] / modes[i].ratio[0]);
+      EXPECT_NEAR(modes[i].ratio[j] / modes[i].ratio[0], 1.0, 0.01) << modes[i].name << scales[j];
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
