@@ -55,6 +55,11 @@ Sweep sweep_for(const BenchOptions& o, const std::string& name) {
                 256, 4096, {16, 32, 64, 128, 256, 512, 1024}, {16, 64, 256}, {4, 16, 64, 256, 1024},
                 7};
   if (name == "large") s.raster_max = o.quick ? 16u : 64u;
+  if (name == "cornell" && !o.quick) { // up to ~30 s, where pt meets the raster (issue 14)
+    s.paths.insert(s.paths.end(), {4096, 16384});
+    s.rt_paths.insert(s.rt_paths.end(), {1024, 4096});
+    s.k1_max = 4096;
+  }
   if (is_real_scene(name) || name == "sphere2m") {
     s = o.quick ? Sweep{64, 256, {16}, {16}, {4, 16}, 0}
                 : Sweep{128, 1024, {16, 64, 256}, {16, 64, 256}, {4, 16, 64, 256}, 0};
