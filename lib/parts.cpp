@@ -65,6 +65,19 @@ std::uint32_t count_attribute(const ExrAttributes& a, const std::string& name,
   return static_cast<std::uint32_t>(*n);
 }
 
+// The first entry of two ';'-separated option lists that differs, "NAME=VALUE" each.
+std::pair<std::string, std::string> first_difference(const std::string& a, const std::string& b) {
+  std::size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size()) {
+    const std::size_t ea = std::min(a.find(';', i), a.size());
+    const std::size_t eb = std::min(b.find(';', j), b.size());
+    if (a.compare(i, ea - i, b, j, eb - j) != 0) return {a.substr(i, ea - i), b.substr(j, eb - j)};
+    i = ea + 1;
+    j = eb + 1;
+  }
+  return {a, b};
+}
+
 // Throws naming `file` unless `part` belongs with `first` (the part of the lowest range).
 void check_same(const PartInfo& first, const std::string& first_file, const PartInfo& part,
                 const std::string& file) {
@@ -75,7 +88,8 @@ void check_same(const PartInfo& first, const std::string& first_file, const Part
                               what, b, a));
   };
   differ("scene (irad.scene.fnv1a64)", first.scene_hash, part.scene_hash);
-  differ("options (irad.options)", first.options, part.options);
+  const auto [mine, theirs] = first_difference(first.options, part.options);
+  differ("options (irad.options)", mine, theirs);
   differ("irad version", first.version, part.version);
   differ("kind of range", first.kind, part.kind);
   differ("total", std::to_string(first.total), std::to_string(part.total));
