@@ -21,8 +21,9 @@ namespace fs = std::filesystem;
 namespace {
 
 struct Difference {
-  double max_abs = 0.0; // over R, G, B, A
-  double max_rel = 0.0; // |a - b| / max(|b|, 1e-3)
+  double max_abs = 0.0;                    // over R, G, B, A
+  double max_rel = 0.0;                    // |a - b| / max(|b|, 1e-3)
+  std::size_t differing = 0, channels = 0; // channels whose float bits differ (after rounding)
 };
 
 Difference difference(const irad::Image& a, const std::vector<glm::dvec4>& b) {
@@ -32,6 +33,8 @@ Difference difference(const irad::Image& a, const std::vector<glm::dvec4>& b) {
       const double e = std::abs(double(a.pixels()[i][c]) - b[i][c]);
       d.max_abs = std::max(d.max_abs, e);
       d.max_rel = std::max(d.max_rel, e / std::max(std::abs(b[i][c]), 1e-3));
+      d.differing += a.pixels()[i][c] != static_cast<float>(b[i][c]);
+      ++d.channels;
     }
   return d;
 }
@@ -66,8 +69,9 @@ protected:
       for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += glm::dvec4(part.pixels()[i]);
     }
     const Difference d = difference(full, sum);
-    std::printf("parts against the single render: max abs %.3g, max rel %.3g\n", d.max_abs,
-                d.max_rel);
+    std::printf("parts against the single render: max abs %.3g, max rel %.3g, %zu of %zu "
+                "channels differ\n",
+                d.max_abs, d.max_rel, d.differing, d.channels);
     return d;
   }
 };
@@ -76,10 +80,12 @@ const std::vector<std::pair<std::uint32_t, std::uint32_t>> kFour = {
     {0, 8}, {8, 16}, {16, 24}, {24, 32}};
 
 // Bounds: the float framebuffer adds the VPLs in another order and grouping (the parts' sums,
-// then their double sum); measured max relative differences at 32x32, N = 32 (4 parts):
-// default options 2.4e-7, --interleave 1 --batch 1 1.2e-7, rt-vpl 1.2e-7, pt 0 (docs/cluster.md).
-// 4e-6 is 32 float ulps; a wrong weight or a lost or doubled VPL is off by far more (one VPL
-// of 170 changes pixels by ~1e-3 relative).
+// then their double sum), and the parts after the first subtract the emitters' pass; measured
+// max relative differences at 32x32, N = 32 (4 parts): default options 3.0e-7, --interleave 1
+// --batch 1 3.5e-7, jitter (3 uneven parts) 3.7e-7, rt-vpl 5.4e-7, pt 9.1e-8; max absolute
+// 1.9e-6, one float ulp of the emitter's radiance (docs/cluster.md). 4e-6 is 7 times the
+// largest; a wrong weight or a lost or doubled VPL is off by far more (one VPL of 170 changes
+// pixels by ~1e-3 relative; a missing part by 0.8, AMissingRangeIsMissingLight).
 constexpr double kBound = 4e-6;
 
 TEST_F(Parts, RasterPathRangesAddUpToTheFullRender) {
