@@ -3,7 +3,7 @@
 # Debian's munge and slurm-wlm; its own key, sockets, slurm.conf, state and spool; one node with
 # this machine's cores; no cgroups), a 4-task array of path ranges through
 # scripts/slurm/submit_paths.sh and the merge depending on it, then the merged image against a
-# single-process render. Every daemon it started is stopped on any exit.
+# single-process render; then a 2-task array of walkthrough frame ranges (submit_frames.sh). Every daemon it started is stopped on any exit.
 # Usage: slurm_array.sh IRAD SOURCE_DIR   (as root: SlurmUser=root)
 set -euo pipefail
 irad="$1" src="$2"
@@ -106,4 +106,16 @@ print("slurm_array: merged vs single:", {k: c[k] for k in c if k in ("max_abs_er
 bad = c["max_abs_error"]
 sys.exit(0 if bad <= 1e-5 else 1)
 PY
-echo "slurm_array: OK (4 tasks and the merge on $host)"
+
+# Frames: a 2-task array of frame ranges of a walkthrough (scripts/slurm/submit_frames.sh), each
+# task its share of 0:6.
+frames=$(IRAD="$irad" bash "$src/scripts/slurm/submit_frames.sh" "$scene" 0:6 2 "$dir/frames" \
+  --paths 8 --size 32x32 --gl osmesa)
+while squeue -h -j "$frames" 2>/dev/null | grep -q .; do
+  [ $SECONDS -lt $deadline ] || fail "the frame jobs did not finish in 240 s"
+  sleep 1
+done
+for f in 0 1 2 3 4 5; do
+  [ -s "$dir/frames/frame_000$f.png" ] || fail "frame $f missing: $(ls "$dir/frames")"
+done
+echo "slurm_array: OK (4 path-range tasks, the merge and 2 frame-range tasks on $host)"
