@@ -17,5 +17,6 @@ void add_scene_command(CLI::App& app, Commands& commands);
 void add_bench_command(CLI::App& app, Commands& commands);
 void add_convert_command(CLI::App& app, Commands& commands);
 void add_walkthrough_command(CLI::App& app, Commands& commands);
+void add_merge_command(CLI::App& app, Commands& commands);
 
 } // namespace irad::apps

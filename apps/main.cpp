@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   irad::apps::add_bench_command(app, commands);
   irad::apps::add_convert_command(app, commands);
   irad::apps::add_walkthrough_command(app, commands);
+  irad::apps::add_merge_command(app, commands);
   try {
     app.parse(argc, argv);
     return commands.run();

@@ -4,6 +4,7 @@
 #include "core/scene_builder.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -98,6 +99,24 @@ std::optional<Camera> parse_look_at(const LookAtArgs& args, const std::string& c
   Camera c = look_at(from, at, up, glm::radians(yfov)); // the checks above keep it from failing
   c.name = "--look-from";
   return c;
+}
+
+std::string image_options(const CLI::App& cmd, const std::vector<std::string>& ignored) {
+  std::string text;
+  for (const CLI::Option* o : cmd.get_options()) {
+    const std::string name = o->get_lnames().empty() ? o->get_name() : "--" + o->get_lnames()[0];
+    if (o->get_positional() || name == "--help" ||
+        std::find(ignored.begin(), ignored.end(), name) != ignored.end())
+      continue;
+    std::string value;
+    if (o->count() == 0) {
+      value = o->get_default_str();
+    } else {
+      for (const std::string& r : o->results()) value += (value.empty() ? "" : ",") + r;
+    }
+    text += (text.empty() ? "" : ";") + name + "=" + value;
+  }
+  return text;
 }
 
 } // namespace irad::apps

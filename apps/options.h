@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -38,5 +39,12 @@ void add_look_at_options(CLI::App& cmd, LookAtArgs& args);
 // --look-at or the reverse (or --up/--yfov without them), from == at, up zero or parallel to the
 // view direction, yfov outside (0, 180) degrees, or `camera` (the --camera value) not empty.
 std::optional<Camera> parse_look_at(const LookAtArgs& args, const std::string& camera);
+
+// The options of `cmd` that change the image, canonical: "NAME=VALUE" per option in the order
+// of their definition, joined by ';'; VALUE is what the command line gave (several values
+// joined by ',') or the default. Options named in `ignored` (long names, e.g. "--threads") and
+// the positional arguments are left out. Two command lines that give the same values, or leave
+// them at the default, give the same text (a value spelled differently, 0.05 and .05, differs).
+std::string image_options(const CLI::App& cmd, const std::vector<std::string>& ignored);
 
 } // namespace irad::apps

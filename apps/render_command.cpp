@@ -6,6 +6,7 @@
 #include "apps/lighting_options.h"
 #include "apps/options.h"
 #include "apps/progress_line.h"
+#include "apps/render_parts.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "irad/render.h"
@@ -63,6 +64,7 @@ struct RenderArgs {
   std::uint64_t max_file_mib = LoadLimits{}.max_file_bytes >> 20;
   int max_texture_size = LoadLimits{}.max_texture_size;
   LightingArgs lighting;
+  PartArgs part; // --path-range, --spp-range
 };
 
 // Set by SIGINT or SIGTERM during a render (lock-free, so async-signal-safe).
@@ -271,6 +273,7 @@ int run_render(const RenderArgs& args) {
     require_writable(o, "-o");
   }
   if (!args.stats.empty()) require_writable(args.stats, "--stats");
+  apply_part_ranges(args.part, request);
 
   const InterruptHandler interrupt_handler;
   request.render.cancel = &g_interrupted;
@@ -297,7 +300,14 @@ int run_render(const RenderArgs& args) {
                  written.empty() ? "nothing written" : ("partial image in " + written).c_str());
     die_by(signal);
   }
-  for (const std::string& o : args.outputs) write_image(o, r.image, png);
+  const ExrAttributes header =
+      is_part(args.part) ? part_header(args.part, request, r) : ExrAttributes{};
+  for (const std::string& o : args.outputs) {
+    if (image_format_of(o) == ImageFormat::Exr)
+      write_exr(o, r.image, header);
+    else
+      write_image(o, r.image, png);
+  }
   if (!args.stats.empty()) write_stats(args.stats, stats_json(args, f.scene, r));
   if (!args.quiet) print_summary(args, f.scene, r);
   // A signal after the image was complete: the outputs are whole; end as the signal asks.
@@ -341,6 +351,7 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "glTF scene name or index (default: the file's default scene)");
   add_look_at_options(*cmd, args->look);
   add_lighting_options(*cmd, args->lighting);
+  add_part_options(*cmd, args->part);
   cmd->add_option("--time", args->time, "Pose the glTF animation at T seconds (default: rest)");
   cmd->add_option("--exposure", args->exposure, "PNG exposure in stops (EV)")
       ->capture_default_str();

@@ -11,6 +11,7 @@
 #include "apps/window_viewer.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "irad/parts.h"
 #include "irad/scene_setup.h"
 #include "irad/walkthrough.h"
 
@@ -28,6 +29,7 @@ namespace irad::apps {
 namespace {
 
 struct WalkthroughArgs {
+  std::string frame_share; // --frame-share auto: this Slurm array task's share of --frames
   std::string scene, output, frames = "0:60", size = "256x256", mode = "auto", video, camera;
   std::string gltf_scene; // --scene: a glTF scene by name or index
   std::string gl = "auto";
@@ -41,13 +43,18 @@ struct WalkthroughArgs {
   int window_frames = 0;
 };
 
-std::pair<int, int> parse_frames(const std::string& s) {
+// --frames A:B, or with --frame-share auto this array task's share of it (lib/irad/parts.h).
+std::pair<int, int> parse_frames(const std::string& s, const std::string& share) {
   int a = 0, b = 0;
   char colon = 0, extra = 0;
   if (std::sscanf(s.c_str(), "%d%c%d%c", &a, &colon, &b, &extra) != 3 || colon != ':' || a < 0 ||
       b <= a)
     throw Error("", "--frames", fmt::format("'{}' is not A:B with 0 <= A < B", s));
-  return {a, b};
+  if (share.empty()) return {a, b};
+  if (share != "auto") throw Error("", "--frame-share", "'" + share + "' is not auto");
+  const auto [first, end] =
+      parse_part_range(share, static_cast<std::uint32_t>(b - a), "--frame-share");
+  return {a + static_cast<int>(first), a + static_cast<int>(end)};
 }
 
 // The output pattern must hold exactly one integer conversion (%d, %04d, ...).
@@ -105,7 +112,7 @@ int run_window(WindowViewer& viewer, Walkthrough& walk, const Scene& scene, int 
 int run_walkthrough(const WalkthroughArgs& args) {
   Log log;
   log.set_quiet(args.quiet);
-  const auto [first, last] = parse_frames(args.frames);
+  const auto [first, last] = parse_frames(args.frames, args.frame_share);
   if (!args.window) check_pattern(args.output);
   const std::optional<Camera> own_camera = parse_look_at(args.look, args.camera);
   const std::unique_ptr<WindowViewer> viewer = open_window(args);
@@ -158,6 +165,9 @@ void add_walkthrough_command(CLI::App& app, Commands& commands) {
   cmd->add_option("scene", args->scene, "glTF 2.0 scene")->required();
   cmd->add_option("-o,--output", args->output, "Frame pattern, e.g. frames/%04d.png or .exr");
   cmd->add_option("--frames", args->frames, "Frames A:B (B exclusive)")->capture_default_str();
+  cmd->add_option("--frame-share", args->frame_share,
+                  "auto: render only this Slurm array task's share of --frames "
+                  "(SLURM_ARRAY_TASK_ID of SLURM_ARRAY_TASK_COUNT)");
   cmd->add_option("--fps", args->fps, "Frames per second of animation time")->capture_default_str();
   cmd->add_option("--paths", args->paths, "N: the ring holds the N most recent paths")
       ->capture_default_str();

@@ -12,6 +12,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStdIO.h>
+#include <ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cctype>
@@ -143,11 +144,12 @@ void write_image(const fs::path& path, const Image& image, const PngOptions& png
 }
 
 // Channels R, G, B, A as 32-bit FLOAT, ZIP compression, data window = display window at (0, 0).
-void write_exr(const fs::path& path, const Image& image) {
+void write_exr(const fs::path& path, const Image& image, const ExrAttributes& attributes) {
   check_image(path, image);
-  write_via_tmp(path, [&image](const fs::path& tmp) {
+  write_via_tmp(path, [&image, &attributes](const fs::path& tmp) {
     Imf::Header header(image.width(), image.height());
     header.compression() = Imf::ZIP_COMPRESSION;
+    for (const auto& [name, value] : attributes) header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer frame;
     const float* first = &image.pixels().front().x;
     const std::size_t x_stride = sizeof(glm::vec4);
@@ -199,7 +201,7 @@ void write_png(const fs::path& path, const Image& image, const PngOptions& png) 
 // The image covers the data window (its min corner becomes pixel (0, 0)); the display window is
 // ignored. R, G and B must exist; A is read when present, else 1. Half, float and uint channels
 // are all converted to float by OpenEXR.
-Image read_exr(const fs::path& path) {
+Image read_exr(const fs::path& path, ExrAttributes* attributes) {
   try {
     errno = 0;
     std::ifstream in(path, std::ios::binary);
@@ -225,6 +227,10 @@ Image read_exr(const fs::path& path) {
                                                   1, 1, c == 3 ? 1.0 : 0.0));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
+    if (attributes != nullptr)
+      for (auto a = header.begin(); a != header.end(); ++a)
+        if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&a.attribute()))
+          (*attributes)[a.name()] = text->value();
     return image;
   } catch (const std::exception& e) {
     throw Error(path.string(), "", "cannot read: " + one_line(e.what()));

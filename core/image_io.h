@@ -4,6 +4,7 @@
 #include "core/image.h"
 
 #include <filesystem>
+#include <map>
 #include <string>
 
 namespace irad {
@@ -26,10 +27,14 @@ ImageFormat image_format_of(const std::filesystem::path& path);
 
 // Writes by extension. Throws irad::Error naming the file when it cannot be written.
 void write_image(const std::filesystem::path& path, const Image& image, const PngOptions& png = {});
-void write_exr(const std::filesystem::path& path, const Image& image);
+// String attributes of an EXR header (name -> value; irad's part headers use "irad.*" names).
+using ExrAttributes = std::map<std::string, std::string>;
+void write_exr(const std::filesystem::path& path, const Image& image,
+               const ExrAttributes& attributes = {});
 void write_png(const std::filesystem::path& path, const Image& image, const PngOptions& png = {});
-// Reads R, G, B (and A when present, else 1) of an EXR as float. Throws irad::Error.
-Image read_exr(const std::filesystem::path& path);
+// Reads R, G, B (and A when present, else 1) of an EXR as float, and, when `attributes` is not
+// null, every string attribute of its header. Throws irad::Error.
+Image read_exr(const std::filesystem::path& path, ExrAttributes* attributes = nullptr);
 
 // The display value in [0,1] (before sRGB encoding) of one linear channel.
 float tone_map(float linear, const PngOptions& png);

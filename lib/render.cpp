@@ -61,6 +61,22 @@ struct Stages {
   }
 };
 
+// A path range that does not start at path 0 holds only its VPLs' light: the visible emitters
+// and the background, which every render adds once, belong to the part that starts at 0. The
+// estimators add them in their final pass, so the part subtracts the image of no VPLs at all
+// (exactly those terms; alpha too, so the parts' alphas add up to 1).
+bool without_direct(const RenderOptions& o) {
+  return o.walk.first_path > 0;
+}
+void subtract(Image& image, const Image& direct) {
+  for (std::size_t i = 0; i < image.pixels().size(); ++i) image.pixels()[i] -= direct.pixels()[i];
+}
+VplSet no_vpls(const VplSet& walk) {
+  VplSet none = walk;
+  none.vpls.clear();
+  return none;
+}
+
 void run_pt(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
   PathTracerOptions pt = s.options.pt;
@@ -81,6 +97,8 @@ void run_raster(Stages& s, const RayScene& rays) {
   RasterTimings timings;
   s.r.image = raster.render(s.r.view, s.r.vpls, &timings,
                             [&s](std::size_t done, std::size_t total) { s.progress(done, total); });
+  if (without_direct(s.options) && !s.cancelled())
+    subtract(s.r.image, raster.render(s.r.view, no_vpls(s.r.vpls)));
   s.r.seconds.raster = since(t0);
   s.r.seconds.readback = timings.readback;
   s.r.passes = timings.passes;
@@ -94,8 +112,10 @@ void run_raster(Stages& s, const RayScene& rays) {
 
 void run_rt_vpl(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
-  s.r.image = trace_vpls(s.scene, rays, s.r.view, s.r.vpls,
-                         {s.options.raster.clamp, s.options.pt.threads, s.stop.flag()});
+  const VplTracerOptions options{s.options.raster.clamp, s.options.pt.threads, s.stop.flag()};
+  s.r.image = trace_vpls(s.scene, rays, s.r.view, s.r.vpls, options);
+  if (without_direct(s.options) && !s.cancelled())
+    subtract(s.r.image, trace_vpls(s.scene, rays, s.r.view, no_vpls(s.r.vpls), options));
   s.r.seconds.trace = since(t0);
 }
 
@@ -161,6 +181,26 @@ void run_vpl_estimator(Stages& s, const RayScene& rays) {
         clamped_fraction(s.scene, rays, s.r.view, s.r.vpls, s.options.raster.clamp);
 }
 
+// What a path range cannot split exactly (docs/cluster.md): the clamp's residual is gathered
+// recursively from the emitters and all VPLs at once, and the raster's pass over visible mirrors
+// adds emission and VPL light in one gather; a spp range is the path tracer's, a path range the
+// VPL estimators'.
+void check_range(const Scene& scene, const RenderOptions& o) {
+  const bool paths = o.walk.first_path > 0 || o.walk.end_path > 0;
+  const bool samples = o.pt.first_sample > 0 || o.pt.end_sample > 0;
+  const bool pt = o.estimator == Estimator::Pt;
+  if (paths && pt)
+    throw Error("", "--path-range", "is for raster and rt-vpl; pt takes --spp-range");
+  if (samples && !pt)
+    throw Error("", "--spp-range", "is for pt; raster and rt-vpl take --path-range");
+  if (paths && o.bias_compensation)
+    throw Error("", "--path-range",
+                "cannot split --bias-compensation (its residual is not a sum over paths)");
+  if (paths && scene.has_specular())
+    throw Error(scene.source, "--path-range",
+                "cannot split a scene with mirrors (the mirror pass is not a sum over paths)");
+}
+
 } // namespace
 
 Estimator parse_estimator(const std::string& name) {
@@ -195,6 +235,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
     throw Error(scene.source, "--bias-compensation",
                 "the clamp's residual does not handle mirrors (specular materials) yet");
 
+  check_range(scene, options);
   if (s.cancelled()) {
     // Interrupted while loading: nothing was rendered.
   } else if (options.estimator == Estimator::Pt) {

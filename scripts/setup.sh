@@ -12,6 +12,7 @@ packages=(
   python3-glad gnuplot-nox
   libglfw3-dev xvfb xauth # irad walkthrough --window, and its test under xvfb-run
   clang-14 libclang-rt-14-dev # the fuzzer: cmake --preset fuzz, fuzz/run.sh (libFuzzer, ASan)
+  slurm-wlm munge # ctest slurm_array: a Slurm on localhost (tests/slurm/slurm_array.sh)
   pybind11-dev python3-pybind11 python3-dev python3-numpy python3-pytest python3-matplotlib # python/ (import irad)
 )
 

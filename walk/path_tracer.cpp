@@ -1,5 +1,6 @@
 #include "walk/path_tracer.h"
 
+#include "core/error.h"
 #include "core/light_sampler.h"
 #include "core/rng.h"
 #include "core/vpl.h"
@@ -7,6 +8,7 @@
 #include "walk/parallel_rows.h"
 
 #include <cmath>
+#include <fmt/format.h>
 #include <limits>
 #include <numbers>
 
@@ -216,13 +218,19 @@ Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
   const Tracer tracer(scene, rays, options);
   Image image(view.width, view.height);
   const std::uint64_t seed = mix64(options.seed);
+  const std::uint32_t end = options.end_sample == 0 ? options.spp : options.end_sample;
+  if (options.first_sample >= end || end > options.spp)
+    throw Error("", "--spp-range",
+                fmt::format("{}:{} is not a non-empty range within 0:{}", options.first_sample, end,
+                            options.spp));
+  const auto alpha = static_cast<float>(double(end - options.first_sample) / options.spp);
   auto row = [&](int y) {
     for (int x = 0; x < view.width; ++x) {
       if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
       const CameraRay ray = pixel_ray(view, x, y);
       const std::uint64_t pixel = static_cast<std::uint64_t>(y) * view.width + x;
       glm::dvec3 sum(0.0);
-      for (std::uint32_t s = 0; s < options.spp; ++s) {
+      for (std::uint32_t s = options.first_sample; s < end; ++s) {
         Pcg32 rng(mix64(seed ^ pixel), s); // one stream per pixel and sample
         CameraRay r = ray;
         if (options.pixel_footprint) {
@@ -234,7 +242,7 @@ Image path_trace(const Scene& scene, const RayScene& rays, const View& view,
             tracer.radiance(r.origin, r.direction, view.znear, rng, mix64(seed ^ pixel) + s);
         if (std::isfinite(l.x) && std::isfinite(l.y) && std::isfinite(l.z)) sum += glm::dvec3(l);
       }
-      image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), 1.0f);
+      image.at(x, y) = glm::vec4(glm::vec3(sum / static_cast<double>(options.spp)), alpha);
     }
   };
   parallel_rows(view.height, options.threads, row, [&](int done) {

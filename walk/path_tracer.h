@@ -38,6 +38,12 @@ struct PathTracerOptions {
   // When it becomes true (a signal handler), no further pixel is started: those left are 0,
   // alpha included.
   const std::atomic<bool>* cancel = nullptr;
+  // Last, so that aggregate initialisations of the fields above stay as they were.
+  // Trace only samples first_sample..end_sample-1 (end_sample 0: spp) of every pixel, the same
+  // samples as the full run, divided by spp all the same; alpha is their share (end - first)/spp.
+  // The images of disjoint ranges add up to the full image (irad render --spp-range).
+  std::uint32_t first_sample = 0;
+  std::uint32_t end_sample = 0;
 };
 
 Image path_trace(const Scene& scene, const RayScene& rays, const View& view,

@@ -138,7 +138,12 @@ VplSet quasi_random_walk(const Scene& scene, const RayScene& rays, const WalkOpt
   const QuasiRandomWalk walk(scene, rays, options, log);
   VplSet set = walk.header();
   set.vpls.reserve(set.planned);
-  for (std::uint32_t i = 0; i < set.paths; ++i) walk.trace(i, set.vpls);
+  const std::uint32_t end = options.end_path == 0 ? set.paths : options.end_path;
+  if (options.first_path >= end || end > set.paths)
+    throw Error("", "--path-range",
+                fmt::format("{}:{} is not a non-empty range within 0:{}", options.first_path, end,
+                            set.paths));
+  for (std::uint32_t i = options.first_path; i < end; ++i) walk.trace(i, set.vpls);
   return set;
 }
 

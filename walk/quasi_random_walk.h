@@ -39,6 +39,11 @@ struct WalkOptions {
   // How the N paths are shared among the lights (core/light_sampler.h): by power (design.md 6.2)
   // or N/G per light; the light is chosen from the walk's first, best stratified dimension.
   LightAllocation allocation = LightAllocation::Power;
+  // Trace only the particles first_path..end_path-1 (end_path 0: N) of the N-path walk: the same
+  // VPLs with the same weights 1/n_j as the full walk, so the images of disjoint ranges add up to
+  // the full image (irad render --path-range, irad merge).
+  std::uint32_t first_path = 0;
+  std::uint32_t end_path = 0;
 };
 
 // The walk for a fixed scene and N: particles can be traced one at a time (the real-time ring of
@@ -62,7 +67,8 @@ private:
   std::vector<MirrorPolygon> mirrors_; // core/mirrors.h; empty: the diffuse walk unchanged
 };
 
-// All N particles. Throws irad::Error when the scene has no light or the options are impossible.
+// All N particles (or the range of WalkOptions). Throws irad::Error when the scene has no light or
+// the options are impossible.
 VplSet quasi_random_walk(const Scene& scene, const RayScene& rays, const WalkOptions& options,
                          Log& log);
 

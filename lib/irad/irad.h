@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "irad/compare.h"
+#include "irad/parts.h"
 #include "irad/render.h"
 #include "irad/scene_setup.h"
 #include "irad/walkthrough.h"
