@@ -141,6 +141,7 @@ void compensate_on_screen(Stages& s, const RayScene& rays) {
   options.clamp = s.options.raster.clamp;
   options.samples = s.options.screen_samples;
   options.iterations = s.options.screen_iterations;
+  options.emission = !without_direct(s.options); // the emitters belong to the part from 0
   options.seed = s.options.pt.seed;
   options.threads = s.options.pt.threads;
   ScreenCompensationStats stats;
@@ -154,17 +155,29 @@ void compensate_on_screen(Stages& s, const RayScene& rays) {
 }
 
 // The local clamp (core/clamp_field.h) over the walk's VPLs: their clamp distances, and the field
-// the residual evaluates at its gather hits.
-void assign_local_clamp(Stages& s) {
-  apply_local_clamp(s.r.vpls, s.scene.bounds.diagonal(),
-                    {s.options.clamp_neighbours, s.options.clamp_scale, s.options.raster.clamp});
+// the residual evaluates at its gather hits. A part of the paths takes the field of all N paths
+// (walked again: the walk is cheap), so that its VPLs keep the full render's clamp distances.
+void assign_local_clamp(Stages& s, const RayScene& rays) {
+  const ClampFieldOptions options{s.options.clamp_neighbours, s.options.clamp_scale,
+                                  s.options.raster.clamp};
+  const float diagonal = s.scene.bounds.diagonal();
+  if (s.options.walk.first_path == 0 && s.options.walk.end_path == 0) {
+    apply_local_clamp(s.r.vpls, diagonal, options);
+    return;
+  }
+  WalkOptions all = s.options.walk;
+  all.first_path = all.end_path = 0;
+  auto field = std::make_shared<const ClampField>(quasi_random_walk(s.scene, rays, all, s.log),
+                                                  diagonal, options);
+  assign_clamp_distances(s.r.vpls, *field);
+  s.r.vpls.clamp_field = std::move(field);
 }
 
 // The walk, one of the VPL estimators, and what the options add to it.
 void run_vpl_estimator(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
   s.r.vpls = quasi_random_walk(s.scene, rays, s.options.walk, s.log);
-  if (s.options.local_clamp) assign_local_clamp(s);
+  if (s.options.local_clamp) assign_local_clamp(s, rays);
   s.r.seconds.walk = since(t0);
   if (s.cancelled()) return; // interrupted during the walk: nothing was rendered
   if (s.options.estimator == Estimator::Raster)

@@ -34,6 +34,7 @@ struct Context {
   const VplSet& vpls;
   float dmin; // the global clamp, world units
   float eps;
+  bool emission; // ScreenCompensationOptions::emission
 
   float reach() const { return vpls.clamp_field ? vpls.clamp_field->cap() : dmin; }
   float clamp_at(const glm::vec3& y) const {
@@ -98,7 +99,8 @@ void gather_pixel(const Context& c, int px, int py, std::uint32_t count, std::ui
     g.lookup = c.camera_pixel(y.position, y.geometric);
     if (g.lookup < 0) {
       ++stats.fallback;
-      g.value = y.emission + gather_vpls(c.rays, y, c.vpls, c.dmin, c.eps);
+      g.value = (c.emission ? y.emission : glm::vec3(0.0f)) +
+                gather_vpls(c.rays, y, c.vpls, c.dmin, c.eps);
     }
     out.samples.push_back(g);
   }
@@ -113,7 +115,14 @@ Image screen_space_residual(const Scene& scene, const RayScene& rays, const View
   if (clamped.width() != view.width || clamped.height() != view.height)
     throw Error("", "bias compensation", "the image and the view differ in size");
   if (options.iterations < 1) throw Error("", "bias compensation", "needs >= 1 iteration");
-  Context c{scene, rays, view, vpls, options.clamp * scene.bounds.diagonal(), rays.epsilon(), {}};
+  Context c{scene,
+            rays,
+            view,
+            vpls,
+            options.clamp * scene.bounds.diagonal(),
+            rays.epsilon(),
+            options.emission,
+            {}};
   const std::size_t n = std::size_t(view.width) * std::size_t(view.height);
   if (scene.has_specular()) {
     c.specular.assign(n, 0);

@@ -35,6 +35,9 @@ struct ScreenCompensationOptions {
   int iterations = 3;        // levels of the recursion (>= 1)
   std::uint64_t seed = 0;
   unsigned threads = 0; // 0: all cores
+  // Whether the exactly evaluated hits add their emission L_e(y): false for a part of the paths
+  // that does not hold the emitters (its image holds none either), so that parts add up.
+  bool emission = true;
 };
 
 struct ScreenCompensationStats {
