@@ -13,15 +13,10 @@ shift 4
 [[ "$tasks" =~ ^[1-9][0-9]*$ ]] || fail "K: '$tasks' is not a positive number of tasks"
 [[ "$paths" =~ ^[1-9][0-9]*$ ]] || fail "N: '$paths' is not a positive number of paths"
 [ "$tasks" -le "$paths" ] || fail "K: $tasks tasks for $paths paths leave some empty"
-[ -f "$scene" ] || fail "$scene: no such scene file"
-irad="${IRAD:-$(command -v irad || true)}"
-[ -x "$irad" ] || fail "IRAD: no irad binary (set IRAD=/path/to/irad)"
-command -v sbatch >/dev/null || fail "sbatch: not installed (is this a Slurm login node?)"
-ping="$(scontrol ping 2>&1 || true)"
-grep -q 'is UP' <<<"$ping" || fail "Slurm is not reachable: scontrol ping: $(head -1 <<<"$ping")"
-mkdir -p "$out" || fail "$out: cannot create the output folder"
-export IRAD="$(realpath "$irad")" SCENE="$(realpath "$scene")" PATHS="$paths" \
-  OUT="$(realpath "$out")" IRAD_OPTS="$*"
+# shellcheck source=submit_common.sh
+source "$here/submit_common.sh"
+check_submission "$scene" "$out"
+export PATHS="$paths" IRAD_OPTS="$*"
 # shellcheck disable=SC2086 # SBATCH_OPTS is a list of options
 array=$(sbatch --parsable --export=ALL --chdir="$OUT" --array="0-$((tasks - 1))" \
   ${SBATCH_OPTS:-} "$here/paths.sbatch") || fail "sbatch: the array was not accepted"
