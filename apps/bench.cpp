@@ -15,6 +15,7 @@
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/screen_compensation.h"
+#include "walk/vpl_clustering.h"
 #include "walk/vpl_tracer.h"
 
 #include <algorithm>
@@ -36,13 +37,14 @@ double since(Clock::time_point t) {
 struct Sweep {
   int size;
   std::uint32_t reference_spp;
-  std::vector<std::uint32_t> paths;    // raster, every sequence
-  std::vector<std::uint32_t> rt_paths; // rt-vpl, Halton
-  std::vector<std::uint32_t> spp;      // pt
-  int large_levels;                    // 32 * 4^levels triangles
-  bool every_sequence = true;          // raster: every sequence (false: Halton only)
-  std::uint32_t raster_max = ~0u;      // raster: only the N up to this
-  std::uint32_t k1_max = ~0u;          // raster-k1: only the N up to this
+  std::vector<std::uint32_t> paths;              // raster, every sequence
+  std::vector<std::uint32_t> rt_paths;           // rt-vpl, Halton
+  std::vector<std::uint32_t> spp;                // pt
+  int large_levels;                              // 32 * 4^levels triangles
+  bool every_sequence = true;                    // raster: every sequence (false: Halton only)
+  std::uint32_t raster_max = ~0u;                // raster: only the N up to this
+  std::uint32_t k1_max = ~0u;                    // raster-k1: only the N up to this
+  std::vector<std::uint32_t> cluster_paths = {}; // raster-clusters (walk/vpl_clustering.h)
 };
 
 // The sweep of scene `name`. Real scenes (58k-64k triangles): every raster pass draws all of
@@ -60,11 +62,15 @@ Sweep sweep_for(const BenchOptions& o, const std::string& name) {
     s.rt_paths.insert(s.rt_paths.end(), {1024, 4096});
     s.k1_max = 4096;
   }
+  if (name == "cornell")
+    s.cluster_paths = o.quick ? std::vector<std::uint32_t>{256}
+                              : std::vector<std::uint32_t>{2048, 4096, 8192, 16384, 32768};
   if (is_real_scene(name) || name == "sphere2m") {
     s = o.quick ? Sweep{64, 256, {16}, {16}, {4, 16}, 0}
                 : Sweep{128, 1024, {16, 64, 256}, {16, 64, 256}, {4, 16, 64, 256}, 0};
     s.every_sequence = false;
     s.k1_max = 16;
+    if (!o.quick) s.cluster_paths = {64, 256, 1024};
   }
   if (o.size > 0) s.size = o.size;
   if (o.reference_spp > 0) s.reference_spp = o.reference_spp;
@@ -246,6 +252,42 @@ void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows,
   }
 }
 
+// The default raster over the representatives of the walk's VPLs (walk/vpl_clustering.h), with
+// a cluster per 16 VPLs (64 to 2048 clusters).
+void bench_clusters(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
+  if (sw.cluster_paths.empty()) return;
+  RasterOptions raster_options;
+  raster_options.gpu_timers = true;
+  RasterRenderer raster(g.b.scene, raster_options);
+  const auto t_setup = Clock::now();
+  raster.render(g.view, quasi_random_walk(g.b.scene, g.rays, {1, 64}, log));
+  const double setup = since(t_setup);
+  for (std::uint32_t n : sw.cluster_paths) {
+    BenchRow row = base_row(g.b, g.bvh, "raster-clusters");
+    row.sequence = "halton";
+    row.paths = n;
+    row.setup = setup;
+    const auto t0 = Clock::now();
+    const VplSet walk = bench_walk(g, n, SequenceKind::Halton, true, log);
+    VplClusteringOptions o;
+    o.clusters = std::clamp<std::size_t>(walk.vpls.size() / 16, 64, 2048);
+    const VplSet vpls = cluster_vpls(g.b.scene, g.rays, g.view, walk, o).set;
+    row.walk = since(t0);
+    RasterTimings t;
+    Image image = raster.render(g.view, vpls, &t);
+    bench_compensate(g, vpls, image, row);
+    row.total = since(t0);
+    row.vpls = walk.vpls.size();
+    row.shadow = t.shadow_gpu;
+    row.shading = t.shading_gpu;
+    row.readback = t.readback;
+    row.vpls_per_second = static_cast<double>(walk.vpls.size()) / row.total;
+    score(row, image, g.ref);
+    log_row(row, log);
+    rows.push_back(row);
+  }
+}
+
 // The same Halton VPLs with ray-traced visibility.
 void bench_rt_vpl(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
   for (std::uint32_t n : sw.rt_paths) {
@@ -292,6 +334,7 @@ void bench_scene(const BenchScene& b, const Sweep& sw, const BenchOptions& o,
   const View view = make_view(b.scene.cameras.at(0), b.scene.bounds, sw.size, sw.size);
   const Target g{b, rays, view, reference(b, rays, view, sw.reference_spp, o.out_dir, log), bvh};
   bench_raster(g, sw, rows, log);
+  bench_clusters(g, sw, rows, log);
   bench_rt_vpl(g, sw, rows, log);
   bench_pt(g, sw, rows, log);
 }

@@ -34,7 +34,9 @@ struct RenderArgs {
   float clamp = 0.05f;
   std::string clamp_mode = "local";
   int clamp_neighbours = 8;
-  float clamp_scale = 0.5f;
+  std::optional<float> clamp_scale; // default: RenderOptions' (0.5, 1.0 with clusters)
+  std::size_t clusters = 0;
+  std::size_t cluster_rows = 256;
   std::string camera;
   std::string gltf_scene;
   LookAtArgs look;
@@ -133,6 +135,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
             {"seconds", seconds}};
   }
   seconds["walk"] = r.seconds.walk;
+  if (args.clusters > 0) seconds["cluster"] = r.seconds.cluster;
   if (args.bias_compensation || args.compensation != "off")
     seconds["compensation"] = r.seconds.compensation;
   if (args.estimator == "raster") {
@@ -164,6 +167,10 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"clamp", args.clamp},
           {"clamp_distance", args.clamp * scene.bounds.diagonal()}, // local: the cap
           {"clamp_mode", args.clamp_mode},
+          {"clusters", args.clusters},
+          {"cluster_rows", args.cluster_rows},
+          {"walk_vpls", args.clusters > 0 ? r.walk_vpls : r.vpls.vpls.size()},
+          {"cluster_dropped", r.cluster_dropped},
           {"camera", r.camera.name},
           {"gl", r.gl},
           {"clamped_fraction", r.clamped_fraction},
@@ -209,16 +216,20 @@ void print_summary(const RenderArgs& args, const Scene& scene, const RenderResul
     return;
   }
   const double stage = args.estimator == "raster" ? r.seconds.raster : r.seconds.trace;
-  std::fprintf(stderr,
-               "irad: %s: %dx%d, %s, %u paths, %zu VPLs (l_max %d, rho_bar %.4f) in %.2f s "
-               "(load %.2f, walk %.2f, %s %.2f%s)\n",
-               args.scene.c_str(), r.view.width, r.view.height, args.estimator.c_str(),
-               r.vpls.paths, r.vpls.vpls.size(), r.vpls.l_max, r.vpls.rho_bar, r.seconds.total,
-               r.seconds.load, r.seconds.walk, args.estimator == "raster" ? "raster" : "trace",
-               stage,
-               args.estimator == "raster" && scene.has_specular()
-                   ? fmt::format(", mirrors {:.2f}", r.seconds.trace).c_str()
-                   : "");
+  std::fprintf(
+      stderr,
+      "irad: %s: %dx%d, %s, %u paths, %zu VPLs (l_max %d, rho_bar %.4f) in %.2f s "
+      "(load %.2f, walk %.2f%s, %s %.2f%s)\n",
+      args.scene.c_str(), r.view.width, r.view.height, args.estimator.c_str(), r.vpls.paths,
+      r.vpls.vpls.size(), r.vpls.l_max, r.vpls.rho_bar, r.seconds.total, r.seconds.load,
+      r.seconds.walk,
+      args.clusters > 0
+          ? fmt::format(", clusters of {} VPLs {:.2f}", r.walk_vpls, r.seconds.cluster).c_str()
+          : "",
+      args.estimator == "raster" ? "raster" : "trace", stage,
+      args.estimator == "raster" && scene.has_specular()
+          ? fmt::format(", mirrors {:.2f}", r.seconds.trace).c_str()
+          : "");
 }
 
 int run_render(const RenderArgs& args) {
@@ -240,7 +251,10 @@ int run_render(const RenderArgs& args) {
   request.render.raster.clamp = args.clamp;
   request.render.local_clamp = args.clamp_mode == "local";
   request.render.clamp_neighbours = args.clamp_neighbours;
-  request.render.clamp_scale = args.clamp_scale;
+  if (args.clamp_scale)
+    request.render.clamp_scale = request.render.cluster_clamp_scale = *args.clamp_scale;
+  request.render.clusters = args.clusters;
+  request.render.cluster_rows = args.cluster_rows;
   request.render.raster.backend = parse_backend(args.gl);
   request.render.raster.gl_device = args.gl_device;
   request.render.raster.interleave = args.interleave;
@@ -343,8 +357,17 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--clamp-neighbours", args->clamp_neighbours, "local clamp: k")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  cmd->add_option("--clamp-scale", args->clamp_scale, "local clamp: d_min / r_k")
+  cmd->add_option("--clamp-scale", args->clamp_scale,
+                  "local clamp: d_min / r_k (default 0.5; 1.0 for cluster representatives)")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--clusters", args->clusters,
+                  "Draw the VPLs as at most this many cluster representatives (matrix "
+                  "row-column sampling; 0: every VPL)")
+      ->capture_default_str();
+  cmd->add_option("--cluster-rows", args->cluster_rows,
+                  "clusters: pixels whose rows are computed exactly")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{65536}))
       ->capture_default_str();
   cmd->add_option("--camera", args->camera, "Camera name or index (default: the first)");
   cmd->add_option("--scene", args->gltf_scene,

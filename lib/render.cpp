@@ -5,6 +5,7 @@
 #include "walk/bias_compensation.h"
 #include "walk/mirror_pass.h"
 #include "walk/ray_scene.h"
+#include "walk/vpl_clustering.h"
 #include "walk/vpl_tracer.h"
 
 #include <chrono>
@@ -173,6 +174,26 @@ void assign_local_clamp(Stages& s, const RayScene& rays) {
   s.r.vpls.clamp_field = std::move(field);
 }
 
+// Replaces the walk's VPLs by the representatives of their clusters (walk/vpl_clustering.h).
+void cluster(Stages& s, const RayScene& rays) {
+  const auto t0 = Clock::now();
+  VplClusteringOptions o;
+  o.clusters = s.options.clusters;
+  o.rows = s.options.cluster_rows;
+  o.clamp = s.options.raster.clamp;
+  o.local_clamp = s.options.local_clamp;
+  o.clamp_neighbours = s.options.clamp_neighbours;
+  o.clamp_scale = s.options.cluster_clamp_scale;
+  o.seed = s.options.pt.seed;
+  o.threads = s.options.pt.threads;
+  o.cancel = s.stop.flag();
+  Representatives reps = cluster_vpls(s.scene, rays, s.r.view, s.r.vpls, o);
+  s.r.walk_vpls = s.r.vpls.vpls.size();
+  s.r.cluster_dropped = reps.dropped_fraction;
+  s.r.vpls = std::move(reps.set);
+  s.r.seconds.cluster = since(t0);
+}
+
 // The walk, one of the VPL estimators, and what the options add to it.
 void run_vpl_estimator(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
@@ -180,6 +201,8 @@ void run_vpl_estimator(Stages& s, const RayScene& rays) {
   if (s.options.local_clamp) assign_local_clamp(s, rays);
   s.r.seconds.walk = since(t0);
   if (s.cancelled()) return; // interrupted during the walk: nothing was rendered
+  if (s.options.clusters > 0) cluster(s, rays);
+  if (s.cancelled()) return;
   if (s.options.estimator == Estimator::Raster)
     run_raster(s, rays);
   else
@@ -209,6 +232,9 @@ void check_range(const Scene& scene, const RenderOptions& o) {
   if (paths && o.bias_compensation)
     throw Error("", "--path-range",
                 "cannot split --bias-compensation (its residual is not a sum over paths)");
+  if (paths && o.clusters > 0)
+    throw Error("", "--path-range",
+                "cannot split --clusters (the clustering is not a sum over paths)");
   if (paths && scene.has_specular())
     throw Error(scene.source, "--path-range",
                 "cannot split a scene with mirrors (the mirror pass is not a sum over paths)");

@@ -48,32 +48,31 @@ glm::vec3 gather_directional(const RayScene& rays, const ShadingPoint& x, const 
   return v.intensity * cos_x;
 }
 
+glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl& v,
+                         const std::vector<MirrorPolygon>& mirrors, float dmin, float eps) {
+  if (v.kind == VplKind::Directional) return gather_directional(rays, x, v, eps);
+  const glm::vec3 d = x.position - v.position;
+  const float dist2 = glm::dot(d, d);
+  if (!(dist2 > eps * eps)) return glm::vec3(0.0f);
+  const float dist = std::sqrt(dist2);
+  const glm::vec3 w = d / dist;
+  const float cos_x = -glm::dot(x.normal, w);
+  if (cos_x <= 0.0f) return glm::vec3(0.0f);
+  const float e = emission_profile(v, glm::dot(v.normal, w));
+  if (e <= 0.0f) return glm::vec3(0.0f);
+  // Shadow ray from the receiver toward the VPL, stopping short of both ends; a mirrored VPL
+  // (core/mirrors.h) by way of its mirror polygon.
+  if (v.mirror >= 0
+          ? !mirrored_visible(rays, v, mirrors[static_cast<std::size_t>(v.mirror)], x.position, eps)
+          : rays.occluded(x.position, -w, eps, dist - eps))
+    return glm::vec3(0.0f);
+  return v.intensity * (e * cos_x / glm::max(dist2, clamp_distance2(v, dmin)));
+}
+
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps) {
   glm::vec3 sum(0.0f);
-  for (const Vpl& v : vpls.vpls) {
-    if (v.kind == VplKind::Directional) {
-      sum += gather_directional(rays, x, v, eps);
-      continue;
-    }
-    const glm::vec3 d = x.position - v.position;
-    const float dist2 = glm::dot(d, d);
-    if (!(dist2 > eps * eps)) continue;
-    const float dist = std::sqrt(dist2);
-    const glm::vec3 w = d / dist;
-    const float cos_x = -glm::dot(x.normal, w);
-    if (cos_x <= 0.0f) continue;
-    const float e = emission_profile(v, glm::dot(v.normal, w));
-    if (e <= 0.0f) continue;
-    // Shadow ray from the receiver toward the VPL, stopping short of both ends; a mirrored VPL
-    // (core/mirrors.h) by way of its mirror polygon.
-    if (v.mirror >= 0 ? !mirrored_visible(rays, v, vpls.mirrors[static_cast<std::size_t>(v.mirror)],
-                                          x.position, eps)
-                      : rays.occluded(x.position, -w, eps, dist - eps))
-      continue;
-    const float g = e * cos_x / glm::max(dist2, clamp_distance2(v, dmin));
-    sum += v.intensity * g;
-  }
+  for (const Vpl& v : vpls.vpls) sum += vpl_irradiance(rays, x, v, vpls.mirrors, dmin, eps);
   return sum * x.albedo * std::numbers::inv_pi_v<float>;
 }
 

@@ -6,6 +6,7 @@
 #include "walk/ray_scene.h"
 
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace irad {
 
@@ -29,6 +30,11 @@ ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec
 // clamp_distance2); eps: the scene's ray offset.
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps);
+
+// One VPL's term of that sum without rho(x)/pi: I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)
+// (for a directional VPL, gather_directional's); mirrors: the set's mirror polygons.
+glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl& v,
+                         const std::vector<MirrorPolygon>& mirrors, float dmin, float eps);
 
 // E_k of core/vpl.h: the VPL's emission profile toward a direction with cosine cos_y (1 for a
 // directional VPL, which gather_directional() evaluates).

@@ -49,6 +49,14 @@ struct RenderOptions {
   bool local_clamp = true;
   int clamp_neighbours = 8;
   float clamp_scale = 0.5f;
+  // Many VPLs through few passes (core/light_clusters.h): the walk's VPLs clustered by
+  // `cluster_rows` exactly computed pixels' rows into at most `clusters` representatives, which
+  // the estimator draws instead (walk/vpl_clustering.h: clamped anew at their own density,
+  // d = cluster_clamp_scale r_k, larger than the walk's: a representative carries a cluster's
+  // light). 0: every VPL drawn.
+  std::size_t clusters = 0;
+  std::size_t cluster_rows = 256;
+  float cluster_clamp_scale = 1.0f;
   PathTracerOptions pt;           // spp, seed, threads
   bool bias_compensation = false; // add the clamp's residual (walk/bias_compensation.h)
   std::uint32_t bias_samples = 16;
@@ -68,13 +76,18 @@ struct RenderOptions {
 
 struct StageSeconds {
   // trace: pt and rt-vpl, or the raster's ray-traced pass over visible mirrors
-  double load = 0, walk = 0, raster = 0, readback = 0, trace = 0, compensation = 0, total = 0;
+  // cluster: the rows and the clustering of the VPLs (RenderOptions::clusters)
+  double load = 0, walk = 0, cluster = 0, raster = 0, readback = 0, trace = 0, compensation = 0,
+         total = 0;
 };
 
 struct RenderResult {
   Camera camera;
   View view;
-  VplSet vpls; // empty for pt
+  VplSet vpls; // empty for pt; with clusters, the representatives
+  // With clusters: the walk's VPL count, and the share of their intensity no row saw (dropped).
+  std::size_t walk_vpls = 0;
+  double cluster_dropped = 0.0;
   // When cancelled: what was accumulated (pt, rt-vpl: pixels not done are 0, alpha too).
   Image image;
   StageSeconds seconds;   // load: the camera, view and ray-tracing structure (render_file: also

@@ -1,0 +1,258 @@
+#include "core/light_clusters.h"
+
+#include "core/rng.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numeric>
+#include <queue>
+#include <thread>
+
+namespace irad {
+
+namespace {
+
+double dot(const float* a, const float* b, std::size_t n) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < n; ++i) s += double(a[i]) * double(b[i]);
+  return s;
+}
+
+double dot(const std::vector<double>& a, const float* b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * double(b[i]);
+  return s;
+}
+
+// A cluster: order[begin, end), its norm sum alpha_C, column sum S_C and cost.
+struct Range {
+  std::uint32_t begin, end;
+  double alpha;
+  double cost;
+  std::vector<double> sum;                                       // S_C = sum of its columns
+  bool operator<(const Range& o) const { return cost < o.cost; } // max-heap on cost
+};
+
+double squared(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x * x;
+  return s;
+}
+
+// The column of `order[begin, end)` drawn with probability alpha_j / alpha.
+std::uint32_t draw_by_norm(const std::vector<std::uint32_t>& order, std::uint32_t begin,
+                           std::uint32_t end, const std::vector<float>& norms, double alpha,
+                           Pcg32& rng) {
+  double u = rng.next_double() * alpha;
+  for (std::uint32_t k = begin; k < end; ++k) {
+    u -= norms[order[k]];
+    if (u < 0.0) return order[k];
+  }
+  return order[end - 1];
+}
+
+class Splitter {
+public:
+  Splitter(const ReducedMatrix& m, std::vector<std::uint32_t>& order,
+           const std::vector<float>& norms, std::uint64_t seed)
+      : m_(m), order_(order), norms_(norms), seed_(seed) {}
+
+  // cost(C) = 2 (alpha_C^2 - |S_C|^2) of order[begin, end).
+  Range make(std::uint32_t begin, std::uint32_t end) const {
+    Range r{begin, end, 0.0, 0.0, std::vector<double>(m_.rows, 0.0)};
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const float* c = m_.column(order_[k]);
+      for (std::size_t i = 0; i < m_.rows; ++i) r.sum[i] += c[i];
+      r.alpha += norms_[order_[k]];
+    }
+    r.cost = 2.0 * std::max(0.0, r.alpha * r.alpha - squared(r.sum));
+    return r;
+  }
+
+  // Splits r (at least two columns) in two along a random line, at the point of least cost.
+  // Touches only order[r.begin, r.end): splits of disjoint ranges may run concurrently.
+  std::pair<Range, Range> split(const Range& r) const {
+    Pcg32 rng(seed_, (std::uint64_t(r.begin) << 32u) | r.end);
+    const std::vector<double> u = direction(r, rng);
+    const std::uint32_t n = r.end - r.begin;
+    std::vector<std::pair<double, std::uint32_t>> keyed(n); // x_j . u, j
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::uint32_t j = order_[r.begin + k];
+      double d = 0.0;
+      const float* c = m_.column(j);
+      for (std::size_t i = 0; i < m_.rows; ++i) d += u[i] * c[i];
+      keyed[k] = {d / norms_[j], j};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    // Sweep: prefix P with |P|^2 and S . P kept incrementally, |S - P|^2 = |S|^2 - 2 S.P + |P|^2.
+    const std::vector<double>& s = r.sum;
+    const double s2 = squared(s);
+    std::vector<double> p(m_.rows, 0.0);
+    double pa = 0.0, p2 = 0.0, sp = 0.0;
+    double best = std::numeric_limits<double>::infinity();
+    std::uint32_t cut = 1;
+    for (std::uint32_t k = 0; k + 1 < n; ++k) {
+      const std::uint32_t j = keyed[k].second;
+      const float* c = m_.column(j);
+      const double a = norms_[j];
+      double pc = 0.0, sc = 0.0;
+      for (std::size_t i = 0; i < m_.rows; ++i) {
+        pc += p[i] * c[i];
+        sc += s[i] * c[i];
+        p[i] += c[i];
+      }
+      p2 += 2.0 * pc + a * a;
+      sp += sc;
+      pa += a;
+      const double ra = r.alpha - pa;
+      const double cost =
+          std::max(0.0, pa * pa - p2) + std::max(0.0, ra * ra - (s2 - 2.0 * sp + p2));
+      if (cost < best) {
+        best = cost;
+        cut = k + 1;
+      }
+    }
+    for (std::uint32_t k = 0; k < n; ++k) order_[r.begin + k] = keyed[k].second;
+    // The two halves' sums from the sorted order (exact, not the sweep's running values).
+    return {make(r.begin, r.begin + cut), make(r.begin + cut, r.end)};
+  }
+
+private:
+  // x_a - x_b for two columns drawn by norm; a random Gaussian direction when they coincide.
+  std::vector<double> direction(const Range& r, Pcg32& rng) const {
+    std::vector<double> u(m_.rows, 0.0);
+    for (int attempt = 0; attempt < 4; ++attempt) {
+      const std::uint32_t a = draw_by_norm(order_, r.begin, r.end, norms_, r.alpha, rng);
+      const std::uint32_t b = draw_by_norm(order_, r.begin, r.end, norms_, r.alpha, rng);
+      double len = 0.0;
+      for (std::size_t i = 0; i < m_.rows; ++i) {
+        u[i] = m_.column(a)[i] / norms_[a] - m_.column(b)[i] / norms_[b];
+        len += u[i] * u[i];
+      }
+      if (len > 1e-12) return u;
+    }
+    for (std::size_t i = 0; i < m_.rows; ++i) { // Box-Muller
+      const double r1 = std::max(rng.next_double(), 1e-300), r2 = rng.next_double();
+      u[i] = std::sqrt(-2.0 * std::log(r1)) * std::cos(6.283185307179586 * r2);
+    }
+    return u;
+  }
+
+  const ReducedMatrix& m_;
+  std::vector<std::uint32_t>& order_;
+  const std::vector<float>& norms_;
+  std::uint64_t seed_;
+};
+
+// body(i) for i in [0, count) on up to `threads` threads (0: all cores), i strided.
+void parallel_for(std::size_t count, unsigned threads,
+                  const std::function<void(std::size_t)>& body) {
+  threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t t = std::min<std::size_t>(threads, count);
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < t; ++w)
+    pool.emplace_back([&, w] {
+      for (std::size_t i = w; i < count; i += t) body(i);
+    });
+  for (std::size_t i = 0; i < count; i += std::max<std::size_t>(t, 1)) body(i);
+  for (std::thread& th : pool) th.join();
+}
+
+} // namespace
+
+void weight_rows_by_inverse_total(ReducedMatrix& m, float floor) {
+  if (m.rows == 0) return;
+  std::vector<double> total(m.rows, 0.0);
+  for (std::size_t j = 0; j < m.columns; ++j)
+    for (std::size_t i = 0; i < m.rows; ++i) total[i] += m.column(j)[i];
+  const double mean = std::accumulate(total.begin(), total.end(), 0.0) / double(m.rows);
+  if (!(mean > 0.0)) return;
+  std::vector<float> w(m.rows);
+  for (std::size_t i = 0; i < m.rows; ++i)
+    w[i] = static_cast<float>(mean / (total[i] + floor * mean));
+  for (std::size_t j = 0; j < m.columns; ++j)
+    for (std::size_t i = 0; i < m.rows; ++i) m.column(j)[i] *= w[i];
+}
+
+ColumnClusters cluster_columns(const ReducedMatrix& m, std::size_t clusters, std::uint64_t seed,
+                               unsigned threads) {
+  ColumnClusters out;
+  out.norms.resize(m.columns);
+  for (std::size_t j = 0; j < m.columns; ++j)
+    out.norms[j] = static_cast<float>(std::sqrt(dot(m.column(j), m.column(j), m.rows)));
+  for (std::uint32_t j = 0; j < m.columns; ++j)
+    if (out.norms[j] > 0.0f) out.order.push_back(j);
+  const auto n = static_cast<std::uint32_t>(out.order.size());
+  out.starts.push_back(0);
+  if (n == 0 || clusters == 0) return out;
+  if (n <= clusters) { // every column its own cluster
+    for (std::uint32_t k = 1; k <= n; ++k) out.starts.push_back(k);
+    return out;
+  }
+  const Splitter splitter(m, out.order, out.norms, seed);
+  std::priority_queue<Range> heap;
+  std::vector<Range> done; // single columns and clusters of cost 0
+  const auto add = [&](Range r) {
+    if (r.end - r.begin < 2 || !(r.cost > 0.0))
+      done.push_back(std::move(r));
+    else
+      heap.push(std::move(r));
+  };
+  add(splitter.make(0, n));
+  // The costliest clusters, kSplitBatch at a time (fewer near the end), split concurrently: the
+  // result depends on the batch, never on the thread count.
+  constexpr std::size_t kSplitBatch = 8;
+  while (!heap.empty() && heap.size() + done.size() < clusters) {
+    const std::size_t room = clusters - heap.size() - done.size();
+    std::vector<Range> batch;
+    while (!heap.empty() && batch.size() < std::min(kSplitBatch, room)) {
+      batch.push_back(heap.top());
+      heap.pop();
+    }
+    std::vector<std::pair<Range, Range>> halves(batch.size());
+    parallel_for(batch.size(), threads,
+                 [&](std::size_t b) { halves[b] = splitter.split(batch[b]); });
+    for (auto& [a, b] : halves) {
+      add(std::move(a));
+      add(std::move(b));
+    }
+  }
+  for (; !heap.empty(); heap.pop()) done.push_back(heap.top());
+  std::sort(done.begin(), done.end(),
+            [](const Range& a, const Range& b) { return a.begin < b.begin; });
+  for (const Range& r : done) out.starts.push_back(r.end);
+  return out;
+}
+
+Representatives pick_representatives(const VplSet& walk, const ColumnClusters& clusters,
+                                     std::uint64_t seed) {
+  Representatives out;
+  out.set = walk;
+  out.set.vpls.clear();
+  out.set.clamp_field.reset();
+  out.set.vpls.reserve(clusters.clusters());
+  for (std::size_t k = 0; k < clusters.clusters(); ++k) {
+    const std::uint32_t begin = clusters.starts[k], end = clusters.starts[k + 1];
+    double alpha = 0.0;
+    for (std::uint32_t i = begin; i < end; ++i) alpha += clusters.norms[clusters.order[i]];
+    Pcg32 rng(seed, k);
+    const std::uint32_t j = draw_by_norm(clusters.order, begin, end, clusters.norms, alpha, rng);
+    Vpl v = walk.vpls[j];
+    v.intensity *= static_cast<float>(alpha / clusters.norms[j]);
+    v.clamp_distance = 0.0f;
+    out.set.vpls.push_back(v);
+  }
+  double all = 0.0, dropped = 0.0;
+  for (std::size_t j = 0; j < walk.vpls.size(); ++j) {
+    const glm::vec3& c = walk.vpls[j].intensity;
+    const double sum = double(c.x) + c.y + c.z;
+    all += sum;
+    if (j < clusters.norms.size() && !(clusters.norms[j] > 0.0f)) dropped += sum;
+  }
+  out.dropped_fraction = all > 0.0 ? dropped / all : 0.0;
+  return out;
+}
+
+} // namespace irad
