@@ -20,12 +20,6 @@ double dot(const float* a, const float* b, std::size_t n) {
   return s;
 }
 
-double dot(const std::vector<double>& a, const float* b) {
-  double s = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) s += a[i] * double(b[i]);
-  return s;
-}
-
 // A cluster: order[begin, end), its norm sum alpha_C, column sum S_C and cost.
 struct Range {
   std::uint32_t begin, end;
