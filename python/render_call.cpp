@@ -55,6 +55,7 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.pt.threads = k.threads;
   o.pt.pixel_footprint = k.jitter;
   o.bias_compensation = k.bias_compensation;
+  o.clusters = k.clusters;
   return o;
 }
 
@@ -62,6 +63,7 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   py::dict seconds;
   seconds["load"] = r.seconds.load;
   seconds["walk"] = r.seconds.walk;
+  seconds["cluster"] = r.seconds.cluster;
   seconds["raster"] = r.seconds.raster;
   seconds["trace"] = r.seconds.trace;
   seconds["total"] = r.seconds.total;
@@ -70,6 +72,7 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   s["size"] = py::make_tuple(r.view.width, r.view.height);
   s["camera"] = r.camera.name;
   s["vpls"] = r.vpls.vpls.size();
+  s["walk_vpls"] = k.clusters > 0 ? r.walk_vpls : r.vpls.vpls.size();
   s["paths"] = r.vpls.paths;
   s["rho_bar"] = r.vpls.rho_bar;
   s["l_max"] = r.vpls.l_max;

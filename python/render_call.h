@@ -32,6 +32,7 @@ struct RenderKeywords {
   unsigned threads = 0;
   bool bias_compensation = false;
   std::string gl = "auto";
+  std::size_t clusters = 0; // RenderOptions::clusters (0: every VPL)
 };
 
 // (image float32 (h, w, 3), stats dict). The GIL is released while rendering; Ctrl-C (SIGINT

@@ -25,9 +25,9 @@ def cornell():
     return irad.load(CORNELL)
 
 
-def cli_render(tmp_path, estimator, extra=()):
+def cli_render(tmp_path, estimator, extra=(), paths=16):
     out = tmp_path / f"{estimator}.exr"
-    subprocess.run([IRAD, "render", CORNELL, "-o", str(out), "--size", "32x24", "--paths", "16",
+    subprocess.run([IRAD, "render", CORNELL, "-o", str(out), "--size", "32x24", "--paths", str(paths),
                     "--spp", "4", "--estimator", estimator, "--quiet", *extra], check=True)
     return irad.read_exr(str(out))
 
@@ -39,6 +39,13 @@ def test_array_equals_the_cli_exr(cornell, tmp_path, estimator):
     assert stats["size"] == (32, 24) and stats["estimator"] == estimator
     exr = cli_render(tmp_path, estimator)
     assert exr.shape == (24, 32, 4)
+    assert np.array_equal(image, exr[..., :3])  # bit-identical
+
+
+def test_clusters_equal_the_cli_clusters(cornell, tmp_path):
+    image, stats = irad.render(cornell, size=(32, 24), paths=256, clusters=64)
+    assert stats["vpls"] == 64 and stats["walk_vpls"] > 64
+    exr = cli_render(tmp_path, "raster", ["--clusters", "64"], paths=256)
     assert np.array_equal(image, exr[..., :3])  # bit-identical
 
 
