@@ -116,16 +116,21 @@ Log quiet_log() {
   return Log([](const std::string&) {});
 }
 
-// The Cornell box's VPLs (N = 512, ~950) as 128 representatives with rt-vpl, against rt-vpl on
-// every VPL: the clustering's own error, and the mean of independent draws converging to it.
-TEST(LightClusters, CornellRepresentativesEstimateEveryVpl) {
+// The Cornell box at 48x48 and its ray-tracing structure.
+class CornellClusters : public ::testing::Test {
+protected:
   Log log = quiet_log();
   const Scene scene =
       load_gltf(std::filesystem::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf", log);
-  const RayScene rays(scene);
-  const VplSet vpls = quasi_random_walk(scene, rays, {512, 64}, log);
+  const RayScene rays{scene};
   const View view = make_view(scene.cameras.at(0), scene.bounds, 48, 48);
   const VplTracerOptions traced{RasterOptions{}.clamp, 0};
+};
+
+// The Cornell box's VPLs (N = 512, ~950) as 128 representatives with rt-vpl, against rt-vpl on
+// every VPL: the clustering's own error, and the mean of independent draws converging to it.
+TEST_F(CornellClusters, CornellRepresentativesEstimateEveryVpl) {
+  const VplSet vpls = quasi_random_walk(scene, rays, {512, 64}, log);
   const Image exact = trace_vpls(scene, rays, view, vpls, traced);
   ReducedMatrix m = light_rows(scene, rays, view, vpls, {128, traced.clamp, 0, 0, nullptr});
   EXPECT_GT(m.rows, 120u); // the camera sees the box everywhere (a few rows miss the opening)
@@ -155,14 +160,8 @@ TEST(LightClusters, CornellRepresentativesEstimateEveryVpl) {
 }
 
 // The representatives are ordinary VPLs: the raster draws them as rt-vpl sums them.
-TEST(LightClusters, RasterDrawsTheRepresentativesAsRtVplSumsThem) {
-  Log log = quiet_log();
-  const Scene scene =
-      load_gltf(std::filesystem::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf", log);
-  const RayScene rays(scene);
+TEST_F(CornellClusters, RasterDrawsTheRepresentativesAsRtVplSumsThem) {
   const VplSet vpls = quasi_random_walk(scene, rays, {256, 64}, log);
-  const View view = make_view(scene.cameras.at(0), scene.bounds, 48, 48);
-  const VplTracerOptions traced{RasterOptions{}.clamp, 0};
   ReducedMatrix m = light_rows(scene, rays, view, vpls, {64, traced.clamp, 0, 0, nullptr});
   const Representatives r = pick_representatives(vpls, cluster_columns(m, 48, 0), 0);
   RasterOptions k1;
