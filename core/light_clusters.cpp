@@ -1,14 +1,13 @@
 #include "core/light_clusters.h"
 
+#include "core/parallel_rows.h"
 #include "core/rng.h"
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <numeric>
 #include <queue>
-#include <thread>
 
 namespace irad {
 
@@ -140,20 +139,6 @@ private:
   std::uint64_t seed_;
 };
 
-// body(i) for i in [0, count) on up to `threads` threads (0: all cores), i strided.
-void parallel_for(std::size_t count, unsigned threads,
-                  const std::function<void(std::size_t)>& body) {
-  threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t t = std::min<std::size_t>(threads, count);
-  std::vector<std::thread> pool;
-  for (std::size_t w = 1; w < t; ++w)
-    pool.emplace_back([&, w] {
-      for (std::size_t i = w; i < count; i += t) body(i);
-    });
-  for (std::size_t i = 0; i < count; i += std::max<std::size_t>(t, 1)) body(i);
-  for (std::thread& th : pool) th.join();
-}
-
 } // namespace
 
 void weight_rows_by_inverse_total(ReducedMatrix& m, float floor) {
@@ -206,8 +191,8 @@ ColumnClusters cluster_columns(const ReducedMatrix& m, std::size_t clusters, std
       heap.pop();
     }
     std::vector<std::pair<Range, Range>> halves(batch.size());
-    parallel_for(batch.size(), threads,
-                 [&](std::size_t b) { halves[b] = splitter.split(batch[b]); });
+    parallel_rows(static_cast<int>(batch.size()), threads,
+                  [&](int b) { halves[std::size_t(b)] = splitter.split(batch[std::size_t(b)]); });
     for (auto& [a, b] : halves) {
       add(std::move(a));
       add(std::move(b));

@@ -1,7 +1,7 @@
 #include "walk/light_rows.h"
 
+#include "core/parallel_rows.h"
 #include "core/rng.h"
-#include "walk/parallel_rows.h"
 #include "walk/vpl_gather.h"
 
 #include <algorithm>

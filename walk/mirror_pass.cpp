@@ -1,7 +1,7 @@
 #include "walk/mirror_pass.h"
 
+#include "core/parallel_rows.h"
 #include "walk/mirror_walk.h"
-#include "walk/parallel_rows.h"
 #include "walk/vpl_gather.h"
 
 namespace irad {

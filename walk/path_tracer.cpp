@@ -2,10 +2,10 @@
 
 #include "core/error.h"
 #include "core/light_sampler.h"
+#include "core/parallel_rows.h"
 #include "core/rng.h"
 #include "core/vpl.h"
 #include "walk/alpha.h"
-#include "walk/parallel_rows.h"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -3,8 +3,8 @@
 #include "core/clamp_field.h"
 #include "core/error.h"
 #include "core/light_sampler.h"
+#include "core/parallel_rows.h"
 #include "core/rng.h"
-#include "walk/parallel_rows.h"
 #include "walk/vpl_gather.h"
 
 #include <atomic>
