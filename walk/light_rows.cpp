@@ -56,10 +56,11 @@ ReducedMatrix light_rows(const Scene& scene, const RayScene& rays, const View& v
   const float dmin = options.clamp * scene.bounds.diagonal();
   const float eps = rays.epsilon();
   parallel_rows(static_cast<int>(m.rows), options.threads, [&](int i) {
+    // A cancelled render leaves the rows not started at 0 (a row: a few ms).
+    if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
     const ShadingPoint& p = points[static_cast<std::size_t>(i)];
     const glm::vec3 k = p.albedo * std::numbers::inv_pi_v<float>;
     for (std::size_t j = 0; j < m.columns; ++j) {
-      if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
       const glm::vec3 c = k * vpl_irradiance(rays, p, vpls.vpls[j], vpls.mirrors, dmin, eps);
       m.column(j)[i] = c.x + c.y + c.z;
     }
