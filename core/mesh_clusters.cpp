@@ -1,5 +1,7 @@
 #include "core/mesh_clusters.h"
 
+#include "core/planar_reduction.h"
+
 #include <algorithm>
 #include <limits>
 #include <meshoptimizer.h>
@@ -54,6 +56,7 @@ struct Builder {
   std::vector<glm::uvec3> triangles; // welded, in the order `order` permutes
   std::vector<glm::vec3> centroids;
   std::vector<std::uint32_t> order;
+  float leaf_error = 0.0f; // of the planar reduction the leaves hold (0: the scene's triangles)
   MeshClusters out;
 
   // Splits order[begin, end) in two (returns where the second part starts): the binned
@@ -140,6 +143,7 @@ struct Builder {
     for (std::size_t k = begin; k < end; ++k) centre.extend(centroids[order[k]]);
     if (end - begin <= options.leaf_triangles) {
       ClusterNode& node = out.nodes.back();
+      node.error = leaf_error;
       node.leaf_first = node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
       for (std::size_t k = begin; k < end; ++k) {
         const glm::uvec3& t = triangles[order[k]];
@@ -167,6 +171,10 @@ struct Builder {
     return id;
   }
 };
+
+// The planar reduction's plane thickness, relative to the scene's diagonal (the shadow passes'
+// error floor is 1e-5 of it, raster/shadow/shadow_atlas.cpp).
+constexpr float kPlanar = 1e-6f;
 
 // Relative error (of the mesh's extent) below which meshoptimizer's collapses count as exact.
 constexpr float kExact = 1e-6f;
@@ -253,7 +261,7 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify) 
 // starts from its original triangles instead and quarters them: no region border inside it is
 // locked, so a closed surface simplifies as far as its error allows.
 void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
-                        const std::vector<bool>& whole) {
+                        const std::vector<bool>& whole, float base_error) {
   std::vector<std::uint32_t> local_of(scene.positions.size(), ~0u);
   for (std::size_t n = 0; n < out.nodes.size(); ++n) {
     ClusterNode& node = out.nodes[n];
@@ -262,7 +270,7 @@ void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
     const std::uint32_t count = whole[n] ? node.leaf_count : node.mesh_count;
     std::vector<std::uint32_t> mesh(out.indices.begin() + first,
                                     out.indices.begin() + first + count);
-    float error = whole[n] ? 0.0f : node.error;
+    float error = whole[n] ? base_error : node.error;
     // First what simplifies without error (coplanar triangles: flat walls to their borders),
     // then quarters or halves, whatever that costs.
     if (!mesh.empty()) {
@@ -304,16 +312,27 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   ClusterOptions options = requested;
   if (options.leaf_triangles == 0)
     options.leaf_triangles = automatic_leaf_triangles(scene.triangle_count());
-  Builder b{scene, options, {}, {}, {}, {}};
+  Builder b{scene, options, {}, {}, {}, 0.0f, {}};
   const std::vector<std::uint32_t> welded = weld_positions(scene);
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
     if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
     const glm::uvec3 v = scene.triangles[t];
     b.out.triangles.push_back(static_cast<std::uint32_t>(t));
     b.triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
-    b.centroids.push_back((scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) /
-                          3.0f);
   }
+  if (options.simplify) {
+    // Flat parts first reduced exactly (to 2 kPlanar of the surface): the regions' locked
+    // borders then cost what their outlines need, not the tessellation's resolution.
+    const float epsilon = kPlanar * scene.bounds.diagonal();
+    PlanarReduction reduced = reduce_planar(scene.positions, b.triangles, epsilon);
+    if (reduced.collapses > 0 || reduced.triangles.size() < b.triangles.size()) {
+      b.triangles = std::move(reduced.triangles);
+      b.leaf_error = 2.0f * epsilon;
+    }
+  }
+  for (const glm::uvec3& t : b.triangles)
+    b.centroids.push_back((scene.positions[t.x] + scene.positions[t.y] + scene.positions[t.z]) /
+                          3.0f);
   if (b.triangles.empty()) return std::move(b.out);
   // One tree per connected component of at least a leaf's triangles, one for all the others.
   const std::vector<std::uint32_t> group =
@@ -335,7 +354,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   }
   b.out.original_indices = b.out.indices.size();
   simplify_inner_nodes(scene, b.out, options.simplify);
-  if (options.simplify) add_coarser_levels(scene, b.out, options.max_levels, whole);
+  if (options.simplify) add_coarser_levels(scene, b.out, options.max_levels, whole, b.leaf_error);
   return std::move(b.out);
 }
 

@@ -3,9 +3,16 @@
 // passes (raster/shadow/shadow_lod.h): they cull it against each cube face and draw, per face, a
 // cut through it whose geometric error stays below the shadow map's texel at the VPL's distance.
 //
+// The base: with ClusterOptions::simplify, the triangles after the exact planar reduction
+// (core/planar_reduction.h: flat parts down to what their outlines need, within 2e-6 of the
+// scene's diagonal, which is the leaves' error); without, the scene's own triangles (error 0).
+// Without it, a region cut through a finely tessellated wall kept its border at the full
+// resolution in every level above: thousands of triangles per face on the 2.1M-triangle flat
+// scale scene (docs/performance.md).
+//
 // The tree: a binary tree of spatial regions (split by the surface-area heuristic over the
-// triangle centroids) down to leaves of at most ClusterOptions::leaf_triangles triangles. Every
-// node has a mesh: a leaf its original triangles (error 0), an inner node the union of its
+// base triangles' centroids) down to leaves of at most ClusterOptions::leaf_triangles
+// triangles. Every node has a mesh: a leaf its base triangles, an inner node the union of its
 // children's meshes simplified to half their triangles (meshoptimizer, meshopt_SimplifyLockBorder)
 // with
 //     error(node) = max(error(children)) + meshopt's result_error * meshopt_simplifyScale,
@@ -31,8 +38,8 @@
 // The meshes index the scene's own vertex array, so a GPU draws them with the scene's vertex
 // buffer. Positions are welded first (vertices at one position become the first of them: the
 // simplifier sees one connected surface where a file or subdivide() duplicated vertices at
-// seams); a welded index draws the same position, so the leaves draw the very triangles the
-// scene has.
+// seams); a welded index draws the same position, so without simplify the leaves draw the very
+// triangles the scene has.
 #include "core/bounds.h"
 #include "core/scene.h"
 
@@ -88,8 +95,9 @@ struct MeshClusters {
   // when no triangle is clustered.
   std::vector<std::int32_t> roots;
   std::vector<ClusterLevel> levels; // the nodes' coarser levels
-  // indices[0, original_indices): every clustered triangle once (welded), leaves in depth-first
-  // order; the simplified meshes of the inner nodes and the coarser levels follow.
+  // indices[0, original_indices): the base, every clustered triangle once (welded; with
+  // simplify their planar reduction), leaves in depth-first order; the simplified meshes of the
+  // inner nodes and the coarser levels follow.
   std::size_t original_indices = 0;
   // The scene triangles in the hierarchy, ascending (those of Opaque materials).
   std::vector<std::uint32_t> triangles;
@@ -104,7 +112,9 @@ struct ClusterOptions {
   // against a face's pyramid and the depths already drawn, larger ones leave fewer region
   // borders, which every level keeps exactly (docs/performance.md measures both).
   std::uint32_t leaf_triangles = 0;
-  bool simplify = true; // false: inner nodes' meshes are their original triangles
+  // false: the base is the scene's triangles and inner nodes' meshes are their leaves' (the
+  // Cull mode: the same image as drawing every triangle).
+  bool simplify = true;
   int max_levels = 8;   // coarser levels per node at most
 };
 

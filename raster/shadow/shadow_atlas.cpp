@@ -112,8 +112,10 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
 bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
   if (lod_options_.mode == ShadowLodMode::Off || scene.scene().animation) return false;
   if (lod_scene_ != &scene) {
-    lod_ = std::make_unique<ShadowLod>(*api_, scene, build_mesh_clusters(scene.scene()),
-                                       lod_options_.mode == ShadowLodMode::On);
+    // Cull draws the scene's own triangles (the same image as Off), On also their reductions.
+    const bool on = lod_options_.mode == ShadowLodMode::On;
+    lod_ = std::make_unique<ShadowLod>(*api_, scene, build_mesh_clusters(scene.scene(), {0, on}),
+                                       on);
     lod_scene_ = &scene;
   }
   return !lod_->clusters().nodes.empty();

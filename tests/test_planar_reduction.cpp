@@ -1,0 +1,224 @@
+// The exact reduction of flat parts (core/planar_reduction.h): how far it gets on flat,
+// folded, closed and holed grids, and that it changes no surface: areas, the integral of the
+// normal, watertightness, and heights along vertical rays on a height field with flat, sloped
+// and bumpy parts against the original triangles.
+#include "core/planar_reduction.h"
+
+#include <algorithm>
+#include <glm/glm.hpp>
+#include <gtest/gtest.h>
+#include <map>
+#include <optional>
+#include <random>
+
+namespace irad {
+namespace {
+
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::uvec3> triangles;
+  std::map<std::array<float, 3>, std::uint32_t> index; // welding by position
+
+  std::uint32_t vertex(const glm::vec3& p) {
+    const auto [at, added] =
+        index.try_emplace({p.x, p.y, p.z}, static_cast<std::uint32_t>(positions.size()));
+    if (added) positions.push_back(p);
+    return at->second;
+  }
+  // An n x n grid of quads over o + [0,1]^2 (u, v), counter-clockwise about u x v; `keep`
+  // leaves out the quads it refuses.
+  template <class Keep>
+  void grid(const glm::vec3& o, const glm::vec3& u, const glm::vec3& v, int n, Keep keep) {
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (!keep(i, j)) continue;
+        const auto at = [&](int a, int b) {
+          return vertex(o + u * (float(a) / float(n)) + v * (float(b) / float(n)));
+        };
+        const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+        triangles.push_back({a, b, c});
+        triangles.push_back({a, c, d});
+      }
+  }
+  void grid(const glm::vec3& o, const glm::vec3& u, const glm::vec3& v, int n) {
+    grid(o, u, v, n, [](int, int) { return true; });
+  }
+};
+
+glm::dvec3 cross_of(const Mesh& m, const glm::uvec3& t) {
+  const glm::dvec3 a(m.positions[t.x]), b(m.positions[t.y]), c(m.positions[t.z]);
+  return glm::cross(b - a, c - a);
+}
+
+// The integral of the normal (half the summed cross products) and the area.
+std::pair<glm::dvec3, double> moments(const Mesh& m, const std::vector<glm::uvec3>& tris) {
+  glm::dvec3 normal(0.0);
+  double area = 0.0;
+  for (const glm::uvec3& t : tris) {
+    normal += 0.5 * cross_of(m, t);
+    area += 0.5 * glm::length(cross_of(m, t));
+  }
+  return {normal, area};
+}
+
+void expect_same_surface(const Mesh& m, const std::vector<glm::uvec3>& reduced) {
+  const auto [n0, a0] = moments(m, m.triangles);
+  const auto [n1, a1] = moments(m, reduced);
+  // Float positions, double sums: agreement to 1e-9 of the area measured on these grids.
+  EXPECT_NEAR(a1, a0, 1e-7 * a0);
+  EXPECT_NEAR(glm::length(n1 - n0), 0.0, 1e-7 * a0);
+}
+
+// Directed edges each matched by the opposite one.
+bool watertight(const std::vector<glm::uvec3>& tris) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (const glm::uvec3& t : tris)
+    for (int e = 0; e < 3; ++e) ++directed[{t[e], t[(e + 1) % 3]}];
+  for (const auto& [edge, count] : directed) {
+    const auto back = directed.find({edge.second, edge.first});
+    if (back == directed.end() || back->second != count) return false;
+  }
+  return true;
+}
+
+TEST(PlanarReduction, FlatGridToTwoTriangles) {
+  Mesh m;
+  m.grid({0, 0, 0}, {2, 0, 0}, {0, 3, 0}, 64); // 8192 triangles
+  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
+  EXPECT_EQ(r.patches, 1u);
+  EXPECT_EQ(r.triangles.size(), 2u);
+  expect_same_surface(m, r.triangles);
+}
+
+TEST(PlanarReduction, FoldKeepsItsCreaseStraight) {
+  Mesh m;
+  m.grid({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 32);
+  m.grid({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 32); // shares the edge x = z = 0
+  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
+  EXPECT_EQ(r.patches, 2u);
+  EXPECT_EQ(r.triangles.size(), 4u);
+  expect_same_surface(m, r.triangles);
+}
+
+TEST(PlanarReduction, ClosedBoxStaysClosed) {
+  Mesh m;
+  const int n = 24;
+  // Six faces, outward: o, u, v with u x v outward.
+  m.grid({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, n); // z = 0, normal -z
+  m.grid({0, 0, 1}, {1, 0, 0}, {0, 1, 0}, n); // z = 1, +z
+  m.grid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, n); // y = 0, -y
+  m.grid({0, 1, 0}, {0, 0, 1}, {1, 0, 0}, n); // y = 1, +y
+  m.grid({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, n); // x = 0, -x
+  m.grid({1, 0, 0}, {0, 1, 0}, {0, 0, 1}, n); // x = 1, +x
+  ASSERT_TRUE(watertight(m.triangles));
+  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
+  EXPECT_EQ(r.patches, 6u);
+  EXPECT_EQ(r.triangles.size(), 12u);
+  EXPECT_TRUE(watertight(r.triangles));
+  expect_same_surface(m, r.triangles);
+}
+
+TEST(PlanarReduction, HoleStaysOpen) {
+  Mesh m;
+  m.grid({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 40,
+         [](int i, int j) { return !(i >= 10 && i < 20 && j >= 15 && j < 30); });
+  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
+  // A square with a square hole: 8 corners, at least 8 triangles.
+  EXPECT_GE(r.triangles.size(), 8u);
+  EXPECT_LE(r.triangles.size(), 12u);
+  expect_same_surface(m, r.triangles);
+}
+
+TEST(PlanarReduction, BackToBackFacesAreNotMerged) {
+  Mesh m;
+  m.grid({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 16);
+  m.grid({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, 16); // the same square facing -z, same vertices
+  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
+  EXPECT_EQ(r.patches, 2u);
+  std::size_t up = 0, down = 0;
+  double up_area = 0.0, down_area = 0.0;
+  for (const glm::uvec3& t : r.triangles) {
+    const glm::dvec3 c = cross_of(m, t);
+    (c.z > 0.0 ? up : down) += 1;
+    (c.z > 0.0 ? up_area : down_area) += 0.5 * glm::length(c);
+  }
+  EXPECT_GT(up, 0u);
+  EXPECT_GT(down, 0u);
+  EXPECT_NEAR(up_area, 1.0, 1e-7);
+  EXPECT_NEAR(down_area, 1.0, 1e-7);
+}
+
+TEST(PlanarReduction, CurvedSurfaceUnchanged) {
+  Mesh m;
+  const int n = 16;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const auto at = [&](int a, int b) {
+        const float x = float(a) / n, y = float(b) / n;
+        return m.vertex({x, y, 0.3f * x * x + 0.2f * y * y + 0.1f * x * y});
+      };
+      const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      m.triangles.push_back({a, b, c});
+      m.triangles.push_back({a, c, d});
+    }
+  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
+  EXPECT_EQ(r.collapses, 0u);
+  EXPECT_EQ(r.triangles.size(), m.triangles.size());
+}
+
+// The height of the surface above (x, y) along a vertical ray, if a triangle covers it.
+std::optional<double> height_at(const Mesh& m, const std::vector<glm::uvec3>& tris, double x,
+                                double y) {
+  for (const glm::uvec3& t : tris) {
+    const glm::dvec3 a(m.positions[t.x]), b(m.positions[t.y]), c(m.positions[t.z]);
+    const auto side = [&](const glm::dvec3& p, const glm::dvec3& q) {
+      return (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
+    };
+    const double w0 = side(b, c), w1 = side(c, a), w2 = side(a, b), sum = w0 + w1 + w2;
+    if (sum <= 0.0 || w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
+    return (w0 * a.z + w1 * b.z + w2 * c.z) / sum;
+  }
+  return std::nullopt;
+}
+
+// A height field over [0,1]^2 on a 48^2 grid: flat ground, a plateau with planar ramps (folds
+// at every height), a bumpy hill. Every vertical ray meets the reduced surface where it met the
+// original, at the same height within 2 epsilon.
+TEST(PlanarReduction, HeightFieldKeepsEveryHeight) {
+  Mesh m;
+  const int n = 48;
+  const auto h = [](float x, float y) {
+    const float plateau =
+        std::clamp(0.3f - 2.0f * std::max(std::abs(x - 0.3f), std::abs(y - 0.3f)), 0.0f, 0.15f);
+    const float r2 = (x - 0.75f) * (x - 0.75f) + (y - 0.7f) * (y - 0.7f);
+    return plateau + (r2 < 0.04f ? 0.2f * (0.04f - r2) * (1.0f + 0.5f * std::sin(40.0f * x)) : 0.0f);
+  };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const auto at = [&](int a, int b) {
+        const float x = float(a) / n, y = float(b) / n;
+        return m.vertex({x, y, h(x, y)});
+      };
+      const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+      m.triangles.push_back({a, b, c});
+      m.triangles.push_back({a, c, d});
+    }
+  const float epsilon = 1e-6f;
+  const PlanarReduction r = reduce_planar(m.positions, m.triangles, epsilon);
+  std::printf("height field: %zu -> %zu triangles, %zu patches\n", m.triangles.size(),
+              r.triangles.size(), r.patches);
+  EXPECT_LT(r.triangles.size(), m.triangles.size() / 4);
+  expect_same_surface(m, r.triangles);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.001, 0.999);
+  for (int k = 0; k < 2000; ++k) {
+    const double x = unit(rng), y = unit(rng);
+    const std::optional<double> before = height_at(m, m.triangles, x, y);
+    const std::optional<double> after = height_at(m, r.triangles, x, y);
+    ASSERT_TRUE(before && after) << x << ", " << y;
+    EXPECT_NEAR(*after, *before, 2.0 * epsilon) << x << ", " << y;
+  }
+}
+
+} // namespace
+} // namespace irad
