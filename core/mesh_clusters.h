@@ -115,7 +115,7 @@ struct ClusterOptions {
   // false: the base is the scene's triangles and inner nodes' meshes are their leaves' (the
   // Cull mode: the same image as drawing every triangle).
   bool simplify = true;
-  int max_levels = 8;   // coarser levels per node at most
+  int max_levels = 8; // coarser levels per node at most
 };
 
 // About 512 leaves, 128 to 1024 triangles each (a power of two). On zdm2 (58k triangles,

@@ -20,7 +20,7 @@ enum class Role : std::uint8_t { Locked, Interior, Line };
 // One edge v-x of v's fan: how many fan triangles hold it, in which directions, which patches.
 struct FanEdge {
   std::uint32_t x = kNone;
-  int count = 0, out = 0;   // triangles with the edge, of them those running v -> x
+  int count = 0, out = 0;  // triangles with the edge, of them those running v -> x
   std::uint32_t t[2] = {}; // the first two
 };
 
@@ -61,9 +61,7 @@ struct Reducer {
     return out;
   }
 
-  bool feature(const FanEdge& e) const {
-    return e.count == 1 || patch[e.t[0]] != patch[e.t[1]];
-  }
+  bool feature(const FanEdge& e) const { return e.count == 1 || patch[e.t[0]] != patch[e.t[1]]; }
 
   // Whether v's fan triangles form one piece through their shared edges.
   bool one_piece(std::uint32_t v, const std::vector<FanEdge>& edges) const {
@@ -231,8 +229,7 @@ bool Reducer::can_collapse(std::uint32_t v, std::uint32_t u) {
     const dvec3 a = p(moved.x), b = p(moved.y), c = p(moved.z);
     const double longest =
         std::max({glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)});
-    if (!(glm::dot(glm::cross(b - a, c - a), normals[patch[t]]) > kMinSine * longest))
-      return false;
+    if (!(glm::dot(glm::cross(b - a, c - a), normals[patch[t]]) > kMinSine * longest)) return false;
   }
   std::sort(common.begin(), common.end());
   common.erase(std::unique(common.begin(), common.end()), common.end());

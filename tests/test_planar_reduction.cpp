@@ -191,7 +191,8 @@ TEST(PlanarReduction, HeightFieldKeepsEveryHeight) {
     const float plateau =
         std::clamp(0.3f - 2.0f * std::max(std::abs(x - 0.3f), std::abs(y - 0.3f)), 0.0f, 0.15f);
     const float r2 = (x - 0.75f) * (x - 0.75f) + (y - 0.7f) * (y - 0.7f);
-    return plateau + (r2 < 0.04f ? 0.2f * (0.04f - r2) * (1.0f + 0.5f * std::sin(40.0f * x)) : 0.0f);
+    return plateau +
+           (r2 < 0.04f ? 0.2f * (0.04f - r2) * (1.0f + 0.5f * std::sin(40.0f * x)) : 0.0f);
   };
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {

@@ -114,8 +114,8 @@ bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
   if (lod_scene_ != &scene) {
     // Cull draws the scene's own triangles (the same image as Off), On also their reductions.
     const bool on = lod_options_.mode == ShadowLodMode::On;
-    lod_ = std::make_unique<ShadowLod>(*api_, scene, build_mesh_clusters(scene.scene(), {0, on}),
-                                       on);
+    lod_ =
+        std::make_unique<ShadowLod>(*api_, scene, build_mesh_clusters(scene.scene(), {0, on}), on);
     lod_scene_ = &scene;
   }
   return !lod_->clusters().nodes.empty();
