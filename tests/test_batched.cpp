@@ -82,12 +82,15 @@ TEST(Batched, CornellBoxMatchesThePerVplPasses) {
     // Batches of 7 leave a partial last batch and put VPLs of every set into one draw.
     for (int batch : {7, 32}) {
       const Difference d = batched_against_reference(scene, vpls, view, k, batch, "cornell");
-      // Measured (llvmpipe, deferred): k = 1: relMSE 1.1e-14 (max abs 1.9e-6), no pixel off by
-      // 1 %; k = 4: relMSE 4.6e-6, mean ratio 1.000055, 16 pixels (0.098 %) off by more than
-      // 1 %, all on the edges of the blocks (the faces the G-buffer and the tile disagree on).
-      EXPECT_LT(d.metrics.relmse, k == 1 ? 1e-8 : 2e-5);
+      // Measured (llvmpipe, deferred): k = 1: relMSE 1.4e-8 (max abs 2.2e-3), 2 pixels (0.012 %)
+      // off by 1 %; k = 4: relMSE 4.6e-6, mean ratio 1.000055, 16 pixels (0.098 %) off by more
+      // than 1 %, on the edges of the blocks (the faces the G-buffer and the tile disagree on).
+      // Before the occluder planes (raster/glsl/cube_glsl.h) k = 1 gave 1.1e-14 and no pixel:
+      // the planes' gradients are dFdx/dFdy over 2x2 quads that lie differently in a cube face
+      // and in the atlas, and the neighbour test that drops a plane is a threshold on them.
+      EXPECT_LT(d.metrics.relmse, k == 1 ? 2e-7 : 2e-5);
       EXPECT_NEAR(d.metrics.mean_ratio[1], 1.0, 1e-4);
-      EXPECT_LT(d.differing, k == 1 ? 0.0001 : 0.003);
+      EXPECT_LT(d.differing, k == 1 ? 0.001 : 0.003);
     }
   }
 }

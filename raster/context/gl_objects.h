@@ -93,6 +93,18 @@ inline Texture make_float_texture(const GladGLContext& api, int width, int heigh
   return t;
 }
 
+// An RG16F 2D texture of the given size, nearest filtering, left unbound: the batched shadow
+// maps' distance gradients (raster/glsl/cube_glsl.h).
+inline Texture make_gradient_texture(const GladGLContext& api, int width, int height) {
+  Texture t = make_texture(api);
+  api.BindTexture(GL_TEXTURE_2D, t.get());
+  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RG16F, width, height, 0, GL_RG, GL_FLOAT, nullptr);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  api.BindTexture(GL_TEXTURE_2D, 0);
+  return t;
+}
+
 // Throws irad::Error naming `what` unless the bound draw framebuffer is complete.
 void check_framebuffer(const GladGLContext& api, const char* what);
 

@@ -70,11 +70,14 @@ flat in vec4 v_origin;
 #ifdef IRAD_ALPHA
 #pragma irad_material_fragment
 #endif
+out vec2 o_gradient; // ShadowAtlas::gradient_texture(): d per face texel, x and y
 void main() {
 #ifdef IRAD_ALPHA
   if (material_absent(shadow_alpha_key(v_origin.xyz))) discard;
 #endif
-  gl_FragDepth = length(v_position - v_origin.xyz) * v_origin.w;
+  float d = length(v_position - v_origin.xyz) * v_origin.w;
+  gl_FragDepth = d;
+  o_gradient = vec2(dFdx(d), dFdy(d));
 }
 )";
 

@@ -63,7 +63,9 @@ flat in vec3 v_vpl_normal;
 flat in vec3 v_vpl_intensity;
 flat in vec4 v_cone;
 flat in vec4 v_frame[3];
-uniform sampler2D u_shadow_atlas;
+uniform sampler2D u_shadow_atlas;    // distance / far
+uniform sampler2D u_shadow_gradient; // its gradient per texel (cube_glsl.h)
+uniform bool u_planes;               // false: no gradients, the centre's distance alone
 uniform sampler2D u_ortho_atlas;   // orthographic maps (raster/shadow/ortho_atlas.h)
 uniform int u_ortho_res;           // M, texels per tile edge
 uniform sampler2D u_position;    // G-buffer: xyz, w = 1 on a surface
@@ -96,24 +98,28 @@ ivec2 face_offset(int f) {
   return (f < 3 ? v_blocks.xy : v_blocks.zw) + ivec2(g * r, 0);
 }
 
-// The distance stored in the VPL's cube in direction q (cube frame): the atlas holds it / far.
-float stored_distance(vec3 q) {
-  vec3 a = abs(q);
-  int face;
+#pragma irad_cube_lookup
+// Whether the VPL's cube hides the receiver at distance r (bias included) in direction q (cube
+// frame; raster/glsl/cube_glsl.h): the atlas holds distances / far, the gradients beside it. The
+// gradient only where the centre's distance lets the receiver through, the neighbours only where
+// the plane alone would shadow.
+bool shadowed(vec3 q, float r) {
   vec2 st;
-  if (a.x >= a.y && a.x >= a.z) {
-    face = q.x > 0.0 ? 0 : 1;
-    st = vec2(q.x > 0.0 ? -q.z : q.z, -q.y) / a.x;
-  } else if (a.y >= a.z) {
-    face = q.y > 0.0 ? 2 : 3;
-    st = vec2(q.x, q.y > 0.0 ? q.z : -q.z) / a.y;
-  } else {
-    face = q.z > 0.0 ? 4 : 5;
-    st = vec2(q.z > 0.0 ? q.x : -q.x, -q.y) / a.z;
-  }
-  ivec2 texel = clamp(ivec2(floor((st * 0.5 + 0.5) * float(u_shadow_res))), ivec2(0),
-                      ivec2(u_shadow_res - 1));
-  return texelFetch(u_shadow_atlas, texel + face_offset(face), 0).r * v_cone.w;
+  int face = cube_face(q, st);
+  vec2 at = (st * 0.5 + 0.5) * float(u_shadow_res);
+  ivec2 texel = clamp(ivec2(floor(at)), ivec2(0), ivec2(u_shadow_res - 1));
+  ivec2 origin = face_offset(face);
+  float centre = texelFetch(u_shadow_atlas, texel + origin, 0).r * v_cone.w;
+  if (r > centre) return true;
+  if (!u_planes) return false;
+  vec2 gradient = texelFetch(u_shadow_gradient, texel + origin, 0).rg * v_cone.w;
+  if (!(r > plane_distance(centre, gradient, at))) return false;
+  ivec2 step = toward(at), nx = texel + ivec2(step.x, 0), ny = texel + ivec2(0, step.y);
+  float next_x = nx.x >= 0 && nx.x < u_shadow_res
+                     ? texelFetch(u_shadow_atlas, nx + origin, 0).r * v_cone.w : -1.0;
+  float next_y = ny.y >= 0 && ny.y < u_shadow_res
+                     ? texelFetch(u_shadow_atlas, ny + origin, 0).r * v_cone.w : -1.0;
+  return r > occluder_distance(centre, gradient, at, next_x, next_y);
 }
 
 // A directional VPL's I max(0, n . -d) V / pi (raster/glsl/directional_shaders.h's maths): the
@@ -154,7 +160,7 @@ vec3 vpl_light(vec3 x, vec3 n) {
   float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
   vec3 dp = x + n * (dist * u_bias_texel * sin_x) - v_vpl_position;
   mat3 frame = mat3(v_frame[0].xyz, v_frame[1].xyz, v_frame[2].xyz);
-  if (length(dp) > stored_distance(frame * dp) + u_bias_constant) return vec3(0.0);
+  if (shadowed(frame * dp, length(dp) - u_bias_constant)) return vec3(0.0);
   float g = e * cos_x / max(dist2, v_cone.z);
   return v_vpl_intensity * (g * INV_PI);
 }

@@ -68,6 +68,29 @@ uniform float u_bias_texel;      // angular size of a shadow texel
 uniform bool u_apply_albedo;     // false: irradiance / pi only (interleaved mode multiplies later)
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
+#pragma irad_cube_lookup
+// Whether the cube hides the receiver at distance r (bias included) in direction q (cube frame):
+// it holds (distance, gradient) per texel (raster/glsl/cube_glsl.h); R = 2 / u_bias_texel texels
+// per face edge. The neighbours only where the plane alone would shadow.
+bool shadowed(vec3 q, float r) {
+  vec3 s = texture(u_shadow, q).rgb;
+  if (r > s.r) return true;
+  vec2 st;
+  int face = cube_face(q, st);
+  float res = 2.0 / u_bias_texel;
+  vec2 at = (st * 0.5 + 0.5) * res;
+  if (!(r > plane_distance(s.r, s.gb, at))) return false;
+  vec2 texel = clamp(floor(at), vec2(0.0), vec2(res - 1.0));
+  vec2 step = vec2(toward(at));
+  vec2 nx = texel + vec2(step.x, 0.0), ny = texel + vec2(0.0, step.y);
+  float next_x = nx.x >= 0.0 && nx.x < res
+                     ? texture(u_shadow, face_direction(face, (nx + 0.5) / res * 2.0 - 1.0)).r
+                     : -1.0;
+  float next_y = ny.y >= 0.0 && ny.y < res
+                     ? texture(u_shadow, face_direction(face, (ny + 0.5) / res * 2.0 - 1.0)).r
+                     : -1.0;
+  return r > occluder_distance(s.r, s.gb, at, next_x, next_y);
+}
 void main() {
 #ifdef IRAD_ALPHA
   if (material_absent(camera_alpha_key())) discard;
@@ -96,7 +119,7 @@ void main() {
   // thinner than the bias: 7 cm at 1 m with 256^2 faces).
   float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
   vec3 dp = v_position + n * (dist * u_bias_texel * sin_x) - u_vpl_position;
-  if (length(dp) > texture(u_shadow, u_shadow_frame * dp).r + u_bias_constant) discard;
+  if (shadowed(u_shadow_frame * dp, length(dp) - u_bias_constant)) discard;
   vec3 albedo = u_apply_albedo ? material_albedo() : vec3(1.0);
   float g = e * cos_x / max(dist2, u_dmin2);
   o_color = vec4(u_vpl_intensity * (g * INV_PI) * albedo, 0.0);
@@ -127,12 +150,13 @@ in vec3 v_position;
 #pragma irad_material_fragment
 #endif
 uniform vec3 u_vpl_position;
-out float o_distance;
+out vec4 o_distance; // the distance and its gradient per texel (raster/glsl/cube_glsl.h)
 void main() {
 #ifdef IRAD_ALPHA
   if (material_absent(shadow_alpha_key(u_vpl_position))) discard;
 #endif
-  o_distance = length(v_position - u_vpl_position);
+  float d = length(v_position - u_vpl_position);
+  o_distance = vec4(d, dFdx(d), dFdy(d), 0.0);
 }
 )";
 

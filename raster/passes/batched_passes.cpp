@@ -74,6 +74,7 @@ void BatchedPasses::flush(std::vector<Entry>& batch, const DeferredTarget& into,
   ShadowLookup lookup{atlas_.texture(), atlas_.resolution()};
   if (ortho_)
     lookup = {atlas_.texture(), atlas_.resolution(), ortho_->texture(), ortho_->resolution()};
+  lookup.gradient = atlas_.gradient_texture();
   shade(shaded_, lookup, into);
   if (timer) timer->end();
   batch.clear();

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "raster/glsl/batched_shaders.h"
+#include "raster/glsl/cube_glsl.h"
 #include "raster/glsl/deferred_shaders.h"
 #include "raster/passes/vpl_shader.h"
 
@@ -19,6 +20,7 @@ constexpr std::size_t kFloatsPerVpl = shaders::kShadingBytesPerVpl / sizeof(floa
 // at shadow_unit).
 constexpr GLint gbuffer_unit = 3;
 constexpr GLint ortho_unit = 6;
+constexpr GLint gradient_unit = 7; // ShadowLookup::gradient
 
 // The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 144 bytes).
 void write_vpl(float* out, const AtlasVpl& a, float dmin2) {
@@ -55,14 +57,15 @@ int DeferredShader::capacity(const GladGLContext& api, int wanted) {
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch),
       program_(api, "deferred vpl", shaders::batched_source(shaders::deferred_vpl_vertex, batch),
-               shaders::batched_source(shaders::deferred_vpl_fragment, batch)),
+               shaders::with_cube_lookup(
+                   shaders::batched_source(shaders::deferred_vpl_fragment, batch))),
       first_(program_.uniform("u_first")), tile_origin_(program_.uniform("u_tile_origin")),
       pixel_(program_.uniform("u_pixel")), size_(program_.uniform("u_size")),
       shadow_res_(program_.uniform("u_shadow_res")),
       shadow_half_(program_.uniform("u_shadow_half")),
       bias_texel_(program_.uniform("u_bias_texel")), ortho_res_(program_.uniform("u_ortho_res")),
-      apply_albedo_(program_.uniform("u_apply_albedo")), vpl_block_(make_buffer(api)),
-      empty_vao_(make_vertex_array(api)),
+      apply_albedo_(program_.uniform("u_apply_albedo")), planes_(program_.uniform("u_planes")),
+      vpl_block_(make_buffer(api)), empty_vao_(make_vertex_array(api)),
       vpl_data_(static_cast<std::size_t>(batch) * kFloatsPerVpl, 0.0f) {
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "VplBatch");
   if (index == GL_INVALID_INDEX) throw Error("", "shader deferred vpl", "no block VplBatch");
@@ -70,6 +73,7 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   program_.use();
   api.Uniform1i(program_.uniform("u_shadow_atlas"), shadow_unit);
   api.Uniform1i(program_.uniform("u_ortho_atlas"), ortho_unit);
+  api.Uniform1i(program_.uniform("u_shadow_gradient"), gradient_unit);
   api.Uniform1i(program_.uniform("u_position"), gbuffer_unit);
   api.Uniform1i(program_.uniform("u_normal"), gbuffer_unit + 1);
   api.Uniform1i(program_.uniform("u_albedo"), gbuffer_unit + 2);
@@ -114,6 +118,9 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
   api.BindTexture(GL_TEXTURE_2D, shadow.texture);
   api.ActiveTexture(GL_TEXTURE0 + ortho_unit);
   api.BindTexture(GL_TEXTURE_2D, shadow.ortho_texture);
+  api.ActiveTexture(GL_TEXTURE0 + gradient_unit);
+  api.BindTexture(GL_TEXTURE_2D, shadow.gradient);
+  api.Uniform1i(planes_, shadow.gradient != 0 ? 1 : 0);
   gbuffer.bind_textures(gbuffer_unit);
   api.BindVertexArray(empty_vao_.get());
   api.DrawArraysInstanced(GL_TRIANGLES, 0, 3, count);

@@ -32,6 +32,7 @@ struct ShadowLookup {
   int resolution = 0;
   GLuint ortho_texture = 0;
   int ortho_resolution = 0;
+  GLuint gradient = 0; // the encoded distance gradients, texel by texel as `texture`
 };
 
 // A VPL whose shadow map is in an atlas, with what the lookup needs and its interleaved set.
@@ -71,7 +72,7 @@ private:
   int batch_;
   ShaderProgram program_;
   GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
-      apply_albedo_;
+      apply_albedo_, planes_;
   Buffer vpl_block_;
   VertexArray empty_vao_;
   std::vector<float> vpl_data_;

@@ -1,5 +1,6 @@
 #include "raster/passes/vpl_shader.h"
 
+#include "raster/glsl/cube_glsl.h"
 #include "raster/glsl/mirror_shaders.h"
 #include "raster/glsl/shaders.h"
 
@@ -45,7 +46,7 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp,
                      const std::string& fragment)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp),
       program_(api, "vpl", material_source(shaders::camera_vertex, MaterialFeatures::of(scene)),
-               material_source(fragment, MaterialFeatures::of(scene))),
+               shaders::with_cube_lookup(material_source(fragment, MaterialFeatures::of(scene)))),
       material_(program_), view_projection_(program_.uniform("u_view_projection")),
       position_(program_.uniform("u_vpl_position")), normal_(program_.uniform("u_vpl_normal")),
       intensity_(program_.uniform("u_vpl_intensity")), kind_(program_.uniform("u_vpl_kind")),

@@ -98,6 +98,12 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
   for (int a = 0; a < 2; ++a) {
     atlas_[a] = make_depth_texture(api, size.x, size.y);
     fbo_[a] = make_depth_framebuffer(api, atlas_[a].get(), "shadow atlas framebuffer");
+    if (!lod.planes) continue; // depth only, as make_depth_framebuffer left it
+    gradient_[a] = make_gradient_texture(api, size.x, size.y);
+    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                             gradient_[a].get(), 0);
+    api.DrawBuffer(GL_COLOR_ATTACHMENT0);
+    check_framebuffer(api, "shadow atlas framebuffer");
   }
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "ShadowBatch");
   if (index == GL_INVALID_INDEX) throw Error("", "shader batched shadow", "no block ShadowBatch");
@@ -282,8 +288,9 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   api.DepthFunc(GL_LESS);
   api.DepthMask(GL_TRUE);
   api.Disable(GL_BLEND);
-  api.ClearDepth(1.0); // far: nothing there, never shadowed
-  api.Clear(GL_DEPTH_BUFFER_BIT);
+  api.ClearDepth(1.0);                    // far: nothing there, never shadowed
+  api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f); // no slope
+  api.Clear(GL_DEPTH_BUFFER_BIT | (lod_options_.planes ? GL_COLOR_BUFFER_BIT : 0));
   program_.use();
   for (int k = 0; k < 4; ++k) api.Enable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
   if (prepare_lod(scene))

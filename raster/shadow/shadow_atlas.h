@@ -64,6 +64,9 @@ public:
 
   // The atlas the last render() drew into.
   GLuint texture() const { return atlas_[current_].get(); }
+  // Per texel the gradient of the distance / far per face texel (raster/glsl/cube_glsl.h).
+  // 0 without ShadowLodOptions::planes (nothing written: a lookup reads no slope).
+  GLuint gradient_texture() const { return lod_options_.planes ? gradient_[current_].get() : 0; }
   int resolution() const { return resolution_; }
   int batch() const { return batch_; }
   int blocks() const { return grid_.x * grid_.y; }
@@ -125,6 +128,7 @@ private:
   // passes that read the last batch's (llvmpipe waits before it renders into a texture that a
   // queued draw samples).
   Texture atlas_[2];
+  Texture gradient_[2]; // RG16F
   Framebuffer fbo_[2];
   int current_ = 0;
   Buffer block_buffer_;           // the ShadowBatch uniform block

@@ -7,7 +7,7 @@ namespace irad::gl {
 namespace {
 
 constexpr int kMaxPageSide = 4096;
-// Blocks of a new page: 16 blocks of 64^2 faces are 0.8 MB.
+// Blocks of a new page: 16 blocks of 64^2 faces are 1.6 MB (depth and gradient).
 constexpr int kFirstPageBlocks = 16;
 
 int max_page_side(const GladGLContext& api) {
@@ -24,23 +24,26 @@ ShadowCache::ShadowCache(const GladGLContext& api, int resolution, int batch, co
       columns_(std::clamp(max_page_side(api) / block_.x, 1, 16)),
       max_rows_(std::max(1, max_page_side(api) / block_.y)),
       atlas_(api, resolution, batch, 2 * batch, bounds, features),
-      read_fbo_(make_framebuffer(api)) {
-  api.BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo_.get());
-  api.ReadBuffer(GL_NONE); // depth only: complete without a colour attachment
-}
+      read_fbo_(make_framebuffer(api)) {}
 
-void ShadowCache::make_page(int rows, Texture& texture, Framebuffer& fbo) const {
+void ShadowCache::make_page(int rows, Texture& texture, Texture& gradient, Framebuffer& fbo) const {
   const GladGLContext& api = *api_;
   const glm::ivec2 size = glm::ivec2(columns_, rows) * block_;
   texture = make_depth_texture(api, size.x, size.y);
   fbo = make_depth_framebuffer(api, texture.get(), "shadow cache page");
+  gradient = make_gradient_texture(api, size.x, size.y); // as ShadowAtlas's
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gradient.get(), 0);
+  api.DrawBuffer(GL_COLOR_ATTACHMENT0);
+  api.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  check_framebuffer(api, "shadow cache page");
 }
 
 void ShadowCache::add_page() {
   const int rows = std::min(max_rows_, (kFirstPageBlocks + columns_ - 1) / columns_);
   pages_.emplace_back();
+  gradients_.emplace_back();
   page_fbos_.emplace_back();
-  make_page(rows, pages_.back(), page_fbos_.back());
+  make_page(rows, pages_.back(), gradients_.back(), page_fbos_.back());
   rows_.push_back(rows);
   std::vector<int> all(static_cast<std::size_t>(columns_ * rows));
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(all.size() - 1 - i);
@@ -51,15 +54,17 @@ void ShadowCache::grow_last_page() {
   const GladGLContext& api = *api_;
   const std::size_t p = pages_.size() - 1;
   const int rows = rows_[p], grown = std::min(max_rows_, 2 * rows);
-  Texture texture;
+  Texture texture, gradient;
   Framebuffer fbo;
-  make_page(grown, texture, fbo);
+  make_page(grown, texture, gradient, fbo);
   const glm::ivec2 size = glm::ivec2(columns_, rows) * block_;
   api.Disable(GL_SCISSOR_TEST);
   api.BindFramebuffer(GL_READ_FRAMEBUFFER, page_fbos_[p].get());
   api.BindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo.get());
-  api.BlitFramebuffer(0, 0, size.x, size.y, 0, 0, size.x, size.y, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  api.BlitFramebuffer(0, 0, size.x, size.y, 0, 0, size.x, size.y,
+                      GL_DEPTH_BUFFER_BIT | GL_COLOR_BUFFER_BIT, GL_NEAREST);
   pages_[p] = std::move(texture);
+  gradients_[p] = std::move(gradient);
   page_fbos_[p] = std::move(fbo);
   rows_[p] = grown;
   for (int i = columns_ * grown - 1; i >= columns_ * rows; --i) free_[p].push_back(i);
@@ -88,7 +93,8 @@ void ShadowCache::copy_block(glm::ivec2 from, Block to) {
   const glm::ivec2 o = origin(to.index);
   api.BindFramebuffer(GL_DRAW_FRAMEBUFFER, page_fbos_[static_cast<std::size_t>(to.page)].get());
   api.BlitFramebuffer(from.x, from.y, from.x + block_.x, from.y + block_.y, o.x, o.y,
-                      o.x + block_.x, o.y + block_.y, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+                      o.x + block_.x, o.y + block_.y, GL_DEPTH_BUFFER_BIT | GL_COLOR_BUFFER_BIT,
+                      GL_NEAREST);
 }
 
 void ShadowCache::store(std::uint32_t slot, const std::vector<Vpl>& vpls, const GpuScene& gpu) {
@@ -112,6 +118,9 @@ void ShadowCache::store(std::uint32_t slot, const std::vector<Vpl>& vpls, const 
       api_->BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo_.get());
       api_->FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D,
                                  atlas_.texture(), 0);
+      api_->FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                                 atlas_.gradient_texture(), 0);
+      api_->ReadBuffer(GL_COLOR_ATTACHMENT0);
       copy_block({blocks[s].x, blocks[s].y}, k.blocks[0]);
       if (k.count == 2) copy_block({blocks[s].z, blocks[s].w}, k.blocks[1]);
       kept.push_back(k);
@@ -133,7 +142,10 @@ void ShadowCache::store(std::uint32_t slot, const std::vector<Vpl>& vpls, const 
 
 std::vector<ShadowCache::Page> ShadowCache::pages() const {
   std::vector<Page> out(pages_.size());
-  for (std::size_t p = 0; p < pages_.size(); ++p) out[p].lookup = {pages_[p].get(), resolution_};
+  for (std::size_t p = 0; p < pages_.size(); ++p) {
+    out[p].lookup = {pages_[p].get(), resolution_};
+    out[p].lookup.gradient = gradients_[p].get();
+  }
   for (const std::vector<Kept>& slot : slots_)
     for (const Kept& k : slot) {
       const glm::ivec2 b0 = origin(k.blocks[0].index);

@@ -3,7 +3,8 @@
 // walkthrough): each path slot's VPLs get their cubes drawn by a ShadowAtlas, batch by batch,
 // and copied block by block into pages that keep them until the slot is drawn again, so the
 // deferred passes (raster/passes/deferred_shader.h) shade every kept VPL from a moving camera
-// without redrawing a shadow map. A page is a DEPTH_COMPONENT32F texture in ShadowAtlas's layout
+// without redrawing a shadow map. A page is a DEPTH_COMPONENT32F texture (and the RG16F
+// gradients beside it, raster/glsl/cube_glsl.h) in ShadowAtlas's layout
 // (blocks of (2R + 2h) x 2h texels; a surface VPL takes one, any other two); a slot's blocks go
 // back to the free list when the slot is replaced, so a full ring allocates nothing per frame.
 // A page grows (doubling its rows, its blocks copied) up to the texture size before a second one
@@ -57,7 +58,7 @@ private:
   // Doubles the rows of the last page (at most max_rows_), keeping its blocks where they are.
   void grow_last_page();
   // A page texture and its framebuffer of `rows` rows of blocks.
-  void make_page(int rows, Texture& texture, Framebuffer& fbo) const;
+  void make_page(int rows, Texture& texture, Texture& gradient, Framebuffer& fbo) const;
   glm::ivec2 origin(int index) const {
     return glm::ivec2(index % columns_, index / columns_) * block_;
   }
@@ -71,6 +72,7 @@ private:
   ShadowAtlas atlas_;
   Framebuffer read_fbo_; // the atlas as read framebuffer
   std::vector<Texture> pages_;
+  std::vector<Texture> gradients_; // per page, as ShadowAtlas::gradient_texture()
   std::vector<Framebuffer> page_fbos_;
   std::vector<int> rows_;              // per page
   std::vector<std::vector<int>> free_; // per page, the free blocks' indices

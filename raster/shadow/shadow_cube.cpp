@@ -83,8 +83,8 @@ Texture ShadowCube::make_cube(const GladGLContext& api, int resolution) {
   Texture cube = make_texture(api);
   api.BindTexture(GL_TEXTURE_CUBE_MAP, cube.get());
   for (int f = 0; f < 6; ++f)
-    api.TexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_R32F, resolution,
-                   resolution, 0, GL_RED, GL_FLOAT, nullptr);
+    api.TexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_RGBA32F,
+                   resolution, resolution, 0, GL_RGBA, GL_FLOAT, nullptr);
   api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   api.TexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -1,5 +1,6 @@
 #pragma once
-// Omnidirectional shadow map of one VPL: a cube of R32F distances |p - y| to the nearest surface,
+// Omnidirectional shadow map of one VPL: a cube of RGBA32F texels, the distance |p - y| to the
+// nearest surface and its gradient per texel (raster/glsl/cube_glsl.h),
 // rendered face by face into one framebuffer. A surface VPL lights only its hemisphere, so its
 // cube is turned to put the normal at the centre of the +z face and the -z face is skipped.
 // A mirrored VPL (core/mirrors.h) gets the cube of its unfolded paths
@@ -52,7 +53,7 @@ public:
   }
   // The same into `cube`, a cube map from make_cube(resolution()) (shadow maps kept per VPL).
   glm::mat3 render_into(const Vpl& vpl, const GpuScene& scene, GLuint cube);
-  // An R32F cube map of resolution^2 faces with the lookup state the shading pass expects.
+  // An RGBA32F cube map of resolution^2 faces with the lookup state the shading pass expects.
   static Texture make_cube(const GladGLContext& api, int resolution);
 
   GLuint texture() const { return cube_.get(); }

@@ -1,0 +1,89 @@
+#pragma once
+// GLSL shared by the shading passes that look up a VPL's shadow cube (raster/glsl/shaders.h
+// vpl_fragment: a cube map; raster/glsl/deferred_shaders.h: the batch's atlas and the cache
+// pages), inserted where a source has the line "#pragma irad_cube_lookup".
+//
+// Each texel of a cube face stores the distance d_c of the nearest surface on the ray through
+// its centre and that surface's gradient g = (dd/dx, dd/dy) per face texel (dFdx, dFdy of the
+// triangle's own interpolated distance). A receiver looked up at the face point `at` (texels)
+// is compared with the lesser of d_c and the plane through the centre, d_c + g . (at - centre):
+// a surface seen at a grazing angle theta changes its distance by about dist (2/R) tan(theta)
+// across one texel, far more than a thin wall's thickness, so with d_c alone a receiver just
+// behind such a wall but nearer than its texel's centre passed (issue 14: a 2 mm wall let 2.7e-4
+// of the lit room's light through). The plane only ever shadows more, and only receivers behind
+// the occluder's own plane: exact at concave corners (the receiver lies in front of the other
+// face's plane). Next to a convex edge seen from both sides it would darken the far face for up
+// to a texel's footprint (the plane extended past the edge floats in front of it); there the
+// neighbouring texel sees something behind the plane, and that direction's term is dropped.
+#include <string>
+
+namespace irad::gl::shaders {
+
+inline constexpr const char* cube_lookup_glsl = R"(
+// The face of direction q (+x, -x, +y, -y, +z, -z: 0..5) and q's coordinates st in [-1, 1] on
+// it, GL's cube-map convention.
+int cube_face(vec3 q, out vec2 st) {
+  vec3 a = abs(q);
+  if (a.x >= a.y && a.x >= a.z) {
+    st = vec2(q.x > 0.0 ? -q.z : q.z, -q.y) / a.x;
+    return q.x > 0.0 ? 0 : 1;
+  }
+  if (a.y >= a.z) {
+    st = vec2(q.x, q.y > 0.0 ? q.z : -q.z) / a.y;
+    return q.y > 0.0 ? 2 : 3;
+  }
+  st = vec2(q.z > 0.0 ? q.x : -q.x, -q.y) / a.z;
+  return q.z > 0.0 ? 4 : 5;
+}
+
+// The direction (unnormalized) of the point st of face f: cube_face's inverse.
+vec3 face_direction(int f, vec2 st) {
+  if (f == 0) return vec3(1.0, -st.y, -st.x);
+  if (f == 1) return vec3(-1.0, -st.y, st.x);
+  if (f == 2) return vec3(st.x, 1.0, st.y);
+  if (f == 3) return vec3(st.x, -1.0, -st.y);
+  if (f == 4) return vec3(st.x, -st.y, 1.0);
+  return vec3(-st.x, -st.y, -1.0);
+}
+
+// The steps (+-1 per axis) from the texel of the face point `at` (texels) to the neighbours
+// that `at` lies nearer to.
+ivec2 toward(vec2 at) {
+  vec2 offset = at - (floor(at) + 0.5);
+  return ivec2(offset.x >= 0.0 ? 1 : -1, offset.y >= 0.0 ? 1 : -1);
+}
+
+// The plane's distance at the face point `at` (texels), not yet checked against the neighbours:
+// occluder_distance is never below it, so a receiver in front of it is lit without them.
+float plane_distance(float centre, vec2 gradient, vec2 at) {
+  vec2 offset = clamp(at - (floor(at) + 0.5), vec2(-0.5), vec2(0.5));
+  return min(centre, centre + dot(gradient, offset));
+}
+
+// The occluder's distance at the face point `at` (texels) from its texel's stored centre
+// distance and gradient: the lesser of the centre's and the plane's. A direction's term counts
+// only where the neighbour toward `at` in it (next_x, next_y: its stored distance; below 0 where
+// there is none on the face) is not behind the plane at its centre: behind, the occluder ends
+// inside the texel (a convex edge seen from both sides) and its plane would float over the
+// other face. Same-plane neighbours are within a quarter of a texel's change (distance is not
+// linear across the face) and 1e-5 of the distance (rounding).
+float occluder_distance(float centre, vec2 gradient, vec2 at, float next_x, float next_y) {
+  vec2 offset = clamp(at - (floor(at) + 0.5), vec2(-0.5), vec2(0.5));
+  vec2 step = vec2(toward(at));
+  float slack = 0.25 * (abs(gradient.x) + abs(gradient.y)) + 1e-5 * centre;
+  vec2 g = gradient;
+  if (next_x > centre + g.x * step.x + slack) g.x = 0.0;
+  if (next_y > centre + g.y * step.y + slack) g.y = 0.0;
+  return min(centre, centre + dot(g, offset));
+}
+)";
+
+// `source` with its "#pragma irad_cube_lookup" line replaced by cube_lookup_glsl.
+inline std::string with_cube_lookup(std::string source) {
+  const std::string marker = "#pragma irad_cube_lookup\n";
+  const std::size_t at = source.find(marker);
+  if (at != std::string::npos) source.replace(at, marker.size(), cube_lookup_glsl);
+  return source;
+}
+
+} // namespace irad::gl::shaders
