@@ -82,27 +82,22 @@ inline Renderbuffer make_renderbuffer(const GladGLContext& api) {
   return make<Kind::Renderbuffer>(api);
 }
 
-// An RGBA32F 2D texture of the given size, nearest filtering, left unbound.
-inline Texture make_float_texture(const GladGLContext& api, int width, int height) {
+// A float 2D texture of the given size and internal format (with its matching format),
+// nearest filtering, left unbound.
+inline Texture make_float_texture(const GladGLContext& api, int width, int height,
+                                  GLint internal = GL_RGBA32F, GLenum format = GL_RGBA) {
   Texture t = make_texture(api);
   api.BindTexture(GL_TEXTURE_2D, t.get());
-  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+  api.TexImage2D(GL_TEXTURE_2D, 0, internal, width, height, 0, format, GL_FLOAT, nullptr);
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   api.BindTexture(GL_TEXTURE_2D, 0);
   return t;
 }
 
-// An RG16F 2D texture of the given size, nearest filtering, left unbound: the batched shadow
-// maps' distance gradients (raster/glsl/cube_glsl.h).
+// An RG16F one: the batched shadow maps' distance gradients (raster/glsl/cube_glsl.h).
 inline Texture make_gradient_texture(const GladGLContext& api, int width, int height) {
-  Texture t = make_texture(api);
-  api.BindTexture(GL_TEXTURE_2D, t.get());
-  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RG16F, width, height, 0, GL_RG, GL_FLOAT, nullptr);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  api.BindTexture(GL_TEXTURE_2D, 0);
-  return t;
+  return make_float_texture(api, width, height, GL_RG16F, GL_RG);
 }
 
 // Throws irad::Error naming `what` unless the bound draw framebuffer is complete.
