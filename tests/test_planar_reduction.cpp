@@ -81,23 +81,25 @@ bool watertight(const std::vector<glm::uvec3>& tris) {
   return true;
 }
 
+// m reduces to `triangles` triangles in `patches` patches, the same surface.
+void expect_reduced_to(const Mesh& m, std::size_t patches, std::size_t triangles) {
+  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
+  EXPECT_EQ(r.patches, patches);
+  EXPECT_EQ(r.triangles.size(), triangles);
+  expect_same_surface(m, r.triangles);
+}
+
 TEST(PlanarReduction, FlatGridToTwoTriangles) {
   Mesh m;
   m.grid({0, 0, 0}, {2, 0, 0}, {0, 3, 0}, 64); // 8192 triangles
-  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
-  EXPECT_EQ(r.patches, 1u);
-  EXPECT_EQ(r.triangles.size(), 2u);
-  expect_same_surface(m, r.triangles);
+  expect_reduced_to(m, 1, 2);
 }
 
 TEST(PlanarReduction, FoldKeepsItsCreaseStraight) {
   Mesh m;
   m.grid({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 32);
   m.grid({0, 0, 0}, {0, 1, 0}, {0, 0, 1}, 32); // shares the edge x = z = 0
-  const PlanarReduction r = reduce_planar(m.positions, m.triangles, 1e-6f);
-  EXPECT_EQ(r.patches, 2u);
-  EXPECT_EQ(r.triangles.size(), 4u);
-  expect_same_surface(m, r.triangles);
+  expect_reduced_to(m, 2, 4);
 }
 
 TEST(PlanarReduction, ClosedBoxStaysClosed) {
