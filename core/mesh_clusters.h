@@ -64,7 +64,7 @@ struct ShadowLodOptions {
   bool occlusion = true;
   // The batched passes' occluder planes (raster/glsl/cube_glsl.h): a gradient per shadow texel,
   // so that thin walls seen at an angle hold (docs/accuracy.md); off: the centre's distance
-  // alone, about 20 % more VPLs/s on llvmpipe's Cornell box at 512x512 and light through walls
+  // alone, about 16 % more VPLs/s on llvmpipe's Cornell box at 512x512 and light through walls
   // thinner than a texel's depth range. (The per-VPL reference passes keep them.)
   bool planes = true;
 };

@@ -36,6 +36,7 @@ struct Reducer {
   std::vector<std::array<std::uint32_t, 2>> chain; // a Line vertex's neighbours on its chain
   std::vector<std::uint32_t> stamp;                // per vertex, for set tests
   std::uint32_t clock = 0;
+  std::vector<std::uint32_t> common, third, targets; // scratch of can_collapse and run
 
   dvec3 p(std::uint32_t v) const { return dvec3(positions[v]); }
   dvec3 cross_of(const glm::uvec3& t) const { return glm::cross(p(t.y) - p(t.x), p(t.z) - p(t.x)); }
@@ -212,7 +213,8 @@ bool Reducer::can_collapse(std::uint32_t v, std::uint32_t u) {
   ++clock;
   for (std::uint32_t t : fan[u])
     for (int c = 0; c < 3; ++c) stamp[tris[t][c]] = clock;
-  std::vector<std::uint32_t> common, third;
+  common.clear();
+  third.clear();
   for (std::uint32_t t : fan[v]) {
     const glm::uvec3& tri = tris[t];
     const bool on_edge = tri.x == u || tri.y == u || tri.z == u;
@@ -283,7 +285,7 @@ std::size_t Reducer::run() {
         active[kept++] = v;
         continue;
       }
-      std::vector<std::uint32_t> targets;
+      targets.clear();
       if (role[v] == Role::Line) {
         targets.assign(chain[v].begin(), chain[v].end());
       } else {
@@ -324,7 +326,7 @@ std::size_t Reducer::run() {
 
 PlanarReduction reduce_planar(const std::vector<glm::vec3>& positions,
                               const std::vector<glm::uvec3>& triangles, float epsilon) {
-  Reducer r{positions, epsilon, triangles, {}, {}, {}, {}, {}, {}, {}, {}};
+  Reducer r{positions, epsilon, triangles, {}, {}, {}, {}, {}, {}, {}, 0, {}, {}, {}};
   r.alive.assign(triangles.size(), true);
   r.fan.resize(positions.size());
   for (std::uint32_t t = 0; t < triangles.size(); ++t) {

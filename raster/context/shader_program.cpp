@@ -44,6 +44,11 @@ Shader compile(const GladGLContext& api, GLenum stage, const std::string& source
 
 } // namespace
 
+void insert_glsl(std::string& source, const std::string& marker, const char* text) {
+  const std::size_t at = source.find(marker);
+  if (at != std::string::npos) source.replace(at, marker.size(), text);
+}
+
 void check_framebuffer(const GladGLContext& api, const char* what) {
   const GLenum status = api.CheckFramebufferStatus(GL_DRAW_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)

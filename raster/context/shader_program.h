@@ -7,6 +7,10 @@
 
 namespace irad::gl {
 
+// How shaders share GLSL: `source` with its first line `marker` (e.g. "#pragma
+// irad_material_fragment\n") replaced by `text`; unchanged without one.
+void insert_glsl(std::string& source, const std::string& marker, const char* text);
+
 class ShaderProgram {
 public:
   ShaderProgram(const GladGLContext& api, const std::string& name, const std::string& vertex,

@@ -15,6 +15,8 @@
 // face's plane). Next to a convex edge seen from both sides it would darken the far face for up
 // to a texel's footprint (the plane extended past the edge floats in front of it); there the
 // neighbouring texel sees something behind the plane, and that direction's term is dropped.
+#include "raster/context/shader_program.h"
+
 #include <string>
 
 namespace irad::gl::shaders {
@@ -68,21 +70,18 @@ float plane_distance(float centre, vec2 gradient, vec2 at) {
 // other face. Same-plane neighbours are within a quarter of a texel's change (distance is not
 // linear across the face) and 1e-5 of the distance (rounding).
 float occluder_distance(float centre, vec2 gradient, vec2 at, float next_x, float next_y) {
-  vec2 offset = clamp(at - (floor(at) + 0.5), vec2(-0.5), vec2(0.5));
   vec2 step = vec2(toward(at));
   float slack = 0.25 * (abs(gradient.x) + abs(gradient.y)) + 1e-5 * centre;
   vec2 g = gradient;
   if (next_x > centre + g.x * step.x + slack) g.x = 0.0;
   if (next_y > centre + g.y * step.y + slack) g.y = 0.0;
-  return min(centre, centre + dot(g, offset));
+  return plane_distance(centre, g, at);
 }
 )";
 
 // `source` with its "#pragma irad_cube_lookup" line replaced by cube_lookup_glsl.
 inline std::string with_cube_lookup(std::string source) {
-  const std::string marker = "#pragma irad_cube_lookup\n";
-  const std::size_t at = source.find(marker);
-  if (at != std::string::npos) source.replace(at, marker.size(), cube_lookup_glsl);
+  insert_glsl(source, "#pragma irad_cube_lookup\n", cube_lookup_glsl);
   return source;
 }
 

@@ -32,7 +32,7 @@ struct ShadowLookup {
   int resolution = 0;
   GLuint ortho_texture = 0;
   int ortho_resolution = 0;
-  GLuint gradient = 0; // the encoded distance gradients, texel by texel as `texture`
+  GLuint gradient = 0; // the distances' gradients, texel by texel as `texture`; 0: none
 };
 
 // A VPL whose shadow map is in an atlas, with what the lookup needs and its interleaved set.

@@ -128,11 +128,6 @@ bool material_absent(uint key) {
 #endif
 )";
 
-void replace(std::string& source, const std::string& marker, const char* text) {
-  const std::size_t at = source.find(marker);
-  if (at != std::string::npos) source.replace(at, marker.size(), text);
-}
-
 GLint alpha_mode_value(AlphaMode mode) {
   return mode == AlphaMode::Mask ? 1 : mode == AlphaMode::Blend ? 2 : 0;
 }
@@ -165,8 +160,8 @@ std::string material_source(const std::string& source, const MaterialFeatures& f
   if (features.colors) defines += "#define IRAD_COLOR 1\n";
   if (features.alpha) defines += "#define IRAD_ALPHA 1\n";
   s.insert(line + 1, defines);
-  replace(s, kVertexMarker, kVertexGlsl);
-  replace(s, kFragmentMarker, kFragmentGlsl);
+  insert_glsl(s, kVertexMarker, kVertexGlsl);
+  insert_glsl(s, kFragmentMarker, kFragmentGlsl);
   return s;
 }
 

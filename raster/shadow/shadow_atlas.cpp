@@ -290,7 +290,7 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   api.Disable(GL_BLEND);
   api.ClearDepth(1.0);                    // far: nothing there, never shadowed
   api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f); // no slope
-  api.Clear(GL_DEPTH_BUFFER_BIT | (lod_options_.planes ? GL_COLOR_BUFFER_BIT : 0));
+  api.Clear(GL_DEPTH_BUFFER_BIT | (gradient_[current_] ? GL_COLOR_BUFFER_BIT : 0));
   program_.use();
   for (int k = 0; k < 4; ++k) api.Enable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
   if (prepare_lod(scene))

@@ -65,8 +65,8 @@ public:
   // The atlas the last render() drew into.
   GLuint texture() const { return atlas_[current_].get(); }
   // Per texel the gradient of the distance / far per face texel (raster/glsl/cube_glsl.h).
-  // 0 without ShadowLodOptions::planes (nothing written: a lookup reads no slope).
-  GLuint gradient_texture() const { return lod_options_.planes ? gradient_[current_].get() : 0; }
+  // 0 without ShadowLodOptions::planes (none made: a lookup reads no slope).
+  GLuint gradient_texture() const { return gradient_[current_].get(); }
   int resolution() const { return resolution_; }
   int batch() const { return batch_; }
   int blocks() const { return grid_.x * grid_.y; }
