@@ -11,6 +11,7 @@
 #include "core/scene_builder.h"
 #include "core/sphere_mesh.h"
 #include "core/view.h"
+#include "irad/render.h"
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
@@ -184,6 +185,17 @@ struct Target {
   double bvh; // seconds to build `rays`
 };
 
+// The raster's options as `irad render` sets them by default for the bench's image (the
+// occluder planes chosen for the scene: irad::choose_shadow_planes), with the GPU timers.
+RasterOptions bench_raster_options(const Target& g) {
+  RasterOptions o;
+  o.gpu_timers = true;
+  const int resolution = shadow_resolution_for(0, g.view.width, g.view.height);
+  o.shadow_lod.planes =
+      choose_shadow_planes(g.b.scene, g.rays, ShadowPlanes::Auto, resolution).planes;
+  return o;
+}
+
 // The VPL estimators as `irad render` runs them: the walk's VPLs with the local clamp
 // (core/clamp_field.h), or the global one (`local` false).
 VplSet bench_walk(const Target& g, std::uint32_t n, SequenceKind seq, bool local, Log& log) {
@@ -215,8 +227,7 @@ void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows,
     // The global clamp's variant only over the reference mode's N (it is there for comparison).
     const std::vector<std::uint32_t> paths = raster_paths(sw, local ? interleave : 1);
     if (paths.empty()) continue;
-    RasterOptions raster_options;
-    raster_options.gpu_timers = true;
+    RasterOptions raster_options = bench_raster_options(g);
     raster_options.interleave = interleave;
     RasterRenderer raster(g.b.scene, raster_options);
     const auto t_setup = Clock::now();
@@ -256,9 +267,7 @@ void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows,
 // a cluster per 16 VPLs (64 to 2048 clusters).
 void bench_clusters(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
   if (sw.cluster_paths.empty()) return;
-  RasterOptions raster_options;
-  raster_options.gpu_timers = true;
-  RasterRenderer raster(g.b.scene, raster_options);
+  RasterRenderer raster(g.b.scene, bench_raster_options(g));
   const auto t_setup = Clock::now();
   raster.render(g.view, quasi_random_walk(g.b.scene, g.rays, {1, 64}, log));
   const double setup = since(t_setup);

@@ -37,6 +37,13 @@ ShadowLodMode parse_shadow_lod(const std::string& name) {
   throw Error("", "--shadow-lod", "unknown mode '" + name + "' (on, cull, off)");
 }
 
+ShadowPlanes parse_shadow_planes(const std::string& name) {
+  if (name == "auto") return ShadowPlanes::Auto;
+  if (name == "on") return ShadowPlanes::On;
+  if (name == "off") return ShadowPlanes::Off;
+  throw Error("", "--shadow-planes", "unknown mode '" + name + "' (auto, on, off)");
+}
+
 void require_writable(const std::string& path, const char* option) {
   namespace fs = std::filesystem;
   const fs::path parent = fs::path(path).parent_path();

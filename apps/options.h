@@ -20,6 +20,8 @@ std::pair<int, int> parse_size_option(const std::string& text);
 GlBackend parse_backend(const std::string& name);
 // --shadow-lod: on, cull, off (RasterOptions::shadow_lod).
 ShadowLodMode parse_shadow_lod(const std::string& name);
+// --shadow-planes: auto, on, off (RasterOptions::shadow_lod.planes).
+ShadowPlanes parse_shadow_planes(const std::string& name);
 // Throws irad::Error naming `option` unless `path` can be written: its folder exists and it is
 // not something other than a regular file (a folder, a device).
 void require_writable(const std::string& path, const char* option);

@@ -54,6 +54,7 @@ enum class ShadowLodMode {
   Cull, // only the clusters a face sees: exact, the same image
   On,   // culled, and each face draws the coarsest nodes whose error is below its texel
 };
+enum class ShadowPlanes { Auto, On, Off };
 struct ShadowLodOptions {
   ShadowLodMode mode = ShadowLodMode::On;
   // On: the error a drawn level may have, in texels at the centre of a face at the cluster's
@@ -64,9 +65,12 @@ struct ShadowLodOptions {
   bool occlusion = true;
   // The batched passes' occluder planes (raster/glsl/cube_glsl.h): a gradient per shadow texel,
   // so that thin walls seen at an angle hold (docs/accuracy.md); off: the centre's distance
-  // alone, about 16 % more VPLs/s on llvmpipe's Cornell box at 512x512 and light through walls
-  // thinner than a texel's depth range. (The per-VPL reference passes keep them.)
-  bool planes = true;
+  // alone, 11-16 % more VPLs/s on llvmpipe's Cornell box at 512x512 and light through walls
+  // thinner than a texel's depth range. Auto: on where the scene's thinnest wall
+  // (walk/thin_walls.h) is thin enough for the faces' resolution (raster_renderer.h
+  // planes_needed); the raster, which cannot measure walls, takes Auto for On, and irad::render
+  // decides before it draws. (The per-VPL reference passes keep them.)
+  ShadowPlanes planes = ShadowPlanes::Auto;
 };
 
 // A coarser level of a node: indices [first, first + count), error as ClusterNode::error.

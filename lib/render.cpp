@@ -1,10 +1,12 @@
 #include "irad/render.h"
 
+#include "core/animation.h"
 #include "core/clamp_field.h"
 #include "core/error.h"
 #include "walk/bias_compensation.h"
 #include "walk/mirror_pass.h"
 #include "walk/ray_scene.h"
+#include "walk/thin_walls.h"
 #include "walk/vpl_clustering.h"
 #include "walk/vpl_tracer.h"
 
@@ -88,12 +90,34 @@ void run_pt(Stages& s, const RayScene& rays) {
   s.r.seconds.trace = since(t0);
 }
 
+// What the occluder planes' automatic choice found (RenderOptions::raster.shadow_lod.planes Auto).
+void log_planes(Log& log, const PlaneChoice& planes, int resolution, double seconds) {
+  if (planes.thinnest_wall < 0.0f) return;
+  if (planes.planes == ShadowPlanes::On)
+    log.info(fmt::format("occluder planes on: a wall {:.3g} of the diagonal thick, below {:.3g} at "
+                         "{} texels per face ({:.3f} s)",
+                         planes.thinnest_wall, planes_reach(resolution), resolution, seconds));
+  else
+    log.info(fmt::format("occluder planes off: no wall thinner than {:.3g} of the diagonal at {} "
+                         "texels per face ({:.3f} s)",
+                         planes_reach(resolution), resolution, seconds));
+}
+
 void run_raster(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
   RasterOptions options = s.options.raster;
+  const int resolution =
+      shadow_resolution_for(options.shadow_resolution, s.r.view.width, s.r.view.height);
+  const PlaneChoice planes =
+      choose_shadow_planes(s.scene, rays, options.shadow_lod.planes, resolution);
+  const double scan = since(t0);
+  options.shadow_lod.planes = planes.planes;
+  s.r.shadow_planes = planes.planes == ShadowPlanes::On;
+  s.r.thinnest_wall = planes.thinnest_wall;
   options.cancel = s.stop.flag();
   options.gl_messages = [&s](const std::string& message) { s.log.warn(message); };
-  RasterRenderer raster(s.scene, options);
+  RasterRenderer raster(s.scene, options); // checks the options
+  log_planes(s.log, planes, resolution, scan);
   s.r.gl = raster.description();
   RasterTimings timings;
   s.r.image = raster.render(s.r.view, s.r.vpls, &timings,
@@ -259,6 +283,14 @@ const char* estimator_name(Estimator estimator) {
     break;
   }
   return "pt";
+}
+
+PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, ShadowPlanes requested,
+                                 int resolution) {
+  if (requested != ShadowPlanes::Auto) return {requested, -1.0f};
+  if (scene.animation && scene.animation->moves_geometry()) return {ShadowPlanes::On, -1.0f};
+  const float thinnest = thinnest_wall(scene, rays, planes_reach(resolution));
+  return {planes_needed(thinnest, resolution) ? ShadowPlanes::On : ShadowPlanes::Off, thinnest};
 }
 
 RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) {

@@ -3,6 +3,7 @@
 #include "core/animation.h"
 #include "core/error.h"
 #include "core/view.h"
+#include "irad/render.h"
 #include "walk/mirror_pass.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -22,19 +23,28 @@ Camera orbit_camera(const Camera& c, const Bounds& b, float degrees) {
   return moved;
 }
 
-RingOptions ring_options(const WalkthroughSettings& s, std::uint32_t n) {
+// The occluder planes as irad::render chooses them for a frame of the walkthrough's size (the
+// cached mode's pages always carry them: raster/shadow/shadow_cache.h).
+ShadowPlanes planes_for(const Scene& scene, const RayScene& rays, const WalkthroughSettings& s) {
+  const int resolution = shadow_resolution_for(0, s.width, s.height);
+  return choose_shadow_planes(scene, rays, ShadowPlanes::Auto, resolution).planes;
+}
+
+RingOptions ring_options(const WalkthroughSettings& s, std::uint32_t n, ShadowPlanes planes) {
   RingOptions o;
   o.paths = n;
   o.width = s.width;
   o.height = s.height;
   o.raster.backend = s.backend;
+  o.raster.shadow_lod.planes = planes;
   return o;
 }
 
-RasterOptions raster_options(const WalkthroughSettings& s) {
+RasterOptions raster_options(const WalkthroughSettings& s, ShadowPlanes planes) {
   RasterOptions o;
   o.backend = s.backend;
   o.interleave = s.interleave;
+  o.shadow_lod.planes = planes;
   return o;
 }
 
@@ -70,10 +80,11 @@ Walkthrough::Walkthrough(Scene& scene, std::size_t camera, const WalkthroughSett
     : scene_(scene), camera_(camera), settings_(settings), rays_(scene),
       walk_(scene, rays_, {settings.paths, 64}, log), n_(walk_.header().paths), vpls_(n_) {
   if (!(settings.fps > 0.0f)) throw Error("", "--fps", "must be positive");
+  const ShadowPlanes planes = planes_for(scene, rays_, settings);
   if (settings.mode == WalkMode::Ring)
-    ring_ = std::make_unique<RingRenderer>(scene, ring_options(settings, n_));
+    ring_ = std::make_unique<RingRenderer>(scene, ring_options(settings, n_, planes));
   else
-    raster_ = std::make_unique<RasterRenderer>(scene, raster_options(settings));
+    raster_ = std::make_unique<RasterRenderer>(scene, raster_options(settings, planes));
 }
 
 std::string Walkthrough::description() const {

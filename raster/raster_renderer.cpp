@@ -55,6 +55,14 @@ int shadow_resolution_for(int requested, int width, int height) {
   return r;
 }
 
+float planes_reach(int resolution) {
+  return 4.0f / static_cast<float>(std::max(resolution, 1)) + 2e-4f;
+}
+
+bool planes_needed(float thinnest_wall, int resolution) {
+  return thinnest_wall < planes_reach(resolution);
+}
+
 struct RasterRenderer::Impl {
   const Scene& scene;
   RasterOptions options;

@@ -52,6 +52,17 @@ struct RasterOptions {
 // image's larger side rounded up to a power of two, between 64 and 1024.
 int shadow_resolution_for(int requested, int width, int height);
 
+// Whether faces of `resolution` texels need the occluder planes in a scene whose thinnest wall
+// (walk/thin_walls.h) is `thinnest_wall` of the bounding diagonal. The planes change the test only
+// for a receiver at distance d from the VPL that lies behind an occluder's plane by less than the
+// occluder's depth range across half a texel, d sin(theta) / R (theta: the occluder's angle to
+// the ray; 2/R the texel's angle at a face's centre) plus what the bias moves it by (the normal
+// offset, at most d 2/R, and the constant 2e-4 of the diagonal). With d at most the diagonal:
+// needed when the wall is thinner than 3/R + 2e-4 of the diagonal; 4/R leaves a texel to spare.
+bool planes_needed(float thinnest_wall, int resolution);
+// The wall thickness (fraction of the diagonal) below which faces of `resolution` need them.
+float planes_reach(int resolution);
+
 struct RasterTimings {
   double passes_seconds = 0.0; // wall clock: shadow maps, shading passes and emitters
   double readback = 0.0;       // wall clock: the final readback (waits for the GPU)

@@ -474,7 +474,7 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
                                  {"--shadow-planes off", {}, {}}}};
   modes[1].options.batch = 1;
   modes[2].options.interleave = 1;
-  modes[3].options.shadow_lod.planes = false;
+  modes[3].options.shadow_lod.planes = ShadowPlanes::Off;
   for (std::size_t j = 0; j < std::size(scales); ++j) {
     const TwoRooms rooms = two_rooms(scales[j]);
     const Scene& s = rooms.scene;

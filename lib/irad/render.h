@@ -97,8 +97,22 @@ struct RenderResult {
   double clamped_fraction = -1.0; // when requested (not with mirrors)
   // screen compensation: the share of its gather samples in reach evaluated exactly (hidden)
   double compensation_fallback = -1.0;
-  std::string gl; // GL renderer (raster)
+  std::string gl;              // GL renderer (raster)
+  bool shadow_planes = false;  // the raster's batched passes drew the occluder planes
+  float thinnest_wall = -1.0f; // with planes Auto: what walk/thin_walls.h measured (of the
+                               // diagonal, up to planes_reach); -1: not measured
 };
+
+// The occluder planes (RasterOptions::shadow_lod.planes) for `scene` and faces of `resolution`
+// texels: On and Off as requested; Auto becomes On where the scene's thinnest wall
+// (walk/thin_walls.h) needs them (raster_renderer.h planes_needed), and always for an animation
+// that moves geometry (its walls' gaps change from frame to frame), else Off.
+struct PlaneChoice {
+  ShadowPlanes planes = ShadowPlanes::On;
+  float thinnest_wall = -1.0f; // as measured for Auto (fraction of the diagonal); else -1
+};
+PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, ShadowPlanes requested,
+                                 int resolution);
 
 // Renders `scene` (load_scene's, posed and lit) as `options` say. Throws irad::Error on bad
 // options and when a finished image holds NaN or Inf pixels.

@@ -98,7 +98,7 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
   for (int a = 0; a < 2; ++a) {
     atlas_[a] = make_depth_texture(api, size.x, size.y);
     fbo_[a] = make_depth_framebuffer(api, atlas_[a].get(), "shadow atlas framebuffer");
-    if (!lod.planes) continue; // depth only, as make_depth_framebuffer left it
+    if (lod.planes == ShadowPlanes::Off) continue; // depth only, as make_depth_framebuffer left it
     gradient_[a] = make_gradient_texture(api, size.x, size.y);
     api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
                              gradient_[a].get(), 0);

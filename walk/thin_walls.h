@@ -1,0 +1,26 @@
+#pragma once
+// The thinnest wall of a scene, for the raster's choice of occluder planes (raster/glsl/
+// cube_glsl.h; RasterOptions::shadow_lod.planes = Auto): a shadow texel's centre distance alone
+// lets a receiver through only where it lies less than about a texel's depth range behind an
+// occluder's plane (raster_renderer.h planes_needed), as the floor beside a thin wall's foot on
+// the wall's dark side does.
+//
+// A wall is two faces turned back to back: from the centroid of a one-sided triangle A, the
+// first surface behind A (along -n_A) that turns its back to A, at the gap g between them (0 for
+// coincident faces of opposite winding). A double-sided or mirror surface is a wall of thickness
+// 0 by itself. Not counted as walls: one-sided faces with nothing behind them (glTF culls them
+// seen from behind, so nothing lies on their dark side), and a surface behind A that faces A's
+// back (a panel under a ceiling: what lies behind the panel is hidden by it from every point in
+// front of it).
+#include "core/scene.h"
+#include "walk/ray_scene.h"
+
+namespace irad {
+
+// The thinnest wall's thickness as a fraction of the bounding diagonal, looked for up to
+// `up_to` (a fraction too); `up_to` itself when there is none that thin. Two rays per opaque
+// one-sided triangle (from its centroid), on `threads` threads (0: all cores); 0 at once when
+// some opaque triangle is double-sided or a mirror.
+float thinnest_wall(const Scene& scene, const RayScene& rays, float up_to, unsigned threads = 0);
+
+} // namespace irad
