@@ -65,7 +65,9 @@ flat in vec4 v_cone;
 flat in vec4 v_frame[3];
 uniform sampler2D u_shadow_atlas;    // distance / far
 uniform sampler2D u_shadow_gradient; // its gradient per texel (cube_glsl.h)
-uniform bool u_planes;               // false: no gradients, the centre's distance alone
+// const bool u_planes: false without gradients, the centre's distance alone (a constant, so that
+// a program without them compiles their fetches away: raster/passes/deferred_shader.h)
+#pragma irad_planes
 uniform sampler2D u_ortho_atlas;   // orthographic maps (raster/shadow/ortho_atlas.h)
 uniform int u_ortho_res;           // M, texels per tile edge
 uniform sampler2D u_position;    // G-buffer: xyz, w = 1 on a surface

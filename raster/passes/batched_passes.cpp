@@ -25,7 +25,8 @@ BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float
                  ? std::make_unique<OrthoAtlas>(api, ortho_resolution, ortho_tiles, scene.bounds,
                                                 MaterialFeatures::of(scene))
                  : nullptr),
-      shader_(api, scene, clamp, DeferredShader::capacity(api, std::max(batch, kShadingBatch))) {}
+      shader_(api, scene, clamp, DeferredShader::capacity(api, std::max(batch, kShadingBatch)),
+              lod.planes != ShadowPlanes::Off) {}
 
 void BatchedPasses::draw_ortho(const std::vector<std::size_t>& directional, const GpuScene& gpu) {
   // One map per direction: a directional light's VPLs (or a sun's) share theirs.

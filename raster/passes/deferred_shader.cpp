@@ -46,6 +46,15 @@ void write_vpl(float* out, const AtlasVpl& a, float dmin2) {
   }
 }
 
+// The fragment shader for `batch` VPLs, with the occluder planes' fetches or without them.
+std::string fragment_source(int batch, bool planes) {
+  std::string source =
+      shaders::with_cube_lookup(shaders::batched_source(shaders::deferred_vpl_fragment, batch));
+  insert_glsl(source, "#pragma irad_planes\n",
+              planes ? "const bool u_planes = true;\n" : "const bool u_planes = false;\n");
+  return source;
+}
+
 } // namespace
 
 int DeferredShader::capacity(const GladGLContext& api, int wanted) {
@@ -54,18 +63,18 @@ int DeferredShader::capacity(const GladGLContext& api, int wanted) {
   return std::min(wanted, static_cast<int>(block) / shaders::kShadingBytesPerVpl);
 }
 
-DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch)
-    : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch),
+DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch,
+                               bool planes)
+    : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch), planes_(planes),
       program_(api, "deferred vpl", shaders::batched_source(shaders::deferred_vpl_vertex, batch),
-               shaders::with_cube_lookup(
-                   shaders::batched_source(shaders::deferred_vpl_fragment, batch))),
+               fragment_source(batch, planes)),
       first_(program_.uniform("u_first")), tile_origin_(program_.uniform("u_tile_origin")),
       pixel_(program_.uniform("u_pixel")), size_(program_.uniform("u_size")),
       shadow_res_(program_.uniform("u_shadow_res")),
       shadow_half_(program_.uniform("u_shadow_half")),
       bias_texel_(program_.uniform("u_bias_texel")), ortho_res_(program_.uniform("u_ortho_res")),
-      apply_albedo_(program_.uniform("u_apply_albedo")), planes_(program_.uniform("u_planes")),
-      vpl_block_(make_buffer(api)), empty_vao_(make_vertex_array(api)),
+      apply_albedo_(program_.uniform("u_apply_albedo")), vpl_block_(make_buffer(api)),
+      empty_vao_(make_vertex_array(api)),
       vpl_data_(static_cast<std::size_t>(batch) * kFloatsPerVpl, 0.0f) {
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "VplBatch");
   if (index == GL_INVALID_INDEX) throw Error("", "shader deferred vpl", "no block VplBatch");
@@ -73,7 +82,7 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   program_.use();
   api.Uniform1i(program_.uniform("u_shadow_atlas"), shadow_unit);
   api.Uniform1i(program_.uniform("u_ortho_atlas"), ortho_unit);
-  api.Uniform1i(program_.uniform("u_shadow_gradient"), gradient_unit);
+  if (planes_) api.Uniform1i(program_.uniform("u_shadow_gradient"), gradient_unit);
   api.Uniform1i(program_.uniform("u_position"), gbuffer_unit);
   api.Uniform1i(program_.uniform("u_normal"), gbuffer_unit + 1);
   api.Uniform1i(program_.uniform("u_albedo"), gbuffer_unit + 2);
@@ -118,9 +127,11 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
   api.BindTexture(GL_TEXTURE_2D, shadow.texture);
   api.ActiveTexture(GL_TEXTURE0 + ortho_unit);
   api.BindTexture(GL_TEXTURE_2D, shadow.ortho_texture);
-  api.ActiveTexture(GL_TEXTURE0 + gradient_unit);
-  api.BindTexture(GL_TEXTURE_2D, shadow.gradient);
-  api.Uniform1i(planes_, shadow.gradient != 0 ? 1 : 0);
+  if (planes_) {
+    if (shadow.gradient == 0) throw Error("", "deferred vpl", "shadow lookup without gradients");
+    api.ActiveTexture(GL_TEXTURE0 + gradient_unit);
+    api.BindTexture(GL_TEXTURE_2D, shadow.gradient);
+  }
   gbuffer.bind_textures(gbuffer_unit);
   api.BindVertexArray(empty_vao_.get());
   api.DrawArraysInstanced(GL_TRIANGLES, 0, 3, count);

@@ -53,7 +53,9 @@ struct AtlasVpl {
 class DeferredShader {
 public:
   // Up to `batch` VPLs per upload.
-  DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch);
+  // planes: the occluder planes' lookup (raster/glsl/cube_glsl.h) compiled in; every draw's
+  // ShadowLookup must then carry gradients. Without, gradients are not read.
+  DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch, bool planes);
 
   // The largest batch (<= wanted) this GL's uniform blocks hold.
   static int capacity(const GladGLContext& api, int wanted);
@@ -70,9 +72,10 @@ private:
   const GladGLContext* api_;
   float diagonal_, clamp_;
   int batch_;
+  bool planes_;
   ShaderProgram program_;
   GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
-      apply_albedo_, planes_;
+      apply_albedo_;
   Buffer vpl_block_;
   VertexArray empty_vao_;
   std::vector<float> vpl_data_;
