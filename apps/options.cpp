@@ -44,6 +44,20 @@ ShadowPlanes parse_shadow_planes(const std::string& name) {
   throw Error("", "--shadow-planes", "unknown mode '" + name + "' (auto, on, off)");
 }
 
+std::optional<std::uint64_t> parse_count_or_auto(const std::string& text, const char* option,
+                                                 std::uint64_t min, std::uint64_t max) {
+  if (text == "auto") return std::nullopt;
+  std::uint64_t value = 0;
+  const bool digits =
+      !text.empty() && text.size() <= 19 &&
+      std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (digits) value = std::stoull(text);
+  if (!digits || value < min || value > max)
+    throw Error("", option,
+                fmt::format("'{}' is not auto or a whole number in [{}, {}]", text, min, max));
+  return value;
+}
+
 void require_writable(const std::string& path, const char* option) {
   namespace fs = std::filesystem;
   const fs::path parent = fs::path(path).parent_path();

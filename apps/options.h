@@ -3,6 +3,7 @@
 #include "core/scene.h"
 #include "raster/raster_renderer.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -22,6 +23,10 @@ GlBackend parse_backend(const std::string& name);
 ShadowLodMode parse_shadow_lod(const std::string& name);
 // --shadow-planes: auto, on, off (RasterOptions::shadow_lod.planes).
 ShadowPlanes parse_shadow_planes(const std::string& name);
+// "auto" (nullopt) or a whole number in [min, max] (`irad render --paths`, `--clusters`); throws
+// irad::Error naming `option` for anything else.
+std::optional<std::uint64_t> parse_count_or_auto(const std::string& text, const char* option,
+                                                 std::uint64_t min, std::uint64_t max);
 // Throws irad::Error naming `option` unless `path` can be written: its folder exists and it is
 // not something other than a regular file (a folder, a device).
 void require_writable(const std::string& path, const char* option);

@@ -29,13 +29,13 @@ struct RenderArgs {
   std::string scene;
   std::vector<std::string> outputs;
   std::string size;
-  std::uint32_t paths = 256;
+  std::string paths = "auto"; // N, or auto: the light budget (core/light_budget.h)
   int shadow_res = 0;
   float clamp = 0.05f;
   std::string clamp_mode = "local";
   int clamp_neighbours = 8;
   std::optional<float> clamp_scale; // default: RenderOptions' (0.5, 1.0 with clusters)
-  std::size_t clusters = 0;
+  std::string clusters = "auto";    // C (0: every VPL), or auto: the light budget
   std::size_t cluster_rows = 256;
   std::string camera;
   std::string gltf_scene;
@@ -136,7 +136,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
             {"seconds", seconds}};
   }
   seconds["walk"] = r.seconds.walk;
-  if (args.clusters > 0) seconds["cluster"] = r.seconds.cluster;
+  if (r.clusters > 0) seconds["cluster"] = r.seconds.cluster;
   if (args.bias_compensation || args.compensation != "off")
     seconds["compensation"] = r.seconds.compensation;
   if (args.estimator == "raster") {
@@ -170,9 +170,9 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"clamp", args.clamp},
           {"clamp_distance", args.clamp * scene.bounds.diagonal()}, // local: the cap
           {"clamp_mode", args.clamp_mode},
-          {"clusters", args.clusters},
+          {"clusters", r.clusters}, // as drawn: auto resolved
           {"cluster_rows", args.cluster_rows},
-          {"walk_vpls", args.clusters > 0 ? r.walk_vpls : r.vpls.vpls.size()},
+          {"walk_vpls", r.walk_vpls},
           {"cluster_dropped", r.cluster_dropped},
           {"camera", r.camera.name},
           {"gl", r.gl},
@@ -226,7 +226,7 @@ void print_summary(const RenderArgs& args, const Scene& scene, const RenderResul
       args.scene.c_str(), r.view.width, r.view.height, args.estimator.c_str(), r.vpls.paths,
       r.vpls.vpls.size(), r.vpls.l_max, r.vpls.rho_bar, r.seconds.total, r.seconds.load,
       r.seconds.walk,
-      args.clusters > 0
+      r.clusters > 0
           ? fmt::format(", clusters of {} VPLs {:.2f}", r.walk_vpls, r.seconds.cluster).c_str()
           : "",
       args.estimator == "raster" ? "raster" : "trace", stage,
@@ -245,7 +245,9 @@ int run_render(const RenderArgs& args) {
   request.scene.gltf_scene = args.gltf_scene;
   request.scene.own_camera = parse_look_at(args.look, args.camera);
   request.scene.time = args.time;
-  request.render.walk.paths = args.paths;
+  const auto paths = parse_count_or_auto(args.paths, "--paths", 1, 1u << 30);
+  request.render.auto_paths = !paths;
+  request.render.walk.paths = static_cast<std::uint32_t>(paths.value_or(256));
   request.render.walk.sequence = parse_sequence(args.sequence);
   request.render.walk.seed = args.seed;
   request.render.walk.allocation =
@@ -256,7 +258,9 @@ int run_render(const RenderArgs& args) {
   request.render.clamp_neighbours = args.clamp_neighbours;
   if (args.clamp_scale)
     request.render.clamp_scale = request.render.cluster_clamp_scale = *args.clamp_scale;
-  request.render.clusters = args.clusters;
+  const auto clusters = parse_count_or_auto(args.clusters, "--clusters", 0, 1u << 24);
+  request.render.auto_clusters = !clusters;
+  request.render.clusters = clusters.value_or(0);
   request.render.cluster_rows = args.cluster_rows;
   request.render.raster.backend = parse_backend(args.gl);
   request.render.raster.gl_device = args.gl_device;
@@ -284,7 +288,6 @@ int run_render(const RenderArgs& args) {
   if (args.max_file_mib < 1 || args.max_file_mib > 4095)
     throw Error("", "--max-file-size", "must lie in [1, 4095] MiB");
   if (args.max_texture_size < 1) throw Error("", "--max-texture-size", "must be at least 1");
-  if (args.paths == 0) throw Error("", "--paths", "must be at least 1");
   if (args.spp == 0) throw Error("", "--spp", "must be at least 1");
   for (const std::string& o : args.outputs) {
     image_format_of(o);
@@ -345,7 +348,10 @@ void add_render_command(CLI::App& app, Commands& commands) {
       ->required();
   cmd->add_option("--size", args->size,
                   "Image size WIDTHxHEIGHT (default: 512 high, camera aspect)");
-  cmd->add_option("--paths", args->paths, "Number of light paths N")->capture_default_str();
+  cmd->add_option("--paths", args->paths,
+                  "Number of light paths N, or auto: N from a pilot walk, so that the walk leaves "
+                  "about 32768 VPLs (256..65536 paths)")
+      ->capture_default_str();
   cmd->add_option("--shadow-res", args->shadow_res,
                   "Shadow cube face resolution (0: a quarter of the image side, 64..1024)")
       ->capture_default_str();
@@ -367,7 +373,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   cmd->add_option("--clusters", args->clusters,
                   "Draw the VPLs as at most this many cluster representatives (matrix "
-                  "row-column sampling; 0: every VPL)")
+                  "row-column sampling; 0: every VPL; auto: one per 16 VPLs, 256..2048, when the "
+                  "walk leaves more than 4096 VPLs, else every VPL)")
       ->capture_default_str();
   cmd->add_option("--cluster-rows", args->cluster_rows,
                   "clusters: pixels whose rows are computed exactly")

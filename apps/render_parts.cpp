@@ -1,6 +1,7 @@
 #include "apps/render_parts.h"
 
 #include "apps/options.h"
+#include "core/error.h"
 #include "irad/parts.h"
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,9 @@ bool is_part(const PartArgs& args) {
 void apply_part_ranges(const PartArgs& args, RenderRequest& request) {
   if (!args.path_range.empty()) {
     WalkOptions& walk = request.render.walk;
+    if (request.render.auto_paths)
+      throw Error("", "--path-range",
+                  "needs --paths N: the parts must share one walk (auto chooses N per scene)");
     std::tie(walk.first_path, walk.end_path) =
         parse_part_range(args.path_range, walk.paths, "--path-range");
   }

@@ -199,10 +199,10 @@ void assign_local_clamp(Stages& s, const RayScene& rays) {
 }
 
 // Replaces the walk's VPLs by the representatives of their clusters (walk/vpl_clustering.h).
-void cluster(Stages& s, const RayScene& rays) {
+void cluster(Stages& s, const RayScene& rays, std::size_t clusters) {
   const auto t0 = Clock::now();
   VplClusteringOptions o;
-  o.clusters = s.options.clusters;
+  o.clusters = clusters;
   o.rows = s.options.cluster_rows;
   o.clamp = s.options.raster.clamp;
   o.local_clamp = s.options.local_clamp;
@@ -219,13 +219,34 @@ void cluster(Stages& s, const RayScene& rays) {
 }
 
 // The walk, one of the VPL estimators, and what the options add to it.
+// The walk's options, with N from a pilot walk under the automatic budget.
+WalkOptions walk_options(Stages& s, const RayScene& rays) {
+  WalkOptions walk = s.options.walk;
+  if (!s.options.auto_paths) return walk;
+  WalkOptions pilot = walk;
+  pilot.paths = s.options.budget.pilot_paths;
+  pilot.first_path = pilot.end_path = 0;
+  const std::size_t vpls = quasi_random_walk(s.scene, rays, pilot, s.log).vpls.size();
+  walk.paths = budget_paths(vpls, s.options.budget);
+  return walk;
+}
+
+// The representatives to draw: as asked, or from the walk's VPL count (the automatic budget).
+std::size_t cluster_count(const Stages& s) {
+  if (!s.options.auto_clusters) return s.options.clusters;
+  if (s.options.walk.first_path > 0 || s.options.walk.end_path > 0) return 0; // a part
+  return budget_clusters(s.r.vpls.vpls.size(), s.options.budget);
+}
+
 void run_vpl_estimator(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
-  s.r.vpls = quasi_random_walk(s.scene, rays, s.options.walk, s.log);
+  s.r.vpls = quasi_random_walk(s.scene, rays, walk_options(s, rays), s.log);
   if (s.options.local_clamp) assign_local_clamp(s, rays);
   s.r.seconds.walk = since(t0);
   if (s.cancelled()) return; // interrupted during the walk: nothing was rendered
-  if (s.options.clusters > 0) cluster(s, rays);
+  s.r.clusters = cluster_count(s);
+  s.r.walk_vpls = s.r.vpls.vpls.size();
+  if (s.r.clusters > 0) cluster(s, rays, s.r.clusters);
   if (s.cancelled()) return;
   if (s.options.estimator == Estimator::Raster)
     run_raster(s, rays);
@@ -256,7 +277,10 @@ void check_range(const Scene& scene, const RenderOptions& o) {
   if (paths && o.bias_compensation)
     throw Error("", "--path-range",
                 "cannot split --bias-compensation (its residual is not a sum over paths)");
-  if (paths && o.clusters > 0)
+  if (paths && o.auto_paths)
+    throw Error("", "--path-range",
+                "needs --paths N: the parts must share one walk (auto chooses N per scene)");
+  if (paths && o.clusters > 0 && !o.auto_clusters)
     throw Error("", "--path-range",
                 "cannot split --clusters (the clustering is not a sum over paths)");
   if (paths && scene.has_specular())

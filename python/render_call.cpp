@@ -39,9 +39,10 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.estimator = parse_estimator(k.estimator);
   if (k.size) o.size = checked_size(*k.size);
   o.camera = k.camera;
-  require_at_least_one(k.paths, "paths");
+  if (k.paths) require_at_least_one(*k.paths, "paths");
   require_at_least_one(k.spp, "spp");
-  o.walk.paths = k.paths;
+  o.auto_paths = !k.paths;
+  o.walk.paths = k.paths.value_or(o.walk.paths);
   o.walk.sequence = parse_sequence(k.sequence);
   o.walk.seed = k.seed;
   o.raster.clamp = k.clamp;
@@ -55,7 +56,8 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.pt.threads = k.threads;
   o.pt.pixel_footprint = k.jitter;
   o.bias_compensation = k.bias_compensation;
-  o.clusters = k.clusters;
+  o.auto_clusters = !k.clusters;
+  o.clusters = k.clusters.value_or(0);
   return o;
 }
 
@@ -72,7 +74,8 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   s["size"] = py::make_tuple(r.view.width, r.view.height);
   s["camera"] = r.camera.name;
   s["vpls"] = r.vpls.vpls.size();
-  s["walk_vpls"] = k.clusters > 0 ? r.walk_vpls : r.vpls.vpls.size();
+  s["walk_vpls"] = r.walk_vpls;
+  s["clusters"] = r.clusters; // as drawn: auto resolved
   s["paths"] = r.vpls.paths;
   s["rho_bar"] = r.vpls.rho_bar;
   s["l_max"] = r.vpls.l_max;

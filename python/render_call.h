@@ -17,7 +17,7 @@ namespace irad::python {
 // The keywords of irad.render, with the CLI's defaults.
 struct RenderKeywords {
   std::optional<std::pair<int, int>> size; // (width, height); None: the camera's aspect, 512 high
-  std::uint32_t paths = 256;
+  std::optional<std::uint32_t> paths;      // None: auto (the light budget, core/light_budget.h)
   std::string estimator = "raster";
   std::uint32_t spp = 64;
   std::uint64_t seed = 0;
@@ -32,7 +32,7 @@ struct RenderKeywords {
   unsigned threads = 0;
   bool bias_compensation = false;
   std::string gl = "auto";
-  std::size_t clusters = 0; // RenderOptions::clusters (0: every VPL)
+  std::optional<std::size_t> clusters; // RenderOptions::clusters (0: every VPL); None: auto
 };
 
 // (image float32 (h, w, 3), stats dict). The GIL is released while rendering; Ctrl-C (SIGINT

@@ -154,7 +154,7 @@ TEST_F(Interrupt, PartialWritesWhatWasAccumulatedUnderItsOwnName) {
 TEST_F(Interrupt, PartialOfTheRtVplEstimator) {
   const int status =
       interrupt({"render", kBox, "-o", out("v.exr"), "--estimator", "rt-vpl", "--paths", "20000",
-                 "--size", "64x64", "--threads", "2", "--partial"},
+                 "--clusters", "0", "--size", "64x64", "--threads", "2", "--partial"},
                 SIGINT, std::chrono::milliseconds(2000));
   ASSERT_TRUE(WIFSIGNALED(status)) << status;
   EXPECT_EQ(files(), (std::vector<std::string>{"stderr.txt", "v.partial.exr"}));

@@ -102,9 +102,13 @@ TEST_F(MergeCli, RangeOutsideOrEmpty) {
   expect_error("render " + scene() + " --paths 8 --path-range 4:9", "--path-range");
   expect_error("render " + scene() + " --paths 8 --path-range 4:4", "--path-range");
   expect_error("render " + scene() + " --estimator pt --spp 4 --spp-range 0:5", "--spp-range");
-  expect_error("render " + scene() + " --estimator pt --path-range 0:4", "--path-range");
-  expect_error("render " + scene() + " --path-range 0:4 --bias-compensation", "--path-range");
-  expect_error("render " + scene() + " --path-range auto", "SLURM_ARRAY_TASK_ID");
+  expect_error("render " + scene() + " --paths 8 --estimator pt --path-range 0:4",
+               "is for raster and rt-vpl");
+  expect_error("render " + scene() + " --paths 8 --path-range 0:4 --bias-compensation",
+               "--bias-compensation");
+  expect_error("render " + scene() + " --paths 8 --path-range auto", "SLURM_ARRAY_TASK_ID");
+  // The parts must share one N: --paths auto (the default) chooses it per scene.
+  expect_error("render " + scene() + " --path-range 0:4", "--path-range: needs --paths N");
   expect_error("render " + scene() + " --paths 8 --path-range auto", "--path-range",
                "SLURM_ARRAY_TASK_ID=7 SLURM_ARRAY_TASK_COUNT=4");
 }

@@ -7,6 +7,7 @@
 // The image is linear float RGBA; the same scene, options and thread count give the same bits.
 // Errors throw irad::Error("FILE", "ELEMENT", "MESSAGE"); warnings go to the Log.
 #include "core/image.h"
+#include "core/light_budget.h"
 #include "core/log.h"
 #include "core/scene.h"
 #include "core/view.h"
@@ -57,6 +58,13 @@ struct RenderOptions {
   std::size_t clusters = 0;
   std::size_t cluster_rows = 256;
   float cluster_clamp_scale = 1.0f;
+  // The automatic light budget (core/light_budget.h), `irad render`'s default: auto_paths sets
+  // walk.paths from a pilot walk of the scene (refused with a path range: the parts must share
+  // one N), auto_clusters sets `clusters` from the walk's VPL count (0 in a path range's part:
+  // the clustering is not a sum over paths). Both resolved values are in the RenderResult.
+  bool auto_paths = false;
+  bool auto_clusters = false;
+  LightBudget budget;
   PathTracerOptions pt;           // spp, seed, threads
   bool bias_compensation = false; // add the clamp's residual (walk/bias_compensation.h)
   std::uint32_t bias_samples = 16;
@@ -85,9 +93,10 @@ struct RenderResult {
   Camera camera;
   View view;
   VplSet vpls; // empty for pt; with clusters, the representatives
-  // With clusters: the walk's VPL count, and the share of their intensity no row saw (dropped).
+  // The walk's VPL count; with clusters, the share of their intensity no row saw (dropped).
   std::size_t walk_vpls = 0;
   double cluster_dropped = 0.0;
+  std::size_t clusters = 0; // the representatives asked for (0: every VPL drawn)
   // When cancelled: what was accumulated (pt, rt-vpl: pixels not done are 0, alpha too).
   Image image;
   StageSeconds seconds;   // load: the camera, view and ray-tracing structure (render_file: also

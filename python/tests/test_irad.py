@@ -49,6 +49,17 @@ def test_clusters_equal_the_cli_clusters(cornell, tmp_path):
     assert np.array_equal(image, exr[..., :3])  # bit-identical
 
 
+def test_defaults_are_the_cli_light_budget(cornell, tmp_path):
+    # paths and clusters None: the light budget, as irad render's --paths auto --clusters auto.
+    image, stats = irad.render(cornell, size=(32, 24))
+    assert (stats["paths"], stats["walk_vpls"], stats["clusters"]) == (16384, 30570, 1910)
+    assert stats["vpls"] == 1910
+    out = tmp_path / "auto.exr"
+    subprocess.run([IRAD, "render", CORNELL, "-o", str(out), "--size", "32x24", "--quiet"],
+                   check=True)
+    assert np.array_equal(image, irad.read_exr(str(out))[..., :3])  # bit-identical
+
+
 def test_scene_summary(cornell):
     assert cornell.triangles > 0
     lo, hi = cornell.bounds
