@@ -159,7 +159,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"depth_capped", r.vpls.depth_capped},
           {"size", {r.view.width, r.view.height}},
           {"triangles", scene.triangle_count()},
-          {"shadow_res", shadow_resolution_for(args.shadow_res, r.view.width, r.view.height)},
+          {"shadow_res", r.shadow_resolution}, // as drawn: 0 for rt-vpl
           {"interleave", args.interleave},
           {"batch", args.batch},
           {"shadow_lod", args.shadow_lod},

@@ -73,14 +73,16 @@ TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
   EXPECT_EQ(a.walk_vpls, 30570u);
   EXPECT_EQ(a.clusters, 1910u);
   EXPECT_EQ(a.vpls.vpls.size(), 1910u);
+  EXPECT_EQ(a.shadow_resolution, 128); // representatives: at least 128 (lib/render.cpp)
   EXPECT_EQ(f.clusters, 0u);
+  EXPECT_EQ(f.shadow_resolution, 64); // every VPL: raster_renderer.h's rule
   EXPECT_EQ(f.walk_vpls, f.vpls.vpls.size());
   const ImageMetrics ea = compare_images(a.image, reference.image, 4);
   const ImageMetrics ef = compare_images(f.image, reference.image, 4);
   std::printf("4x4 relMSE against pt 2048 spp: auto %.3g (mean %.4f), N = 256 %.3g (mean %.4f)\n",
               ea.relmse, ea.mean_ratio[1], ef.relmse, ef.mean_ratio[1]);
-  // Measured (4096 spp): auto 4x4 relMSE 1.44e-3, mean 1.004; N = 256 3.92e-3, mean 1.035. At
-  // 48x48 the shadow faces have their least resolution (64) and a 4x4 block is a twelfth of
+  // Measured: auto 4x4 relMSE 1.50e-3, mean 1.006; N = 256 3.93e-3, mean 1.035. At
+  // 48x48 a 4x4 block is a twelfth of
   // the image side, so the block error is larger than at 256x256 (docs/performance.md).
   EXPECT_LT(ea.relmse, 2.5e-3);
   EXPECT_LT(ea.relmse, 0.5 * ef.relmse);

@@ -107,6 +107,7 @@ struct RenderResult {
   // screen compensation: the share of its gather samples in reach evaluated exactly (hidden)
   double compensation_fallback = -1.0;
   std::string gl;              // GL renderer (raster)
+  int shadow_resolution = 0;   // the raster's shadow faces, texels per edge (auto resolved)
   bool shadow_planes = false;  // the raster's batched passes drew the occluder planes
   float thinnest_wall = -1.0f; // with planes Auto: what walk/thin_walls.h measured (of the
                                // diagonal, up to planes_reach); -1: not measured
