@@ -103,16 +103,17 @@ void log_planes(Log& log, const PlaneChoice& planes, int resolution, double seco
                          planes_reach(resolution), resolution, seconds));
 }
 
-// The shadow faces' resolution: as asked, else raster_renderer.h's rule, at least 128 texels for
-// cluster representatives. A representative carries a cluster's light (about 16 VPLs under the
-// light budget), so its shadow map's error weighs as much as theirs together. Measured on the
-// Cornell box (N = 16384 as 1910 representatives, against a pt reference, 4x4-block relMSE):
-// 256x256 R = 64 3.06e-4, 96 2.48e-4, 128 2.29e-4 for 15-20 % more time; 512x512 R = 128
-// 3.07e-4, 256 2.95e-4 for 20 % more (the rule's 128 kept there).
+// The shadow faces' resolution: as asked, else raster_renderer.h's rule, and for cluster
+// representatives at least half the image's larger side up to 128 texels. A representative
+// carries a cluster's light (about 16 VPLs under the light budget), so its shadow map's error
+// weighs as much as theirs together. Measured against pt references (4x4-block relMSE, time):
+// Cornell 256x256 (1910 representatives) R = 64 3.06e-4, 96 2.48e-4, 128 2.29e-4 for 15-20 %
+// more time; Cornell 512x512 R = 128 3.07e-4, 256 2.95e-4 for 20 % more; godot 128x128 (1940)
+// R = 64 3.1e-3, 128 2.5e-3 for 70 % more (its shadow passes draw finer levels of detail).
 int shadow_resolution(const RenderOptions& o, const RenderResult& r) {
   const int rule = shadow_resolution_for(o.raster.shadow_resolution, r.view.width, r.view.height);
   if (o.raster.shadow_resolution > 0 || r.clusters == 0) return rule;
-  return std::max(rule, 128);
+  return std::max(rule, std::min(128, std::max(r.view.width, r.view.height) / 2));
 }
 
 void run_raster(Stages& s, const RayScene& rays) {
