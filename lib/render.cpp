@@ -111,8 +111,9 @@ void log_planes(Log& log, const PlaneChoice& planes, int resolution, double seco
 // more time; Cornell 512x512 R = 128 3.07e-4, 256 2.95e-4 for 20 % more; godot 128x128 (1940)
 // R = 64 3.1e-3, 128 2.5e-3 for 70 % more (its shadow passes draw finer levels of detail).
 int shadow_resolution(const RenderOptions& o, const RenderResult& r) {
-  const int rule = shadow_resolution_for(o.raster.shadow_resolution, r.view.width, r.view.height);
-  if (o.raster.shadow_resolution > 0 || r.clusters == 0) return rule;
+  if (o.raster.shadow_resolution != 0) return o.raster.shadow_resolution; // checked by the raster
+  const int rule = shadow_resolution_for(0, r.view.width, r.view.height);
+  if (r.clusters == 0) return rule;
   return std::max(rule, std::min(128, std::max(r.view.width, r.view.height) / 2));
 }
 
@@ -345,6 +346,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
                 "the clamp's residual does not handle mirrors (specular materials) yet");
 
   check_range(scene, options);
+  if (options.estimator == Estimator::Raster)
+    check_raster_options(options.raster); // before the walk
   if (s.cancelled()) {
     // Interrupted while loading: nothing was rendered.
   } else if (options.estimator == Estimator::Pt) {

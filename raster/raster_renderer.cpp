@@ -313,7 +313,7 @@ Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0,
   return image;
 }
 
-RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options) {
+void check_raster_options(const RasterOptions& options) {
   if (options.shadow_resolution < 0 || options.shadow_resolution > 8192)
     throw Error("", "--shadow-res", "must be between 1 and 8192 (0: automatic)");
   if (!(options.clamp >= 0.0f)) throw Error("", "--clamp", "must be >= 0");
@@ -321,6 +321,10 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
     throw Error("", "--interleave", "must be between 1 and 16");
   if (options.batch < 1 || options.batch > 256)
     throw Error("", "--batch", "must be between 1 and 256");
+}
+
+RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options) {
+  check_raster_options(options);
   auto context = gl::create_context(options.backend, options.gl_device);
   if (options.gl_messages) context->route_debug_messages(options.gl_messages);
   impl_ = std::make_unique<Impl>(scene, options, std::move(context));

@@ -48,6 +48,10 @@ struct RasterOptions {
   std::function<void(const std::string&)> gl_messages = nullptr;
 };
 
+// Throws irad::Error naming the option (--shadow-res, --clamp, --interleave, --batch) when
+// `options` are impossible; the constructor checks them too, a caller may check before its work.
+void check_raster_options(const RasterOptions& options);
+
 // The shadow cube resolution used for an image: `requested` if positive, else a quarter of the
 // image's larger side rounded up to a power of two, between 64 and 1024.
 int shadow_resolution_for(int requested, int width, int height);
