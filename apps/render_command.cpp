@@ -55,7 +55,7 @@ struct RenderArgs {
   std::string gl = "auto";
   std::string sequence = "halton";
   std::string light_allocation = "power";
-  int interleave = 4;
+  std::string interleave = "auto"; // k, or auto (lib/render.cpp)
   int batch = RasterOptions{}.batch;
   std::string shadow_lod = "on";
   std::string shadow_occlusion = "on";
@@ -160,7 +160,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"size", {r.view.width, r.view.height}},
           {"triangles", scene.triangle_count()},
           {"shadow_res", r.shadow_resolution}, // as drawn: 0 for rt-vpl
-          {"interleave", args.interleave},
+          {"interleave", r.interleave},        // as drawn: auto resolved
           {"batch", args.batch},
           {"shadow_lod", args.shadow_lod},
           {"shadow_occlusion", args.shadow_occlusion == "on"},
@@ -264,7 +264,9 @@ int run_render(const RenderArgs& args) {
   request.render.cluster_rows = args.cluster_rows;
   request.render.raster.backend = parse_backend(args.gl);
   request.render.raster.gl_device = args.gl_device;
-  request.render.raster.interleave = args.interleave;
+  // 0: automatic (RenderOptions::raster.interleave, lib/irad/render.h)
+  request.render.raster.interleave =
+      static_cast<int>(parse_count_or_auto(args.interleave, "--interleave", 1, 16).value_or(0));
   request.render.raster.batch = args.batch;
   request.render.raster.shadow_lod.mode = parse_shadow_lod(args.shadow_lod);
   request.render.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
@@ -425,7 +427,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option(
          "--interleave", args->interleave,
          "Raster: k > 1 splits the VPLs into k x k sets, each pixel of a k x k tile lit by "
-         "one set, then a geometry-aware filter (1: every VPL shades every pixel)")
+         "one set, then a geometry-aware filter (1: every VPL shades every pixel); auto: 2 for "
+         "cluster representatives in images below 512 pixels, else 4")
       ->capture_default_str();
   cmd->add_option("--batch", args->batch,
                   "Raster: VPLs per instanced draw of shadow maps and shading (1: one pass per "

@@ -125,7 +125,7 @@ void bind_functions(py::module_& m) {
       "render",
       [](const Scene& scene, std::optional<std::pair<int, int>> size,
          std::optional<std::uint32_t> paths, const std::string& estimator, std::uint32_t spp,
-         std::uint64_t seed, float clamp, int interleave, int batch, int shadow_res,
+         std::uint64_t seed, float clamp, std::optional<int> interleave, int batch, int shadow_res,
          const std::string& sequence, bool jitter, const std::string& camera,
          std::optional<float> time, unsigned threads, bool bias_compensation, const std::string& gl,
          std::optional<std::size_t> clusters) {
@@ -134,10 +134,10 @@ void bind_functions(py::module_& m) {
                        sequence, jitter, camera, time, threads, bias_compensation, gl, clusters});
       },
       "scene"_a, py::kw_only(), "size"_a = py::none(), "paths"_a = py::none(),
-      "estimator"_a = "raster", "spp"_a = 64u, "seed"_a = 0u, "clamp"_a = 0.05f, "interleave"_a = 4,
-      "batch"_a = 16, "shadow_res"_a = 0, "sequence"_a = "halton", "jitter"_a = false,
-      "camera"_a = "", "time"_a = py::none(), "threads"_a = 0u, "bias_compensation"_a = false,
-      "gl"_a = "auto", "clusters"_a = py::none(),
+      "estimator"_a = "raster", "spp"_a = 64u, "seed"_a = 0u, "clamp"_a = 0.05f,
+      "interleave"_a = py::none(), "batch"_a = 16, "shadow_res"_a = 0, "sequence"_a = "halton",
+      "jitter"_a = false, "camera"_a = "", "time"_a = py::none(), "threads"_a = 0u,
+      "bias_compensation"_a = false, "gl"_a = "auto", "clusters"_a = py::none(),
       "Renders the scene: (float32 array (h, w, 3), stats dict); paths and clusters None: the "
       "light budget, as irad render's auto; the GIL is released, Ctrl-C cancels "
       "(KeyboardInterrupt)");

@@ -46,7 +46,7 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.walk.sequence = parse_sequence(k.sequence);
   o.walk.seed = k.seed;
   o.raster.clamp = k.clamp;
-  o.raster.interleave = k.interleave;
+  o.raster.interleave = k.interleave.value_or(0); // 0: automatic (lib/irad/render.h)
   o.raster.batch = k.batch;
   o.raster.shadow_resolution = k.shadow_res;
   o.raster.jitter = k.jitter;
@@ -76,6 +76,7 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   s["vpls"] = r.vpls.vpls.size();
   s["walk_vpls"] = r.walk_vpls;
   s["clusters"] = r.clusters; // as drawn: auto resolved
+  s["interleave"] = r.interleave;
   s["paths"] = r.vpls.paths;
   s["rho_bar"] = r.vpls.rho_bar;
   s["l_max"] = r.vpls.l_max;

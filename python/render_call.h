@@ -22,7 +22,7 @@ struct RenderKeywords {
   std::uint32_t spp = 64;
   std::uint64_t seed = 0;
   float clamp = 0.05f;
-  int interleave = 4;
+  std::optional<int> interleave; // None: auto (lib/irad/render.h)
   int batch = 16;
   int shadow_res = 0;
   std::string sequence = "halton";

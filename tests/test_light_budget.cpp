@@ -62,6 +62,7 @@ TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
   RenderOptions automatic;
   automatic.size = std::pair{48, 48};
   automatic.auto_paths = automatic.auto_clusters = true;
+  automatic.raster.interleave = 0; // automatic, as irad render's default
   RenderOptions fixed = automatic;
   fixed.auto_paths = fixed.auto_clusters = false; // N = 256, every VPL
   RenderOptions pt = fixed;
@@ -74,23 +75,24 @@ TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
   EXPECT_EQ(a.clusters, 1910u);
   EXPECT_EQ(a.vpls.vpls.size(), 1910u);
   EXPECT_EQ(a.shadow_resolution, 64); // 48x48: the rule's least (ShadowsOfRepresentatives)
+  EXPECT_EQ(a.interleave, 2);         // representatives
   EXPECT_EQ(f.clusters, 0u);
+  EXPECT_EQ(f.interleave, 4); // every VPL
   EXPECT_EQ(f.walk_vpls, f.vpls.vpls.size());
   const ImageMetrics ea = compare_images(a.image, reference.image, 4);
   const ImageMetrics ef = compare_images(f.image, reference.image, 4);
   std::printf("4x4 relMSE against pt 2048 spp: auto %.3g (mean %.4f), N = 256 %.3g (mean %.4f)\n",
               ea.relmse, ea.mean_ratio[1], ef.relmse, ef.mean_ratio[1]);
-  // Measured: auto 4x4 relMSE 1.42e-3, mean 1.005; N = 256 3.93e-3, mean 1.035. At
-  // 48x48 a 4x4 block is a twelfth of
-  // the image side, so the block error is larger than at 256x256 (docs/performance.md).
-  EXPECT_LT(ea.relmse, 2.5e-3);
+  // Measured: auto (k = 2) 4x4 relMSE 3.6e-4, mean 1.001 (1.42e-3 with k = 4: at 48x48 a 4x4
+  // tile of interleaved sets is a twelfth of the image side); N = 256 3.93e-3, mean 1.035.
+  EXPECT_LT(ea.relmse, 1e-3);
   EXPECT_LT(ea.relmse, 0.5 * ef.relmse);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(ea.mean_ratio[c], 1.0, 0.01) << c;
 }
 
-// Representatives cast shadow faces of at least half the image's larger side up to 128 texels;
-// every VPL drawn one by one keeps raster_renderer.h's rule (a quarter, at least 64); an
-// explicit resolution stays.
+// Representatives cast shadow faces of at least half the image's larger side up to 128 texels
+// and are interleaved 2x2 below 512 pixels; every VPL drawn one by one keeps raster_renderer.h's
+// rule (a quarter, at least 64) and k = 4; an explicit resolution stays.
 TEST(LightBudget, ShadowsOfRepresentatives) {
   Log log = quiet();
   const Scene scene = cornell(log);
@@ -99,9 +101,11 @@ TEST(LightBudget, ShadowsOfRepresentatives) {
   o.walk.paths = 4096; // 7648 VPLs as 478 representatives
   o.auto_clusters = true;
   o.screen_compensation = false;
+  o.raster.interleave = 0; // automatic: 2 for representatives below 512 pixels
   const RenderResult clustered = render(scene, o, log);
   EXPECT_EQ(clustered.clusters, 478u);
   EXPECT_EQ(clustered.shadow_resolution, 128);
+  EXPECT_EQ(clustered.interleave, 2);
   o.raster.shadow_resolution = 32;
   EXPECT_EQ(render(scene, o, log).shadow_resolution, 32);
   o.raster.shadow_resolution = 0;
@@ -109,6 +113,7 @@ TEST(LightBudget, ShadowsOfRepresentatives) {
   const RenderResult each = render(scene, o, log);
   EXPECT_EQ(each.clusters, 0u);
   EXPECT_EQ(each.shadow_resolution, 64);
+  EXPECT_EQ(each.interleave, 4);
 }
 
 TEST(LightBudget, APartNeedsItsNAndDrawsEveryVpl) {

@@ -43,7 +43,9 @@ struct RenderOptions {
   std::optional<std::pair<int, int>> size; // WxH; default from the camera's aspect, 512 high
   std::string camera;                      // name or index; empty: the first camera
   WalkOptions walk;
-  RasterOptions raster; // clamp and shadow resolution (clamp also for rt-vpl)
+  // clamp and shadow resolution (clamp also for rt-vpl); interleave 0: automatic, 2 when the
+  // render draws cluster representatives into an image below 512 pixels, else 4 (lib/render.cpp)
+  RasterOptions raster;
   // The clamp distance of the VPL estimators: local (core/clamp_field.h: d(y) = min(cap,
   // clamp_scale * r_k(y)), r_k the distance to the k-th nearest VPL, cap = raster.clamp of the
   // bounding diagonal) or global (raster.clamp of the diagonal everywhere).
@@ -108,6 +110,7 @@ struct RenderResult {
   double compensation_fallback = -1.0;
   std::string gl;              // GL renderer (raster)
   int shadow_resolution = 0;   // the raster's shadow faces, texels per edge (auto resolved)
+  int interleave = 0;          // the raster's k (auto resolved); 0 for rt-vpl
   bool shadow_planes = false;  // the raster's batched passes drew the occluder planes
   float thinnest_wall = -1.0f; // with planes Auto: what walk/thin_walls.h measured (of the
                                // diagonal, up to planes_reach); -1: not measured
