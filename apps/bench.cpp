@@ -297,6 +297,29 @@ void bench_clusters(const Target& g, const Sweep& sw, std::vector<BenchRow>& row
   }
 }
 
+// `irad render`'s default (the light budget: --paths auto --clusters auto --interleave auto,
+// core/light_budget.h) through the library, as one row; `total` leaves out render()'s load (the
+// BVH, in `bvh`), and includes the GL context and shaders, as the CLI pays them.
+void bench_default(const Target& g, std::vector<BenchRow>& rows, Log& log) {
+  RenderOptions o;
+  o.size = std::pair{g.view.width, g.view.height};
+  o.auto_paths = o.auto_clusters = true;
+  o.raster.interleave = 0;
+  const RenderResult r = render(g.b.scene, o, log);
+  BenchRow row = base_row(g.b, g.bvh, "raster-default");
+  row.sequence = "halton";
+  row.paths = r.vpls.paths;
+  row.vpls = r.walk_vpls;
+  row.walk = r.seconds.walk + r.seconds.cluster;
+  row.readback = r.seconds.readback;
+  row.compensation = r.seconds.compensation;
+  row.total = r.seconds.total - r.seconds.load;
+  row.vpls_per_second = static_cast<double>(r.walk_vpls) / row.total;
+  score(row, r.image, g.ref);
+  log_row(row, log);
+  rows.push_back(row);
+}
+
 // The same Halton VPLs with ray-traced visibility.
 void bench_rt_vpl(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
   for (std::uint32_t n : sw.rt_paths) {
@@ -344,6 +367,7 @@ void bench_scene(const BenchScene& b, const Sweep& sw, const BenchOptions& o,
   const Target g{b, rays, view, reference(b, rays, view, sw.reference_spp, o.out_dir, log), bvh};
   bench_raster(g, sw, rows, log);
   bench_clusters(g, sw, rows, log);
+  if (b.name == "cornell" || is_real_scene(b.name)) bench_default(g, rows, log);
   bench_rt_vpl(g, sw, rows, log);
   bench_pt(g, sw, rows, log);
 }

@@ -33,7 +33,8 @@ struct BenchRow {
   // compensation, as `irad render`; raster-global: the global clamp, no compensation (the
   // default before issue 14); raster-clusters: the default raster over the cluster
   // representatives of the walk's VPLs (walk/vpl_clustering.h; `vpls` the walk's, `walk` the walk
-  // and the clustering, vpls_per_second the walk's VPLs per second of the whole image); pt
+  // and the clustering, vpls_per_second the walk's VPLs per second of the whole image);
+  // raster-default: `irad render`'s default (the light budget) through lib/irad/render.h; pt
   std::string estimator;
   std::string sequence; // halton, scrambled-halton, random ("" for pt)
   std::uint32_t paths = 0, spp = 0;
