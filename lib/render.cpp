@@ -249,7 +249,6 @@ void cluster(Stages& s, const RayScene& rays, std::size_t clusters) {
   s.r.seconds.cluster = since(t0);
 }
 
-// The walk, one of the VPL estimators, and what the options add to it.
 // The walk's options, with N from a pilot walk under the automatic budget.
 WalkOptions walk_options(Stages& s, const RayScene& rays) {
   WalkOptions walk = s.options.walk;
@@ -269,6 +268,7 @@ std::size_t cluster_count(const Stages& s) {
   return budget_clusters(s.r.vpls.vpls.size(), s.options.budget);
 }
 
+// The walk, one of the VPL estimators, and what the options add to it.
 void run_vpl_estimator(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
   s.r.vpls = quasi_random_walk(s.scene, rays, walk_options(s, rays), s.log);
