@@ -42,6 +42,7 @@ slow=(
   Determinism.RasterIsBitIdentical
   Parts.LocalClampAndCompensationSplitWithTheFullWalksField
   Interrupt.PartialOfTheRtVplEstimator
+  LightBudget.TheDefaultRenderAgainstThePathTracer
 )
 default_filter="*-$(IFS=:; echo "${slow[*]}")"
 filter=${1:-$default_filter}
