@@ -37,6 +37,7 @@ struct RenderArgs {
   std::optional<float> clamp_scale; // default: RenderOptions' (0.5, 1.0 with clusters)
   std::string clusters = "auto";    // C (0: every VPL), or auto: the light budget
   std::size_t cluster_rows = 256;
+  std::uint32_t rounds = 1;
   std::string camera;
   std::string gltf_scene;
   LookAtArgs look;
@@ -171,6 +172,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"clamp_distance", args.clamp * scene.bounds.diagonal()}, // local: the cap
           {"clamp_mode", args.clamp_mode},
           {"clusters", r.clusters}, // as drawn: auto resolved
+          {"rounds", r.rounds},
           {"cluster_rows", args.cluster_rows},
           {"walk_vpls", r.walk_vpls},
           {"cluster_dropped", r.cluster_dropped},
@@ -262,6 +264,7 @@ int run_render(const RenderArgs& args) {
   request.render.auto_clusters = !clusters;
   request.render.clusters = clusters.value_or(0);
   request.render.cluster_rows = args.cluster_rows;
+  request.render.rounds = args.rounds;
   request.render.raster.backend = parse_backend(args.gl);
   request.render.raster.gl_device = args.gl_device;
   // 0: automatic (RenderOptions::raster.interleave, lib/irad/render.h)
@@ -377,6 +380,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Draw the VPLs as at most this many cluster representatives (matrix "
                   "row-column sampling; 0: every VPL; auto: one per 16 VPLs, 256..2048, when the "
                   "walk leaves more than 4096 VPLs, else every VPL)")
+      ->capture_default_str();
+  cmd->add_option("--rounds", args->rounds,
+                  "raster, rt-vpl: the mean of M renders of independent light sets (scrambled "
+                  "Halton walks; the error falls as 1/M, as pt's with its samples)")
+      ->check(CLI::Range(1u, 4096u))
       ->capture_default_str();
   cmd->add_option("--cluster-rows", args->cluster_rows,
                   "clusters: pixels whose rows are computed exactly")

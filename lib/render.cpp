@@ -11,6 +11,7 @@
 #include "walk/vpl_tracer.h"
 
 #include <chrono>
+#include <memory>
 #include <fmt/format.h>
 
 namespace irad {
@@ -51,8 +52,9 @@ struct Stages {
   const Scene& scene;
   const RenderOptions& options;
   Log& log;
-  StopFlag stop;
+  StopFlag& stop; // render()'s, shared by the rounds
   RenderResult& r;
+  std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
 
   bool cancelled() {
     r.cancelled = r.cancelled || stop.poll();
@@ -131,25 +133,33 @@ int interleave(const RenderOptions& o, const RenderResult& r) {
   return r.clusters > 0 && std::max(r.view.width, r.view.height) < 512 ? 2 : 4;
 }
 
-void run_raster(Stages& s, const RayScene& rays) {
+// The raster renderer, made by the first raster stage: its shadow resolution, interleaving and
+// occluder planes for this view and these options, in the result. Later rounds reuse it.
+RasterRenderer& renderer(Stages& s, const RayScene& rays) {
+  if (s.raster) return *s.raster;
   const auto t0 = Clock::now();
   RasterOptions options = s.options.raster;
   options.shadow_resolution = shadow_resolution(s.options, s.r);
-  s.r.shadow_resolution = options.shadow_resolution;
   options.interleave = interleave(s.options, s.r);
-  s.r.interleave = options.interleave;
-  const int resolution = options.shadow_resolution;
   const PlaneChoice planes =
-      choose_shadow_planes(s.scene, rays, options.shadow_lod.planes, resolution);
+      choose_shadow_planes(s.scene, rays, options.shadow_lod.planes, options.shadow_resolution);
   const double scan = since(t0);
   options.shadow_lod.planes = planes.planes;
+  options.cancel = s.stop.flag();
+  options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
+  s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options
+  log_planes(s.log, planes, options.shadow_resolution, scan);
+  s.r.shadow_resolution = options.shadow_resolution;
+  s.r.interleave = options.interleave;
   s.r.shadow_planes = planes.planes == ShadowPlanes::On;
   s.r.thinnest_wall = planes.thinnest_wall;
-  options.cancel = s.stop.flag();
-  options.gl_messages = [&s](const std::string& message) { s.log.warn(message); };
-  RasterRenderer raster(s.scene, options); // checks the options
-  log_planes(s.log, planes, resolution, scan);
-  s.r.gl = raster.description();
+  s.r.gl = s.raster->description();
+  return *s.raster;
+}
+
+void run_raster(Stages& s, const RayScene& rays) {
+  const auto t0 = Clock::now();
+  RasterRenderer& raster = renderer(s, rays);
   RasterTimings timings;
   s.r.image = raster.render(s.r.view, s.r.vpls, &timings,
                             [&s](std::size_t done, std::size_t total) { s.progress(done, total); });
@@ -308,6 +318,8 @@ void check_range(const Scene& scene, const RenderOptions& o) {
   if (paths && o.bias_compensation)
     throw Error("", "--path-range",
                 "cannot split --bias-compensation (its residual is not a sum over paths)");
+  if (paths && o.rounds > 1)
+    throw Error("", "--path-range", "cannot split --rounds (split the paths of one round)");
   if (paths && o.auto_paths)
     throw Error("", "--path-range",
                 "needs --paths N: the parts must share one walk (auto chooses N per scene)");
@@ -348,9 +360,56 @@ PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, Shado
   return {planes_needed(thinnest, resolution) ? ShadowPlanes::On : ShadowPlanes::Off, thinnest};
 }
 
+// Round m of `o` (m > 0): an independent light set, the scrambled Halton walk of seed
+// walk.seed + m over the first round's N, with its own clustering and compensation seeds.
+RenderOptions round_options(const RenderOptions& o, std::uint32_t m, std::uint32_t paths) {
+  RenderOptions r = o;
+  r.walk.sequence = SequenceKind::ScrambledHalton;
+  r.walk.seed = o.walk.seed + m;
+  r.walk.paths = paths;
+  r.auto_paths = false;
+  r.pt.seed = o.pt.seed + m;
+  return r;
+}
+
+// RenderOptions::rounds > 1: the mean of the rounds' images. Each round is an unbiased estimate
+// of the same image with its own light set, so the mean's variance falls as 1/M, as pt's with its
+// samples. A cancelled round is left out; the first round's stats stand for all (seconds and
+// passes summed).
+void run_rounds(Stages& s, const RayScene& rays) {
+  run_vpl_estimator(s, rays);
+  std::vector<glm::dvec4> sum(s.r.image.pixels().begin(), s.r.image.pixels().end());
+  std::uint32_t done = 1;
+  for (std::uint32_t m = 1; m < s.options.rounds && !s.cancelled(); ++m) {
+    const RenderOptions o = round_options(s.options, m, s.r.vpls.paths);
+    RenderResult rm;
+    rm.camera = s.r.camera;
+    rm.view = s.r.view;
+    Stages sm{s.scene, o, s.log, s.stop, rm, std::move(s.raster)};
+    run_vpl_estimator(sm, rays);
+    s.raster = std::move(sm.raster);
+    if (sm.cancelled()) break; // s.cancelled() says so too: the flag is shared
+    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += glm::dvec4(rm.image.pixels()[i]);
+    ++done;
+    StageSeconds& t = s.r.seconds;
+    t.walk += rm.seconds.walk;
+    t.cluster += rm.seconds.cluster;
+    t.raster += rm.seconds.raster;
+    t.readback += rm.seconds.readback;
+    t.trace += rm.seconds.trace;
+    t.compensation += rm.seconds.compensation;
+    s.r.passes += rm.passes;
+  }
+  s.cancelled(); // a round cancelled: the mean of those done, marked cancelled
+  for (std::size_t i = 0; i < sum.size(); ++i)
+    s.r.image.pixels()[i] = glm::vec4(sum[i] / double(done));
+  s.r.rounds = done;
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) {
   RenderResult r;
-  Stages s{scene, options, log, StopFlag(options), r};
+  StopFlag stop(options);
+  Stages s{scene, options, log, stop, r};
   const auto t0 = Clock::now();
   r.camera = select_camera(scene, options.camera);
   const auto [width, height] = image_size(r.camera, options.size);
@@ -371,6 +430,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
     // Interrupted while loading: nothing was rendered.
   } else if (options.estimator == Estimator::Pt) {
     run_pt(s, rays);
+  } else if (options.rounds > 1) {
+    run_rounds(s, rays);
   } else {
     run_vpl_estimator(s, rays);
   }

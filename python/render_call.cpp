@@ -58,6 +58,8 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.bias_compensation = k.bias_compensation;
   o.auto_clusters = !k.clusters;
   o.clusters = k.clusters.value_or(0);
+  require_at_least_one(k.rounds, "rounds");
+  o.rounds = k.rounds;
   return o;
 }
 
@@ -77,6 +79,7 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   s["walk_vpls"] = r.walk_vpls;
   s["clusters"] = r.clusters; // as drawn: auto resolved
   s["interleave"] = r.interleave;
+  s["rounds"] = r.rounds;
   s["paths"] = r.vpls.paths;
   s["rho_bar"] = r.vpls.rho_bar;
   s["l_max"] = r.vpls.l_max;

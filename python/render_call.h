@@ -33,6 +33,7 @@ struct RenderKeywords {
   bool bias_compensation = false;
   std::string gl = "auto";
   std::optional<std::size_t> clusters; // RenderOptions::clusters (0: every VPL); None: auto
+  std::uint32_t rounds = 1;            // RenderOptions::rounds
 };
 
 // (image float32 (h, w, 3), stats dict). The GIL is released while rendering; Ctrl-C (SIGINT

@@ -43,6 +43,7 @@ slow=(
   Parts.LocalClampAndCompensationSplitWithTheFullWalksField
   Interrupt.PartialOfTheRtVplEstimator
   LightBudget.TheDefaultRenderAgainstThePathTracer
+  LightBudget.RoundsAreTheMeanOfIndependentLightSets
 )
 default_filter="*-$(IFS=:; echo "${slow[*]}")"
 filter=${1:-$default_filter}

@@ -109,6 +109,7 @@ TEST_F(MergeCli, RangeOutsideOrEmpty) {
   expect_error("render " + scene() + " --paths 8 --path-range auto", "SLURM_ARRAY_TASK_ID");
   // The parts must share one N: --paths auto (the default) chooses it per scene.
   expect_error("render " + scene() + " --path-range 0:4", "--path-range: needs --paths N");
+  expect_error("render " + scene() + " --paths 8 --rounds 2 --path-range 0:4", "--rounds");
   expect_error("render " + scene() + " --paths 8 --path-range auto", "--path-range",
                "SLURM_ARRAY_TASK_ID=7 SLURM_ARRAY_TASK_COUNT=4");
 }

@@ -67,6 +67,10 @@ struct RenderOptions {
   bool auto_paths = false;
   bool auto_clusters = false;
   LightBudget budget;
+  // Raster and rt-vpl: the mean of `rounds` renders of independent light sets (round m > 0: the
+  // scrambled Halton walk of seed walk.seed + m, N of the first round, clustering and compensation
+  // seeded pt.seed + m). Its variance falls as 1/rounds; refused with a path range.
+  std::uint32_t rounds = 1;
   PathTracerOptions pt;           // spp, seed, threads
   bool bias_compensation = false; // add the clamp's residual (walk/bias_compensation.h)
   std::uint32_t bias_samples = 16;
@@ -99,6 +103,7 @@ struct RenderResult {
   std::size_t walk_vpls = 0;
   double cluster_dropped = 0.0;
   std::size_t clusters = 0; // the representatives asked for (0: every VPL drawn)
+  std::uint32_t rounds = 1; // rounds averaged (RenderOptions::rounds; fewer when cancelled)
   // When cancelled: what was accumulated (pt, rt-vpl: pixels not done are 0, alpha too).
   Image image;
   StageSeconds seconds;   // load: the camera, view and ray-tracing structure (render_file: also

@@ -60,6 +60,13 @@ def test_defaults_are_the_cli_light_budget(cornell, tmp_path):
     assert np.array_equal(image, irad.read_exr(str(out))[..., :3])  # bit-identical
 
 
+def test_rounds_equal_the_cli_rounds(cornell, tmp_path):
+    image, stats = irad.render(cornell, size=(32, 24), paths=64, rounds=3)
+    assert stats["rounds"] == 3
+    exr = cli_render(tmp_path, "raster", ["--rounds", "3"], paths=64)
+    assert np.array_equal(image, exr[..., :3])  # bit-identical
+
+
 def test_scene_summary(cornell):
     assert cornell.triangles > 0
     lo, hi = cornell.bounds
