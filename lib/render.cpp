@@ -11,8 +11,8 @@
 #include "walk/vpl_tracer.h"
 
 #include <chrono>
-#include <memory>
 #include <fmt/format.h>
+#include <memory>
 
 namespace irad {
 
