@@ -299,8 +299,8 @@ void run_vpl_estimator(Stages& s, const RayScene& rays) {
     compensate_on_screen(s, rays);
   // Not with mirrors (the estimate ignores mirrored VPLs): the stats show -1.
   if (s.options.clamped_fraction && !s.scene.has_specular() && !s.cancelled())
-    s.r.clamped_fraction =
-        clamped_fraction(s.scene, rays, s.r.view, s.r.vpls, s.options.raster.clamp);
+    s.r.clamped_fraction = clamped_fraction(s.scene, rays, s.r.view, s.r.vpls,
+                                            s.options.raster.clamp, 64, 8, s.options.pt.threads);
 }
 
 // What a path range cannot split exactly (docs/cluster.md): the clamp's residual is gathered
@@ -369,6 +369,7 @@ RenderOptions round_options(const RenderOptions& o, std::uint32_t m, std::uint32
   r.walk.paths = paths;
   r.auto_paths = false;
   r.pt.seed = o.pt.seed + m;
+  r.clamped_fraction = false; // the first round's estimate stands
   return r;
 }
 

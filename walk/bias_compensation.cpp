@@ -79,13 +79,16 @@ Image clamp_residual(const Scene& scene, const RayScene& rays, const View& view,
 }
 
 double clamped_fraction(const Scene& scene, const RayScene& rays, const View& view,
-                        const VplSet& vpls, float clamp, int grid, std::uint32_t samples) {
+                        const VplSet& vpls, float clamp, int grid, std::uint32_t samples,
+                        unsigned threads) {
   const float dmin = clamp * scene.bounds.diagonal();
   const Residual residual{scene, rays, vpls, dmin, rays.epsilon(), 16};
   if (residual.reach() <= 0.0f) return 0.0;
   const int nx = std::min(grid, view.width), ny = std::min(grid, view.height);
-  double kept = 0.0, removed = 0.0;
-  for (int j = 0; j < ny; ++j)
+  std::vector<double> kept_row(std::size_t(ny), 0.0), removed_row(std::size_t(ny), 0.0);
+  parallel_rows(ny, threads, [&](int j) {
+    double& kept = kept_row[std::size_t(j)];
+    double& removed = removed_row[std::size_t(j)];
     for (int i = 0; i < nx; ++i) {
       const int px = (2 * i + 1) * view.width / (2 * nx);
       const int py = (2 * j + 1) * view.height / (2 * ny);
@@ -100,6 +103,12 @@ double clamped_fraction(const Scene& scene, const RayScene& rays, const View& vi
       removed += mean3(r) / static_cast<float>(samples);
       kept += mean3(gather_vpls(rays, p, vpls, dmin, rays.epsilon()));
     }
+  });
+  double kept = 0.0, removed = 0.0; // summed in row order: independent of the threads
+  for (int j = 0; j < ny; ++j) {
+    kept += kept_row[std::size_t(j)];
+    removed += removed_row[std::size_t(j)];
+  }
   return kept + removed > 0.0 ? removed / (kept + removed) : 0.0;
 }
 

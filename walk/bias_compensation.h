@@ -31,8 +31,10 @@ Image clamp_residual(const Scene& scene, const RayScene& rays, const View& view,
 
 // The fraction of the VPLs' reflected light that the clamp removes from the image:
 // sum R / sum (clamped VPL radiance + R) over the mean of R, G, B (emitters seen directly are not
-// counted), estimated on a grid of at most grid x grid pixel centres with exact visibility.
+// counted), estimated on a grid of at most grid x grid pixel centres with exact visibility, its
+// rows on `threads` threads (0: all cores; the same result at any count).
 double clamped_fraction(const Scene& scene, const RayScene& rays, const View& view,
-                        const VplSet& vpls, float clamp, int grid = 64, std::uint32_t samples = 8);
+                        const VplSet& vpls, float clamp, int grid = 64, std::uint32_t samples = 8,
+                        unsigned threads = 0);
 
 } // namespace irad
