@@ -22,7 +22,7 @@ run() { # name setting n args...
   local name=$1 setting=$2 n=$3
   shift 3
   "$irad" render "$scene" -o "$out/$name.exr" --size "${size}x${size}" --stats "$out/$name.json" \
-    --quiet "$@"
+    --quiet --clusters 0 "$@"
   "$irad" compare "$out/$name.exr" "$ref" --json "$out/$name.cmp.json" > /dev/null
   /usr/bin/python3 - "$out/$name" "$setting" "$n" <<'PY'
 import json, sys
