@@ -34,8 +34,12 @@ TEST(LightBudget, PathsAreThePowerOfTwoThatFillsTheBudget) {
     EXPECT_GE(n, b.min_paths);
     EXPECT_LE(n, b.max_paths);
     const double expected = double(n) * double(pilot) / double(b.pilot_paths);
-    if (n > b.min_paths) EXPECT_LE(expected, double(b.vpls)) << pilot;       // fits
-    if (n < b.max_paths) EXPECT_GT(2.0 * expected, double(b.vpls)) << pilot; // twice does not
+    if (n > b.min_paths) {
+      EXPECT_LE(expected, double(b.vpls)) << pilot; // fits
+    }
+    if (n < b.max_paths) {
+      EXPECT_GT(2.0 * expected, double(b.vpls)) << pilot; // twice does not
+    }
   }
   EXPECT_EQ(budget_paths(491, b), 16384u);  // the Cornell box: 1.92 VPLs per path
   EXPECT_EQ(budget_paths(3580, b), 2048u);  // 14 per path
