@@ -301,10 +301,8 @@ void bench_clusters(const Target& g, const Sweep& sw, std::vector<BenchRow>& row
 // core/light_budget.h) through the library, as one row; `total` leaves out render()'s load (the
 // BVH, in `bvh`), and includes the GL context and shaders, as the CLI pays them.
 void bench_default(const Target& g, std::vector<BenchRow>& rows, Log& log) {
-  RenderOptions o;
+  RenderOptions o = with_light_budget();
   o.size = std::pair{g.view.width, g.view.height};
-  o.auto_paths = o.auto_clusters = true;
-  o.raster.interleave = 0;
   const RenderResult r = render(g.b.scene, o, log);
   BenchRow row = base_row(g.b, g.bvh, "raster-default");
   row.sequence = "halton";

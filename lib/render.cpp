@@ -253,7 +253,6 @@ void cluster(Stages& s, const RayScene& rays, std::size_t clusters) {
   o.threads = s.options.pt.threads;
   o.cancel = s.stop.flag();
   Representatives reps = cluster_vpls(s.scene, rays, s.r.view, s.r.vpls, o);
-  s.r.walk_vpls = s.r.vpls.vpls.size();
   s.r.cluster_dropped = reps.dropped_fraction;
   s.r.vpls = std::move(reps.set);
   s.r.seconds.cluster = since(t0);
@@ -407,10 +406,16 @@ void run_rounds(Stages& s, const RayScene& rays) {
   s.r.rounds = done;
 }
 
+RenderOptions with_light_budget(RenderOptions o) {
+  o.auto_paths = o.auto_clusters = true;
+  o.raster.interleave = 0;
+  return o;
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) {
   RenderResult r;
   StopFlag stop(options);
-  Stages s{scene, options, log, stop, r};
+  Stages s{scene, options, log, stop, r, nullptr};
   const auto t0 = Clock::now();
   r.camera = select_camera(scene, options.camera);
   const auto [width, height] = image_size(r.camera, options.size);

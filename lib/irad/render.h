@@ -132,6 +132,10 @@ struct PlaneChoice {
 PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, ShadowPlanes requested,
                                  int resolution);
 
+// `o` with `irad render`'s (and Python's) automatic choices: the light budget (auto_paths,
+// auto_clusters) and the automatic interleaving (raster.interleave 0).
+RenderOptions with_light_budget(RenderOptions o = {});
+
 // Renders `scene` (load_scene's, posed and lit) as `options` say. Throws irad::Error on bad
 // options and when a finished image holds NaN or Inf pixels.
 RenderResult render(const Scene& scene, const RenderOptions& options, Log& log);
