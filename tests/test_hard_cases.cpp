@@ -8,7 +8,6 @@
 #include "core/radical_inverse.h"
 #include "core/scene_builder.h"
 #include "core/view.h"
-#include "irad/render.h"
 #include "raster/context/gl_context.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/target.h"
@@ -83,6 +82,8 @@ double mean_rgb(const Image& image) {
 }
 
 using test_support::add_room;
+using test_support::two_rooms;
+using test_support::TwoRooms;
 const char* const room_wall_names[6] = {"floor",    "ceiling",   "wall z=0",
                                         "wall z=2", "wall x=lo", "wall x=hi"};
 
@@ -315,33 +316,6 @@ TEST(HardCases, CornellBoxRendersTheSameAtAnyScale) {
 // room A (x in [0, 2]) only, the camera in room B (x in [2.002, 4.002]) looks at the shared wall,
 // its floor, ceiling and side walls. No light may reach B.
 
-struct TwoRooms {
-  Scene scene;
-  Camera in_b;
-  Camera in_a;
-};
-
-// At k times the size (every coordinate, the cameras with it; radiance is unchanged).
-TwoRooms two_rooms(float k = 1.0f) {
-  TwoRooms r;
-  Scene& s = r.scene;
-  s.source = "two_rooms";
-  const std::uint32_t wall = add_material(s, glm::vec3(0.6f));
-  const std::uint32_t light = add_material(s, glm::vec3(0.6f), glm::vec3(5.0f));
-  // Room A: quads 0..5, room B: quads 6..11.
-  add_room(s, k * glm::vec3(0.0f), k * glm::vec3(2.0f), wall);
-  add_room(s, k * glm::vec3(2.002f, 0.0f, 0.0f), k * glm::vec3(4.002f, 2.0f, 2.0f), wall);
-  // Ceiling light of room A, facing down, 1 mm below the ceiling.
-  add_quad(s, k * glm::vec3(0.7f, 1.999f, 0.7f), k * glm::vec3(1.3f, 1.999f, 0.7f),
-           k * glm::vec3(1.3f, 1.999f, 1.3f), k * glm::vec3(0.7f, 1.999f, 1.3f), light);
-  finish(s);
-  r.in_b = look_at(k * glm::vec3(3.95f, 1.05f, 1.03f), k * glm::vec3(2.002f, 0.9f, 1.0f), {0, 1, 0},
-                   1.5f);
-  r.in_a =
-      look_at(k * glm::vec3(0.05f, 1.05f, 1.03f), k * glm::vec3(2.0f, 0.9f, 1.0f), {0, 1, 0}, 1.5f);
-  return r;
-}
-
 // Where light shows in an image of room B: in all and per wall of B, the number of non-zero
 // pixels, the largest value (max over R, G, B) and the largest distance of such a pixel's surface
 // point (the pixel-centre ray's hit) from the shared wall x = 2.002 (in the unscaled scene's
@@ -515,36 +489,6 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
       EXPECT_NEAR(modes[i].ratio[j] / modes[i].ratio[0], 1.0, 0.01) << modes[i].name << scales[j];
     }
   }
-}
-
-// The same wall under irad render's default, the light budget (many VPLs as cluster
-// representatives, 2x2 interleaving, the local clamp and the screen compensation): render()
-// from a camera in each room. Seen from room B no row (exact shadow rays) sees any VPL, so every
-// VPL is dropped (core/light_clusters.h) and nothing is drawn: the clustered default cannot leak
-// into a room the camera sees alone, whatever the shadow maps do.
-TEST(HardCases, TwoMillimetreWallUnderTheLightBudget) {
-  Log log = quiet_log();
-  const TwoRooms rooms = two_rooms(1.0f);
-  RenderOptions o;
-  o.auto_paths = o.auto_clusters = true;
-  o.raster.interleave = 0;
-  const auto room = [&](const Camera& camera, int side) {
-    Scene s = rooms.scene;
-    s.cameras = {camera};
-    o.size = std::pair{side, side};
-    return render(s, o, log);
-  };
-  const RenderResult b = room(rooms.in_b, 64), a = room(rooms.in_a, 32);
-  const double ratio = mean_rgb(b.image) / mean_rgb(a.image);
-  std::printf("two rooms, the light budget (%u paths, %zu VPLs as %zu, dropped %.4f): leak %.4g "
-              "of room A's mean %.3g\n",
-              b.vpls.paths, b.walk_vpls, b.clusters, b.cluster_dropped, ratio, mean_rgb(a.image));
-  // Measured: 8192 paths, 20470 VPLs, dropped 1 (room B), 0 in room A; leak exactly 0.
-  EXPECT_GT(b.clusters, 0u);
-  EXPECT_DOUBLE_EQ(b.cluster_dropped, 1.0);
-  EXPECT_LT(a.cluster_dropped, 1e-3);
-  EXPECT_GT(mean_rgb(a.image), 0.0);
-  EXPECT_EQ(ratio, 0.0);
 }
 
 // ---------------------------------------------------------------------------------------------

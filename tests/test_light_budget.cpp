@@ -7,6 +7,7 @@
 #include "core/light_budget.h"
 #include "core/sequence.h"
 #include "irad/render.h"
+#include "tests/test_rooms.h"
 
 #include <bit>
 #include <cstdio>
@@ -24,6 +25,21 @@ Log quiet() {
 
 Scene cornell(Log& log) {
   return load_gltf(std::filesystem::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf", log);
+}
+
+// side x side, N = 4096 (7648 VPLs on the Cornell box: 478 representatives under the budget).
+RenderOptions clustered_4096(int side) {
+  RenderOptions o;
+  o.size = std::pair{side, side};
+  o.walk.paths = 4096;
+  o.auto_clusters = true;
+  return o;
+}
+
+double mean_rgb(const Image& image) {
+  double sum = 0.0;
+  for (const glm::vec4& p : image.pixels()) sum += double(p.r) + p.g + p.b;
+  return sum / (3.0 * static_cast<double>(image.pixels().size()));
 }
 
 TEST(LightBudget, PathsAreThePowerOfTwoThatFillsTheBudget) {
@@ -64,10 +80,8 @@ TEST(LightBudget, ClustersFromOnePerSixteenVplsAboveTheFloor) {
 TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
   Log log = quiet();
   const Scene scene = cornell(log);
-  RenderOptions automatic;
+  RenderOptions automatic = with_light_budget(); // as irad render's default
   automatic.size = std::pair{48, 48};
-  automatic.auto_paths = automatic.auto_clusters = true;
-  automatic.raster.interleave = 0; // automatic, as irad render's default
   RenderOptions fixed = automatic;
   fixed.auto_paths = fixed.auto_clusters = false; // N = 256, every VPL
   RenderOptions pt = fixed;
@@ -101,10 +115,7 @@ TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
 TEST(LightBudget, ShadowsOfRepresentatives) {
   Log log = quiet();
   const Scene scene = cornell(log);
-  RenderOptions o;
-  o.size = std::pair{256, 256};
-  o.walk.paths = 4096; // 7648 VPLs as 478 representatives
-  o.auto_clusters = true;
+  RenderOptions o = clustered_4096(256);
   o.screen_compensation = false;
   o.raster.interleave = 0; // automatic: 2 for representatives below 512 pixels
   const RenderResult clustered = render(scene, o, log);
@@ -124,10 +135,7 @@ TEST(LightBudget, ShadowsOfRepresentatives) {
 TEST(LightBudget, APartNeedsItsNAndDrawsEveryVpl) {
   Log log = quiet();
   const Scene scene = cornell(log);
-  RenderOptions o;
-  o.size = std::pair{16, 16};
-  o.auto_clusters = true;
-  o.walk.paths = 4096; // about 7600 VPLs: a whole render would cluster them
+  RenderOptions o = clustered_4096(16); // a whole render would cluster its VPLs
   o.walk.first_path = 0;
   o.walk.end_path = 2048;
   const RenderResult part = render(scene, o, log);
@@ -147,10 +155,7 @@ TEST(LightBudget, APartNeedsItsNAndDrawsEveryVpl) {
 TEST(LightBudget, RoundsAreTheMeanOfIndependentLightSets) {
   Log log = quiet();
   const Scene scene = cornell(log);
-  RenderOptions one;
-  one.size = std::pair{32, 32};
-  one.walk.paths = 4096; // 7648 VPLs as 478 representatives
-  one.auto_clusters = true;
+  RenderOptions one = clustered_4096(32);
   RenderOptions two = one;
   two.rounds = 2;
   RenderOptions second = one; // round 1 by hand
@@ -186,6 +191,34 @@ TEST(LightBudget, RoundsAreTheMeanOfIndependentLightSets) {
 
   two.walk.end_path = 128;
   EXPECT_THROW(render(scene, two, log), Error); // a part: split one round's paths instead
+}
+
+// The 2 mm wall of tests/test_hard_cases.cpp under irad render's default, the light budget (many
+// VPLs as cluster representatives, 2x2 interleaving, the local clamp and the screen compensation):
+// render() from a camera in each room. Seen from room B no row (exact shadow rays) sees any VPL,
+// so every VPL is dropped (core/light_clusters.h) and nothing is drawn: the clustered default
+// cannot leak into a room the camera sees alone, whatever the shadow maps do.
+TEST(LightBudget, TwoMillimetreWall) {
+  Log log = quiet();
+  const test_support::TwoRooms rooms = test_support::two_rooms(1.0f);
+  RenderOptions o = with_light_budget();
+  const auto room = [&](const Camera& camera, int side) {
+    Scene s = rooms.scene;
+    s.cameras = {camera};
+    o.size = std::pair{side, side};
+    return render(s, o, log);
+  };
+  const RenderResult b = room(rooms.in_b, 64), a = room(rooms.in_a, 32);
+  const double ratio = mean_rgb(b.image) / mean_rgb(a.image);
+  std::printf("two rooms, the light budget (%u paths, %zu VPLs as %zu, dropped %.4f): leak %.4g "
+              "of room A's mean %.3g\n",
+              b.vpls.paths, b.walk_vpls, b.clusters, b.cluster_dropped, ratio, mean_rgb(a.image));
+  // Measured: 8192 paths, 20470 VPLs, dropped 1 (room B), 0 in room A; leak exactly 0.
+  EXPECT_GT(b.clusters, 0u);
+  EXPECT_DOUBLE_EQ(b.cluster_dropped, 1.0);
+  EXPECT_LT(a.cluster_dropped, 1e-3);
+  EXPECT_GT(mean_rgb(a.image), 0.0);
+  EXPECT_EQ(ratio, 0.0);
 }
 
 } // namespace
