@@ -75,18 +75,21 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::Target> target;
   std::unique_ptr<gl::GBuffer> gbuffer; // for the batched passes and the interleaved resolve
   std::unique_ptr<gl::Interleaved> interleaved;
-  bool tile_depths = false; // interleaved: each set's depth drawn in its tile for this image
+  bool tile_depths = false;      // interleaved: each set's depth drawn in its tile for this image
+  std::size_t single_passes = 0; // this image's VPLs drawn by vpl_passes
   std::unique_ptr<gl::JitterPasses> jitter;         // with options.jitter
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   std::unique_ptr<gl::BatchedPasses> batched;       // options.batch > 1, no jitter
   std::unique_ptr<gl::Background> background;       // only for scenes that show one
   // Shadow maps kept per path slot (render_cached). Batched: the slot's VPLs in the atlas pages
-  // of shadow_cache, only the mirrored ones (and the per-VPL reference, batch 1: all) with a cube
-  // of their own; directional VPLs have their orthographic map drawn per image.
+  // of shadow_cache, the directional ones drawn by the batched passes per image (their
+  // orthographic maps are cheap: one per direction). The per-VPL reference (batch 1) keeps a
+  // cube per VPL and draws a directional VPL's map per image.
   struct CachedPath {
     std::vector<Vpl> vpls; // those shaded per VPL
     std::vector<gl::Texture> cubes;
     std::vector<glm::mat3> frames;
+    std::vector<Vpl> directional; // batched: drawn anew per image
   };
   std::vector<CachedPath> cache;
   std::unique_ptr<gl::ShadowCube> cache_shadow;  // draws into the cached cubes
@@ -188,11 +191,10 @@ void RasterRenderer::Impl::prepare(const View& view) {
 std::size_t RasterRenderer::Impl::batched_passes(const View& view,
                                                  const std::vector<const Vpl*>& vpls,
                                                  gl::PassTimer* timer, const Progress& progress) {
-  // Mirrored VPLs keep their own passes (the unfolded cube, the pyramid clip); directional ones
-  // when no orthographic atlas fits this GL.
+  // Directional VPLs keep their own passes only when no orthographic atlas fits this GL.
   std::vector<const Vpl*> many, alone;
   for (const Vpl* v : vpls) {
-    const bool own = v->mirror >= 0 || (v->kind == VplKind::Directional && !batched->directional());
+    const bool own = v->kind == VplKind::Directional && !batched->directional();
     (own ? alone : many).push_back(v);
   }
   // VPLs of one direction next to each other (a directional light's, a sun's): the orthographic
@@ -250,6 +252,7 @@ std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector
     }
     if (progress) progress(k + 1, vpls.size());
   }
+  single_passes += passes;
   return passes;
 }
 
@@ -266,6 +269,7 @@ void RasterRenderer::Impl::begin_image(const View& view) {
     if (jitter) jitter->average_albedo(camera, view, gpu);
   }
   tile_depths = false;
+  single_passes = 0;
   api.DepthMask(GL_TRUE); // the passes above may leave it off
   if (interleaved) {
     interleaved->bind_atlas();
@@ -304,6 +308,7 @@ Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0,
     timings->passes_seconds = seconds(t0, t1);
     timings->readback = seconds(t1, Clock::now());
     timings->passes = passes;
+    timings->single_passes = single_passes;
     if (timer) {
       const auto gpu_seconds = timer->seconds();
       timings->shadow_gpu = gpu_seconds[gl::PassTimer::Shadow];
@@ -401,8 +406,12 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
   std::vector<Vpl> in_atlas;
   for (const Vpl& v : vpls) {
     if (!v.carries_light()) continue;
-    if (im.shadow_cache && v.kind != VplKind::Directional && v.mirror < 0) {
+    if (im.shadow_cache && v.kind != VplKind::Directional) {
       in_atlas.push_back(v);
+      continue;
+    }
+    if (im.shadow_cache && im.batched && im.batched->directional()) {
+      path.directional.push_back(v);
       continue;
     }
     path.vpls.push_back(v);
@@ -436,6 +445,14 @@ Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
       im.batched->shade(page.vpls, page.lookup, im.deferred_target());
       passes += page.vpls.size();
     }
+  }
+  std::vector<const Vpl*> directional;
+  for (const Impl::CachedPath& p : im.cache)
+    for (const Vpl& v : p.directional) directional.push_back(&v);
+  if (!directional.empty()) {
+    const int sets = im.interleaved ? im.interleaved->sets() : 1;
+    passes += im.batched->draw(directional, [&](const Vpl& v) { return set_of(v.path, sets); },
+                               im.deferred_target(), im.gpu, nullptr, {});
   }
   std::vector<const Vpl*> list;
   std::vector<std::pair<GLuint, glm::mat3>> maps;

@@ -33,8 +33,7 @@ struct RasterOptions {
   // VPLs per batch (raster/passes/batched_passes.h): their shadow cubes in one atlas by one
   // instanced draw, their shading by one instanced draw per interleaved set. 1: one shadow cube and
   // one shading pass per VPL (the reference, the same image). 16 was the fastest of 8..64 at
-  // 512x512 (docs/performance.md). Jitter, directional VPLs and render_cached take the per-VPL
-  // passes.
+  // 512x512 (docs/performance.md). Every kind of VPL and every mode takes them.
   int batch = 16;
   // How the batched shadow atlas draws the opaque triangles (core/mesh_clusters.h): mode Off every
   // triangle into every face, Cull only the clusters a face sees (the same image), On culled and
@@ -71,6 +70,10 @@ struct RasterTimings {
   double passes_seconds = 0.0; // wall clock: shadow maps, shading passes and emitters
   double readback = 0.0;       // wall clock: the final readback (waits for the GPU)
   std::size_t passes = 0;      // VPLs drawn
+  // Of them, those drawn one at a time (a shadow cube or map and a forward pass each): all with
+  // the reference (batch 1), none with the batched passes unless this GL fits no orthographic
+  // atlas (directional VPLs).
+  std::size_t single_passes = 0;
   // render(): triangles the batched cube faces drew from the shadow hierarchy, all VPLs together
   // (0 when the faces draw the whole scene: shadow-lod off, --batch 1, animated scenes).
   std::size_t shadow_triangles = 0;

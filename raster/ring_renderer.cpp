@@ -57,7 +57,7 @@ struct RingRenderer::Impl {
   std::unique_ptr<gl::BatchedPasses> batched;
   std::unique_ptr<gl::GBuffer> gbuffer;
   int frames_since_resum = 0;
-  std::size_t passes = 0;
+  std::size_t passes = 0, single_passes = 0;
 
   Impl(const Scene& s, const RingOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
@@ -148,6 +148,9 @@ std::uint32_t RingRenderer::slots() const {
 std::size_t RingRenderer::passes() const {
   return impl_->passes;
 }
+std::size_t RingRenderer::single_passes() const {
+  return impl_->single_passes;
+}
 
 void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view) {
   Impl& im = *impl_;
@@ -179,13 +182,12 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
     im.camera.depth(vp, im.gpu);
   }
   if (im.directional) im.directional->forget();
-  // Batched: all but the mirrored VPLs (and the directional ones when no orthographic atlas fits)
-  // in the deferred passes, the rest one by one.
+  // Batched: every VPL in the deferred passes but the directional ones when no orthographic
+  // atlas fits; the per-VPL passes (batch 1, the reference) one by one.
   std::vector<const Vpl*> many;
   std::vector<Vpl> alone;
   for (const Vpl& vpl : vpls) {
-    const bool own = vpl.mirror >= 0 || (vpl.kind == VplKind::Directional &&
-                                         !(im.batched && im.batched->directional()));
+    const bool own = vpl.kind == VplKind::Directional && !(im.batched && im.batched->directional());
     if (im.batched && !own)
       many.push_back(&vpl);
     else
@@ -206,6 +208,7 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
       im.vpl_shader.draw(vpl, im.shadow, frame, vp, true, im.gpu);
     }
     ++im.passes;
+    ++im.single_passes;
   }
   im.bind_sum();
   im.blend(im.slots[s], false); // the image arriving

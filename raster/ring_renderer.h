@@ -50,6 +50,8 @@ public:
 
   std::uint32_t slots() const;
   std::size_t passes() const; // VPL passes drawn so far
+  // Of them, those drawn one VPL at a time (RasterTimings::single_passes).
+  std::size_t single_passes() const;
 
 private:
   struct Impl;

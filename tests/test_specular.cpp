@@ -403,8 +403,11 @@ TEST(Specular, DiffuseSceneUnchanged) {
   Log log = quiet_log();
   const Scene plain = load_gltf(cornell, log);
   Scene with_mirror_material = plain;
-  with_mirror_material.materials.push_back(Material{"unused mirror", glm::vec3(0.9f)});
-  with_mirror_material.materials.back().specular = true;
+  Material mirror;
+  mirror.name = "unused mirror";
+  mirror.base_color = glm::vec3(0.9f);
+  mirror.specular = true;
+  with_mirror_material.materials.push_back(mirror);
   ASSERT_TRUE(with_mirror_material.has_specular());
   const RayScene rays_a(plain), rays_b(with_mirror_material);
   const VplSet a = quasi_random_walk(plain, rays_a, {64, 64}, log);

@@ -9,7 +9,7 @@
 namespace irad::gl::shaders {
 
 // Bytes of the shading block per VPL (std140 BatchVpl below).
-inline constexpr int kShadingBytesPerVpl = 9 * 16;
+inline constexpr int kShadingBytesPerVpl = 10 * 16;
 
 inline constexpr const char* deferred_vpl_vertex = R"(
 struct BatchVpl {
@@ -18,13 +18,19 @@ struct BatchVpl {
   vec4 intensity;  // rgb
   vec4 cone;       // cos inner, cos outer, squared clamp distance, far (the atlas's unit);
                    // directional: texel width, half width (world units)
-  ivec4 info;      // kind (0 surface, 1 two-sided, 2 point, 3 spot, 4 directional)
+  ivec4 info;      // kind (0 surface, 1 two-sided, 2 point, 3 spot, 4 directional), mirror
+                   // polygon (-1: not mirrored), its triangles
   ivec4 blocks;    // atlas texel of its first block (xy) and of its second (zw); directional:
                    // its tile's first texel (xy)
   vec4 frame[3];   // columns of world -> cube frame; directional: rows of world -> (u, v, depth)
+  vec4 mirror;     // a mirrored VPL's plane (n, w), n toward the lit side
 };
 layout(std140) uniform VplBatch { BatchVpl u_vpl[MAX_BATCH]; };
 uniform int u_first;
+#ifdef IRAD_MIRRORS
+flat out ivec2 v_mirror;         // polygon, triangles
+flat out vec4 v_mirror_plane;
+#endif
 flat out int v_kind;
 flat out ivec4 v_blocks;
 flat out vec3 v_vpl_position;
@@ -35,6 +41,10 @@ flat out vec4 v_frame[3];
 void main() {
   BatchVpl vpl = u_vpl[u_first + gl_InstanceID];
   v_kind = vpl.info.x;
+#ifdef IRAD_MIRRORS
+  v_mirror = vpl.info.yz;
+  v_mirror_plane = vpl.mirror;
+#endif
   v_blocks = vpl.blocks;
   v_vpl_position = vpl.position.xyz;
   v_vpl_normal = vpl.normal.xyz;
@@ -54,7 +64,9 @@ void main() {
 // (nearest, clamped to the face's edge, as the cube map's sampler), then the face's place in the
 // VPL's blocks: a surface VPL's hemisphere in one block (+z, then the front halves of +x and -x
 // side by side, then those of +y and -y one over the other), any other VPL's six faces in two
-// blocks of three. A directional VPL's map is a tile of the orthographic atlas.
+// blocks of three. A directional VPL's map is a tile of the orthographic atlas. A mirrored VPL
+// (IRAD_MIRRORS) lights only its pyramid: raster/glsl/mirror_shaders.h's test, the polygon's
+// corners read from a texture (row p: polygon p, three texels per triangle).
 inline constexpr const char* deferred_vpl_fragment = R"(
 flat in int v_kind;
 flat in ivec4 v_blocks;
@@ -124,6 +136,17 @@ bool shadowed(vec3 q, float r) {
   return r > occluder_distance(centre, gradient, at, next_x, next_y);
 }
 
+#ifdef IRAD_MIRRORS
+flat in ivec2 v_mirror;
+flat in vec4 v_mirror_plane;
+uniform sampler2D u_mirror_corners;
+#define MIRROR_CORNER(i) texelFetch(u_mirror_corners, ivec2(i, v_mirror.x), 0).xyz
+#pragma irad_mirror_pyramid
+bool through_mirror(vec3 x) {
+  return inside_pyramid(x, v_vpl_position, v_mirror_plane, v_mirror.y);
+}
+#endif
+
 // A directional VPL's I max(0, n . -d) V / pi (raster/glsl/directional_shaders.h's maths): the
 // normal offset by a texel's width times sin theta_x, the map's texel (nearest, clamped to the
 // tile), its window depth z_w as the depth (2 z_w - 1) h along d.
@@ -142,6 +165,9 @@ vec3 directional_light(vec3 x, vec3 n) {
 // w * C(x) / rho(x) of the VPL at the surface point x with normal n (0 where it does not reach).
 vec3 vpl_light(vec3 x, vec3 n) {
   if (v_kind == 4) return directional_light(x, n);
+#ifdef IRAD_MIRRORS
+  if (v_mirror.x >= 0 && !through_mirror(x)) return vec3(0.0);
+#endif
   vec3 d = x - v_vpl_position;
   float dist2 = dot(d, d);
   if (!(dist2 > u_min_dist2)) return vec3(0.0);

@@ -10,7 +10,7 @@ std::string mirror_vpl_fragment(const char* vpl_fragment) {
   const std::size_t at = source.find(main);
   if (at == std::string::npos) throw std::logic_error("vpl_fragment has no 'void main() {'");
   source.insert(at + main.size(), "\n  if (!through_mirror(v_position)) discard;");
-  source.insert(at, mirror_clip_functions);
+  source.insert(at, std::string(mirror_clip_uniforms) + mirror_pyramid_glsl + mirror_clip_call);
   return source;
 }
 

@@ -5,27 +5,39 @@
 
 namespace irad::gl::shaders {
 
-// The mirrored VPL's pyramid: x is lit only if it lies on the lit side of the mirror plane and
-// the segment from the VPL (u_vpl_position, behind the plane) to x crosses the plane inside one
-// of the polygon's triangles. Inserted into vpl_fragment before main(); needs u_vpl_position.
-inline constexpr const char* mirror_clip_functions = R"(
-uniform vec4 u_mirror_plane;      // (n, w), n toward the lit side
-uniform int u_mirror_triangles;   // triangles of the polygon (<= 16)
-uniform vec3 u_mirror_corners[48];
-bool through_mirror(vec3 x) {
-  float sx = dot(u_mirror_plane.xyz, x) + u_mirror_plane.w;
-  float sy = dot(u_mirror_plane.xyz, u_vpl_position) + u_mirror_plane.w;
+// The mirrored VPL's pyramid: x is lit only if it lies on the lit side of the mirror plane
+// (n, w), n toward the lit side, and the segment from the VPL y (behind the plane) to x crosses
+// the plane inside one of the polygon's `triangles` triangles, whose corners the including
+// source names MIRROR_CORNER(i) (3 per triangle). Shared by the per-VPL pass (below) and the
+// deferred passes (raster/glsl/deferred_shaders.h, the corners in a texture).
+inline constexpr const char* mirror_pyramid_glsl = R"(
+bool inside_pyramid(vec3 x, vec3 y, vec4 plane, int triangles) {
+  float sx = dot(plane.xyz, x) + plane.w;
+  float sy = dot(plane.xyz, y) + plane.w;
   if (!(sx > 0.0) || !(sy < 0.0)) return false;
-  vec3 m = u_vpl_position + (sy / (sy - sx)) * (x - u_vpl_position);
-  for (int k = 0; k < u_mirror_triangles; ++k) {
-    vec3 a = u_mirror_corners[3 * k], b = u_mirror_corners[3 * k + 1];
-    vec3 c = u_mirror_corners[3 * k + 2];
+  vec3 m = y + (sy / (sy - sx)) * (x - y);
+  for (int k = 0; k < triangles; ++k) {
+    vec3 a = MIRROR_CORNER(3 * k), b = MIRROR_CORNER(3 * k + 1), c = MIRROR_CORNER(3 * k + 2);
     vec3 n = cross(b - a, c - a);
     if (dot(cross(b - a, m - a), n) >= 0.0 && dot(cross(c - b, m - b), n) >= 0.0 &&
         dot(cross(a - c, m - c), n) >= 0.0)
       return true;
   }
   return false;
+}
+)";
+
+// The per-VPL pass's test: the polygon in uniforms. Inserted into vpl_fragment before main();
+// needs u_vpl_position.
+inline constexpr const char* mirror_clip_uniforms = R"(
+uniform vec4 u_mirror_plane;      // (n, w), n toward the lit side
+uniform int u_mirror_triangles;   // triangles of the polygon (<= 16)
+uniform vec3 u_mirror_corners[48];
+#define MIRROR_CORNER(i) u_mirror_corners[i]
+)";
+inline constexpr const char* mirror_clip_call = R"(
+bool through_mirror(vec3 x) {
+  return inside_pyramid(x, u_vpl_position, u_mirror_plane, u_mirror_triangles);
 }
 )";
 

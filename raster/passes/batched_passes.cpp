@@ -116,6 +116,14 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
                                 const std::function<int(const Vpl&)>& set_of,
                                 const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer,
                                 const std::function<bool(std::size_t)>& after) {
+  // Mirrored VPLs after the others: a batch that holds one draws the scene twice per face and
+  // without the shadow hierarchy (raster/shadow/shadow_atlas.h), so they share batches.
+  std::vector<const Vpl*> order;
+  order.reserve(vpls.size());
+  for (const Vpl* v : vpls)
+    if (v->mirror < 0) order.push_back(v);
+  for (const Vpl* v : vpls)
+    if (v->mirror >= 0) order.push_back(v);
   std::vector<Entry> batch;
   int blocks = 0;
   std::vector<glm::vec3> directions; // the batch's distinct directions
@@ -127,8 +135,8 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
     blocks = 0;
     directions.clear();
   };
-  for (std::size_t k = 0; k < vpls.size(); ++k) {
-    const Vpl& vpl = *vpls[k];
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Vpl& vpl = *order[k];
     if (vpl.carries_light()) {
       if (vpl.kind == VplKind::Directional) {
         const bool known =
@@ -142,7 +150,8 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
       }
       batch.push_back({&vpl, into.interleaved ? set_of(vpl) : 0});
     }
-    if (static_cast<int>(batch.size()) == atlas_.batch() || k + 1 == vpls.size()) {
+    const bool mirrors_next = k + 1 < order.size() && vpl.mirror < 0 && order[k + 1]->mirror >= 0;
+    if (static_cast<int>(batch.size()) == atlas_.batch() || k + 1 == order.size() || mirrors_next) {
       send();
       if (after && !after(k + 1)) break;
     }

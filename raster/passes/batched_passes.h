@@ -8,7 +8,8 @@
 // passes light each of them, these passes the one surface the G-buffer kept. What changes is the
 // cost: per batch 2 binds, 1 clear, 1 + k^2 draws, and a shading cost of pixels x VPLs that does
 // not depend on the triangles, against 6 binds, 5 clears and 6 draws of the whole scene per VPL.
-// Directional and mirrored VPLs, jitter and the cached shadow maps keep the per-VPL passes.
+// Every kind of VPL takes these passes: surface, point and spot VPLs' cubes and mirrored VPLs'
+// unfolded cubes in the atlas, directional VPLs' orthographic maps in their own atlas.
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/context/pass_timer.h"
@@ -57,11 +58,11 @@ public:
   // Whether directional VPLs can be drawn here (an orthographic atlas was made).
   bool directional() const { return ortho_ != nullptr; }
 
-  // Draws the VPLs that carry light (none mirrored; directional only when directional()) batch
-  // by batch: shadow atlases, then the shading of each set (set_of(vpl)) from `gbuffer` into its
-  // tile of `interleaved`, or (nullptr) of all into the target. A batch draws one map per
-  // direction it holds (a directional light's VPLs share one). After each batch `after` gets the
-  // number of VPLs of `vpls` done; false stops. Returns the number of VPLs drawn.
+  // Draws the VPLs that carry light (directional ones only when directional()) batch by batch,
+  // the mirrored ones last: shadow atlases, then the shading of each set (set_of(vpl)) from
+  // `gbuffer` into its tile of `interleaved`, or (nullptr) of all into the target. A batch draws
+  // one map per direction it holds (a directional light's VPLs share one). After each batch `after`
+  // gets the number of VPLs of `vpls` done; false stops. Returns the number of VPLs drawn.
   std::size_t draw(const std::vector<const Vpl*>& vpls,
                    const std::function<int(const Vpl&)>& set_of, const DeferredTarget& into,
                    const GpuScene& gpu, PassTimer* timer,

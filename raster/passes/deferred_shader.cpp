@@ -1,14 +1,17 @@
 #include "raster/passes/deferred_shader.h"
 
 #include "core/error.h"
+#include "core/mirrors.h"
 #include "raster/glsl/batched_shaders.h"
 #include "raster/glsl/cube_glsl.h"
 #include "raster/glsl/deferred_shaders.h"
+#include "raster/glsl/mirror_shaders.h"
 #include "raster/passes/vpl_shader.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <string>
 
 namespace irad::gl {
 
@@ -21,9 +24,11 @@ constexpr std::size_t kFloatsPerVpl = shaders::kShadingBytesPerVpl / sizeof(floa
 constexpr GLint gbuffer_unit = 3;
 constexpr GLint ortho_unit = 6;
 constexpr GLint gradient_unit = 7; // ShadowLookup::gradient
+constexpr GLint mirror_unit = 8;   // the mirror polygons' corners
 
-// The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 144 bytes).
-void write_vpl(float* out, const AtlasVpl& a, float dmin2) {
+// The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 160 bytes). `triangles`: the
+// triangles of the VPL's mirror polygon (0: its light reaches nothing, as VplShader's).
+void write_vpl(float* out, const AtlasVpl& a, float dmin2, int triangles) {
   const Vpl& vpl = *a.vpl;
   std::memset(out, 0, kFloatsPerVpl * sizeof(float));
   std::memcpy(out + 0, &vpl.position[0], 3 * sizeof(float));
@@ -34,8 +39,14 @@ void write_vpl(float* out, const AtlasVpl& a, float dmin2) {
   out[13] = directional ? a.half_width : vpl.cos_outer;
   out[14] = dmin2;
   out[15] = a.far;
-  const std::int32_t ints[8] = {
-      static_cast<std::int32_t>(vpl.kind), 0, 0, 0, a.blocks.x, a.blocks.y, a.blocks.z, a.blocks.w};
+  const std::int32_t ints[8] = {static_cast<std::int32_t>(vpl.kind),
+                                vpl.mirror,
+                                triangles,
+                                0,
+                                a.blocks.x,
+                                a.blocks.y,
+                                a.blocks.z,
+                                a.blocks.w};
   std::memcpy(out + 16, ints, sizeof(ints));
   for (int c = 0; c < 3; ++c) {
     if (directional) { // row c of the affine lookup
@@ -44,15 +55,44 @@ void write_vpl(float* out, const AtlasVpl& a, float dmin2) {
       std::memcpy(out + 24 + 4 * c, &a.frame[c][0], 3 * sizeof(float));
     }
   }
+  if (vpl.mirror >= 0) std::memcpy(out + 36, &vpl.mirror_plane[0], 4 * sizeof(float));
 }
 
-// The fragment shader for `batch` VPLs, with the occluder planes' fetches or without them.
-std::string fragment_source(int batch, bool planes) {
-  std::string source =
-      shaders::with_cube_lookup(shaders::batched_source(shaders::deferred_vpl_fragment, batch));
+std::string mirror_define(bool mirrors) {
+  return mirrors ? "#define IRAD_MIRRORS 1\n" : "";
+}
+
+// The fragment shader for `batch` VPLs, with the occluder planes' fetches or without them, with
+// the mirrored VPLs' pyramid test or without it.
+std::string fragment_source(int batch, bool planes, bool mirrors) {
+  std::string source = shaders::with_cube_lookup(
+      shaders::batched_source(shaders::deferred_vpl_fragment, batch, mirror_define(mirrors)));
   insert_glsl(source, "#pragma irad_planes\n",
               planes ? "const bool u_planes = true;\n" : "const bool u_planes = false;\n");
+  insert_glsl(source, "#pragma irad_mirror_pyramid\n", shaders::mirror_pyramid_glsl);
   return source;
+}
+
+// The corners of every mirror polygon: row p holds polygon p's, three texels per triangle.
+Texture corner_texture(const GladGLContext& api, const std::vector<MirrorPolygon>& mirrors) {
+  GLint side = 0;
+  api.GetIntegerv(GL_MAX_TEXTURE_SIZE, &side);
+  if (static_cast<GLint>(mirrors.size()) > side)
+    throw Error("", "mirrors",
+                std::to_string(mirrors.size()) + " mirror polygons do not fit this OpenGL");
+  constexpr int width = 3 * static_cast<int>(MirrorPolygon::max_triangles);
+  std::vector<float> texels(mirrors.size() * width * 3, 0.0f);
+  for (std::size_t p = 0; p < mirrors.size(); ++p) {
+    const std::size_t corners = std::min(mirrors[p].triangles.size(), std::size_t(width));
+    std::memcpy(&texels[p * width * 3], &mirrors[p].triangles[0][0], corners * 3 * sizeof(float));
+  }
+  Texture t = make_float_texture(api, width, static_cast<int>(mirrors.size()), GL_RGB32F, GL_RGB);
+  api.BindTexture(GL_TEXTURE_2D, t.get());
+  api.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, static_cast<GLsizei>(mirrors.size()), GL_RGB,
+                    GL_FLOAT, texels.data());
+  api.BindTexture(GL_TEXTURE_2D, 0);
+  return t;
 }
 
 } // namespace
@@ -66,8 +106,11 @@ int DeferredShader::capacity(const GladGLContext& api, int wanted) {
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch,
                                bool planes)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch), planes_(planes),
-      program_(api, "deferred vpl", shaders::batched_source(shaders::deferred_vpl_vertex, batch),
-               fragment_source(batch, planes)),
+      mirrors_(scene.has_specular() ? find_mirrors(scene) : std::vector<MirrorPolygon>{}),
+      program_(api, "deferred vpl",
+               shaders::batched_source(shaders::deferred_vpl_vertex, batch,
+                                       mirror_define(!mirrors_.empty())),
+               fragment_source(batch, planes, !mirrors_.empty())),
       first_(program_.uniform("u_first")), tile_origin_(program_.uniform("u_tile_origin")),
       pixel_(program_.uniform("u_pixel")), size_(program_.uniform("u_size")),
       shadow_res_(program_.uniform("u_shadow_res")),
@@ -89,13 +132,24 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   // Scale-relative constants, as VplShader: the coincidence guard and the shadow bias.
   api.Uniform1f(program_.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
   api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * diagonal_);
+  if (!mirrors_.empty()) {
+    mirror_corners_ = corner_texture(api, mirrors_);
+    api.Uniform1i(program_.uniform("u_mirror_corners"), mirror_unit);
+  }
 }
 
 void DeferredShader::upload(const AtlasVpl* vpls, int n) {
   if (n > batch_) throw Error("", "deferred vpl", "more VPLs than the batch holds");
   for (int s = 0; s < n; ++s) {
-    const float dmin2 = clamp_distance2(*vpls[s].vpl, clamp_ * diagonal_);
-    write_vpl(vpl_data_.data() + kFloatsPerVpl * static_cast<std::size_t>(s), vpls[s], dmin2);
+    const Vpl& vpl = *vpls[s].vpl;
+    const float dmin2 = clamp_distance2(vpl, clamp_ * diagonal_);
+    const auto mirror = static_cast<std::size_t>(vpl.mirror);
+    const int triangles = vpl.mirror >= 0 && mirror < mirrors_.size()
+                              ? static_cast<int>(std::min(mirrors_[mirror].triangles.size() / 3,
+                                                          MirrorPolygon::max_triangles))
+                              : 0;
+    write_vpl(vpl_data_.data() + kFloatsPerVpl * static_cast<std::size_t>(s), vpls[s], dmin2,
+              triangles);
   }
   // A new store per batch (no wait for the draws that read the last one).
   api_->BindBuffer(GL_UNIFORM_BUFFER, vpl_block_.get());
@@ -131,6 +185,10 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
     if (shadow.gradient == 0) throw Error("", "deferred vpl", "shadow lookup without gradients");
     api.ActiveTexture(GL_TEXTURE0 + gradient_unit);
     api.BindTexture(GL_TEXTURE_2D, shadow.gradient);
+  }
+  if (mirror_corners_) {
+    api.ActiveTexture(GL_TEXTURE0 + mirror_unit);
+    api.BindTexture(GL_TEXTURE_2D, mirror_corners_.get());
   }
   gbuffer.bind_textures(gbuffer_unit);
   api.BindVertexArray(empty_vao_.get());

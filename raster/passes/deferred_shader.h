@@ -6,6 +6,7 @@
 // ShadowAtlas or an OrthoAtlas. The cost of a batch is pixels x VPLs, whatever the number of
 // triangles, and a pixel is lit once even where two faces coincide (duplicated faces, back-to-back
 // walls), which the forward passes light once per face that passes the depth test.
+#include "core/mirror_polygon.h"
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/context/shader_program.h"
@@ -73,9 +74,11 @@ private:
   float diagonal_, clamp_;
   int batch_;
   bool planes_;
+  std::vector<MirrorPolygon> mirrors_; // core/mirrors.h's, for the mirrored VPLs' pyramids
   ShaderProgram program_;
   GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
       apply_albedo_;
+  Texture mirror_corners_; // with mirrors: their corners (raster/glsl/deferred_shaders.h)
   Buffer vpl_block_;
   VertexArray empty_vao_;
   std::vector<float> vpl_data_;

@@ -11,6 +11,9 @@ struct MaterialFeatures {
   bool uv1 = false;    // Scene::uvs1 is not empty
   bool colors = false; // Scene::colors is not empty
   bool alpha = false;  // some material is Mask or Blend
+  // Some material is a mirror (core/mirrors.h): the batched shadow atlas draws mirrored VPLs'
+  // cubes (raster/glsl/batched_shaders.h, IRAD_MIRRORS).
+  bool mirrors = false;
   static MaterialFeatures of(const Scene& scene);
 };
 

@@ -147,6 +147,7 @@ MaterialFeatures MaterialFeatures::of(const Scene& scene) {
   f.uv1 = !scene.uvs1.empty();
   f.colors = !scene.colors.empty();
   for (const Material& m : scene.materials) f.alpha = f.alpha || m.alpha_mode != AlphaMode::Opaque;
+  f.mirrors = scene.has_specular();
   return f;
 }
 
@@ -159,6 +160,7 @@ std::string material_source(const std::string& source, const MaterialFeatures& f
   if (features.uv1) defines += "#define IRAD_UV1 1\n";
   if (features.colors) defines += "#define IRAD_COLOR 1\n";
   if (features.alpha) defines += "#define IRAD_ALPHA 1\n";
+  if (features.mirrors) defines += "#define IRAD_MIRRORS 1\n";
   s.insert(line + 1, defines);
   insert_glsl(s, kVertexMarker, kVertexGlsl);
   insert_glsl(s, kFragmentMarker, kFragmentGlsl);

@@ -1,6 +1,7 @@
 #include "raster/shadow/shadow_atlas.h"
 
 #include "core/error.h"
+#include "core/mirrors.h"
 #include "raster/glsl/batched_shaders.h"
 #include "raster/shadow/shadow_cube.h"
 #include "raster/shadow/shadow_occlusion.h"
@@ -86,7 +87,8 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
           material_source(shaders::batched_source(shaders::batched_shadow_fragment, batch),
                           features)),
       material_(program_), block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f),
-      lod_options_(lod), u_face_(program_.uniform("u_face")) {
+      lod_options_(lod), u_face_(program_.uniform("u_face")),
+      u_copies_(features.mirrors ? program_.uniform("u_copies") : -1) {
   const glm::ivec2 size = grid_ * block_;
   GLint uniform_block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
@@ -113,6 +115,10 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
   api.Uniform2f(program_.uniform("u_atlas_size"), static_cast<float>(size.x),
                 static_cast<float>(size.y));
   api.Uniform1i(u_face_, -1); // the face from gl_InstanceID
+  if (features.mirrors) {     // ShadowCube::render_mirrored's clip plane
+    api.Uniform1i(u_copies_, 1);
+    api.Uniform1f(program_.uniform("u_mirror_clip"), 1e-5f * bounds.diagonal());
+  }
 }
 
 bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
@@ -248,10 +254,21 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   float* rects = matrices + 6 * 16 * batch_;
   float* offsets = rects + 6 * 4 * batch_;
   float* origins = offsets + 6 * 4 * batch_;
+  float* mirrors = origins + 4 * batch_;
   int next_block = 0;
+  int copies = 1; // 2: some VPL is mirrored (raster/glsl/batched_shaders.h)
   faces_.clear();
   for (int s = 0; s < n; ++s) {
-    const CubeFaces cube = cube_faces(*vpls[s], bounds_, far_from(bounds_, vpls[s]->position));
+    const Vpl& vpl = *vpls[s];
+    float far = far_from(bounds_, vpl.position);
+    glm::vec4 mirror(0.0f);
+    if (vpl.mirror >= 0) { // the reflected scene is as far from y' as the real one from y
+      mirror = vpl.mirror_plane;
+      far = std::max(far, far_from(bounds_, reflect_point(mirror, vpl.position)));
+      copies = 2;
+    }
+    std::memcpy(mirrors + 4 * s, &mirror[0], 4 * sizeof(float));
+    const CubeFaces cube = cube_faces(vpl, bounds_, far);
     const glm::ivec2 b0 = block_origin(next_block);
     const glm::ivec2 b1 = cube.hemisphere ? b0 : block_origin(next_block + 1);
     next_block += cube.hemisphere ? 1 : 2;
@@ -259,7 +276,7 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
     frames[static_cast<std::size_t>(s)] = cube.frame;
     fars[static_cast<std::size_t>(s)] = cube.far;
     blocks[static_cast<std::size_t>(s)] = glm::ivec4(b0, b1);
-    std::memcpy(origins + 4 * s, &vpls[s]->position[0], 3 * sizeof(float));
+    std::memcpy(origins + 4 * s, &vpl.position[0], 3 * sizeof(float));
     origins[4 * s + 3] = 1.0f / cube.far;
     for (int f = 0; f < 6; ++f) {
       const int i = 6 * s + f;
@@ -269,8 +286,8 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
       std::memcpy(matrices + 16 * i, &cube.view_projection[f][0][0], 16 * sizeof(float));
       std::memcpy(rects + 4 * i, &rect[0], 4 * sizeof(float));
       std::memcpy(offsets + 4 * i, &offset[0], 2 * sizeof(float));
-      faces_.push_back({i, cube.view_projection[f], rect, vpls[s]->position, glm::ivec2(offset),
-                        1.0f / cube.far});
+      faces_.push_back(
+          {i, cube.view_projection[f], rect, vpl.position, glm::ivec2(offset), 1.0f / cube.far});
     }
   }
   // A new store per batch (no wait for the draw that read the last one).
@@ -292,12 +309,17 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f); // no slope
   api.Clear(GL_DEPTH_BUFFER_BIT | (gradient_[current_] ? GL_COLOR_BUFFER_BIT : 0));
   program_.use();
-  for (int k = 0; k < 4; ++k) api.Enable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
-  if (prepare_lod(scene))
+  const int clip_planes = u_copies_ >= 0 ? 5 : 4;
+  for (int k = 0; k < clip_planes; ++k) api.Enable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
+  if (u_copies_ >= 0) api.Uniform1i(u_copies_, copies);
+  // The hierarchy culls against the faces' frusta, not the reflected scene's: a batch with
+  // mirrored VPLs draws everything.
+  if (copies == 1 && prepare_lod(scene))
     draw_clusters(n, scene);
   else
-    scene.draw_covered(6 * n, [&](const Material& m) { material_.bind_alpha(api, scene, m); });
-  for (int k = 0; k < 4; ++k) api.Disable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
+    scene.draw_covered(6 * copies * n,
+                       [&](const Material& m) { material_.bind_alpha(api, scene, m); });
+  for (int k = 0; k < clip_planes; ++k) api.Disable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
 }
 
 } // namespace irad::gl

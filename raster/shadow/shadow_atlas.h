@@ -56,9 +56,11 @@ public:
   static int blocks_for(const Vpl& vpl) { return vpl.kind == VplKind::Surface ? 1 : 2; }
 
   // Clears the atlas and draws the cubes of vpls[0..n) (n <= batch(), their blocks_for summing to
-  // at most blocks(); no directional VPLs). frames[s] receives the rotation world -> cube frame
-  // of VPL s, blocks[s] the atlas texels of its first block (xy) and second block (zw). Changes
-  // the bound framebuffer, viewport and program.
+  // at most blocks(); no directional VPLs). A mirrored VPL (core/mirrors.h; the scene's
+  // MaterialFeatures::mirrors) gets ShadowCube's unfolded cube; a batch with one draws the whole
+  // scene twice per face, without the hierarchy. frames[s] receives the rotation world -> cube
+  // frame of VPL s, blocks[s] the atlas texels of its first block (xy) and second block (zw).
+  // Changes the bound framebuffer, viewport and program.
   void render(const Vpl* const* vpls, int n, const GpuScene& scene, std::vector<glm::mat3>& frames,
               std::vector<float>& fars, std::vector<glm::ivec4>& blocks);
 
@@ -135,6 +137,7 @@ private:
   std::vector<float> block_data_; // its contents, filled per batch
   ShadowLodOptions lod_options_;
   GLint u_face_;
+  GLint u_copies_; // -1: a scene without mirrors (the program has no mirrored cubes)
   std::unique_ptr<ShadowLod> lod_;
   const GpuScene* lod_scene_ = nullptr; // the scene lod_ is of
   std::vector<Face> faces_;             // of the last render()

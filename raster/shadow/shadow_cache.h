@@ -28,8 +28,8 @@ public:
               const MaterialFeatures& features);
 
   int resolution() const { return resolution_; }
-  // Replaces the maps of `slot` by the cubes of `vpls` (each carries light; no directional or
-  // mirrored VPL: those keep their own passes). Changes the bound framebuffers and viewport.
+  // Replaces the maps of `slot` by the cubes of `vpls` (each carries light; no directional VPL:
+  // an orthographic map is drawn per image). Changes the bound framebuffers and viewport.
   void store(std::uint32_t slot, const std::vector<Vpl>& vpls, const GpuScene& gpu);
 
   // The kept VPLs page by page (AtlasVpl::set 0; valid until the next store).
