@@ -19,6 +19,7 @@
 #include "raster/shadow/shadow_cube.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <functional>
 #include <optional>
@@ -131,6 +132,15 @@ struct RasterRenderer::Impl {
   gl::DeferredTarget deferred_target() const {
     return {gbuffer.get(), interleaved.get(), [t = target.get()] { t->bind(); }};
   }
+  // The deferred passes' G-buffers: without jitter shade(deferred_target(), -1) once; with it,
+  // for every jitter cell s with used[s] (raster/image/pixel_jitter.h), shade(target, s) reading
+  // the cell's G-buffer, until shade returns false.
+  using ShadeInto = std::function<bool(const gl::DeferredTarget&, int stratum)>;
+  void by_stratum(const View& view, const std::array<bool, kJitterStrata + 1>& used,
+                  const ShadeInto& shade);
+  // render_cached's batched passes: the kept atlas pages and the directional VPLs (their maps
+  // drawn now), with jitter cell by cell. Returns the number of VPLs shaded.
+  std::size_t shade_kept(const View& view);
   // The resolve (interleaved), the emitters, the background and the readback.
   Image finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                      gl::PassTimer* timer, RasterTimings* timings);
@@ -162,9 +172,8 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
   const int ortho = gl::has_directional_light(scene)
                         ? gl::ortho_resolution_for(options.shadow_resolution, width, height)
                         : 0;
-  const int batch = jitter ? 1 : options.batch;
-  if (!batched || !batched->matches(batch, resolution, ortho))
-    batched = gl::BatchedPasses::make(api, scene, options.clamp, batch, resolution, ortho,
+  if (!batched || !batched->matches(options.batch, resolution, ortho))
+    batched = gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
                                       options.shadow_lod);
 }
 
@@ -209,12 +218,29 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
     return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
   });
   const int sets = interleaved ? interleaved->sets() : 1;
-  const std::size_t drawn = batched->draw(
-      many, [&](const Vpl& v) { return set_of(v.path, sets); }, deferred_target(), gpu, timer,
-      [&](std::size_t done) {
-        if (progress) progress(done, vpls.size());
-        return options.cancel == nullptr || !options.cancel->load(std::memory_order_relaxed);
-      });
+  // With jitter, the VPLs by jitter cell: one G-buffer each.
+  std::array<std::vector<const Vpl*>, kJitterStrata + 1> cells;
+  std::array<bool, kJitterStrata + 1> used{};
+  if (jitter)
+    for (const Vpl* v : many) {
+      const auto s = static_cast<std::size_t>(jitter_stratum(*v));
+      cells[s].push_back(v);
+      used[s] = true;
+    }
+  std::size_t drawn = 0, before = 0;
+  by_stratum(view, used, [&](const gl::DeferredTarget& into, int s) {
+    const std::vector<const Vpl*>& some = s < 0 ? many : cells[static_cast<std::size_t>(s)];
+    bool go = true;
+    drawn += batched->draw(
+        some, [&](const Vpl& v) { return set_of(v.path, sets); }, into, gpu, timer,
+        [&](std::size_t done) {
+          if (progress) progress(before + done, vpls.size());
+          go = options.cancel == nullptr || !options.cancel->load(std::memory_order_relaxed);
+          return go;
+        });
+    before += some.size();
+    return go;
+  });
   const auto draw_now = [&](std::size_t k, glm::mat3& frame) -> GLuint {
     if (alone[k]->kind == VplKind::Directional) {
       directional_shadow(*alone[k]);
@@ -224,6 +250,24 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
     return shadow->texture();
   };
   return drawn + vpl_passes(view, alone, draw_now, shadow->texel_angle(), timer, {});
+}
+
+void RasterRenderer::Impl::by_stratum(const View& view,
+                                      const std::array<bool, kJitterStrata + 1>& used,
+                                      const ShadeInto& shade) {
+  if (!jitter) {
+    shade(deferred_target(), -1);
+    return;
+  }
+  for (int s = 0; s <= kJitterStrata; ++s) {
+    if (!used[static_cast<std::size_t>(s)]) continue;
+    if (s == kJitterStrata) { // the pixel centre: the image's G-buffer
+      if (!shade(deferred_target(), s)) return;
+      continue;
+    }
+    const gl::GBuffer& cell = jitter->stratum_gbuffer(camera, view, s, gpu);
+    if (!shade({&cell, interleaved.get(), [t = target.get()] { t->bind(); }}, s)) return;
+  }
 }
 
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
@@ -288,6 +332,40 @@ void RasterRenderer::Impl::ensure_tile_depths(const View& view) {
     camera.depth(interleaved->tile_projection(s, view.projection) * view.view, gpu);
   }
   tile_depths = true;
+}
+
+std::size_t RasterRenderer::Impl::shade_kept(const View& view) {
+  const int sets = interleaved ? interleaved->sets() : 1;
+  std::vector<gl::ShadowCache::Page> pages = shadow_cache->pages();
+  std::vector<const Vpl*> directional_vpls;
+  for (const CachedPath& p : cache)
+    for (const Vpl& v : p.directional) directional_vpls.push_back(&v);
+  std::array<bool, kJitterStrata + 1> used{};
+  if (jitter) {
+    for (const gl::ShadowCache::Page& page : pages)
+      for (const gl::AtlasVpl& v : page.vpls)
+        used[static_cast<std::size_t>(jitter_stratum(*v.vpl))] = true;
+    for (const Vpl* v : directional_vpls) used[static_cast<std::size_t>(jitter_stratum(*v))] = true;
+  }
+  const auto in = [](const Vpl& v, int s) { return s < 0 || jitter_stratum(v) == s; };
+  std::size_t passes = 0;
+  by_stratum(view, used, [&](const gl::DeferredTarget& into, int s) {
+    for (const gl::ShadowCache::Page& page : pages) {
+      std::vector<gl::AtlasVpl> some;
+      for (const gl::AtlasVpl& v : page.vpls)
+        if (in(*v.vpl, s)) some.push_back(v);
+      for (gl::AtlasVpl& v : some) v.set = set_of(v.vpl->path, sets);
+      batched->shade(some, page.lookup, into);
+      passes += some.size();
+    }
+    std::vector<const Vpl*> some;
+    for (const Vpl* v : directional_vpls)
+      if (in(*v, s)) some.push_back(v);
+    passes += batched->draw(some, [&](const Vpl& v) { return set_of(v.path, sets); }, into, gpu,
+                            nullptr, {});
+    return true;
+  });
+  return passes;
 }
 
 Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0, std::size_t passes,
@@ -438,22 +516,7 @@ Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
   const gl::CurrentScope current(*im.context);
   im.begin_image(view);
   std::size_t passes = 0;
-  if (im.shadow_cache && im.batched) {
-    const int sets = im.interleaved ? im.interleaved->sets() : 1;
-    for (gl::ShadowCache::Page& page : im.shadow_cache->pages()) {
-      for (gl::AtlasVpl& v : page.vpls) v.set = set_of(v.vpl->path, sets);
-      im.batched->shade(page.vpls, page.lookup, im.deferred_target());
-      passes += page.vpls.size();
-    }
-  }
-  std::vector<const Vpl*> directional;
-  for (const Impl::CachedPath& p : im.cache)
-    for (const Vpl& v : p.directional) directional.push_back(&v);
-  if (!directional.empty()) {
-    const int sets = im.interleaved ? im.interleaved->sets() : 1;
-    passes += im.batched->draw(directional, [&](const Vpl& v) { return set_of(v.path, sets); },
-                               im.deferred_target(), im.gpu, nullptr, {});
-  }
+  if (im.shadow_cache && im.batched) passes += im.shade_kept(view);
   std::vector<const Vpl*> list;
   std::vector<std::pair<GLuint, glm::mat3>> maps;
   for (const Impl::CachedPath& p : im.cache)

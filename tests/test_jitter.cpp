@@ -122,13 +122,20 @@ protected:
     delete mask_;
     delete reference_;
   }
-  static Image render(int interleave, bool jitter, int size) {
+  // batch 16: the batched passes (a G-buffer per jitter cell, raster/image/pixel_jitter.h);
+  // batch 1: the per-VPL passes, each VPL at its own offset.
+  static Image render(int interleave, bool jitter, int size, int batch = 16) {
     RasterOptions options;
     options.interleave = interleave;
     options.jitter = jitter;
     options.shadow_resolution = 256;
+    options.batch = batch;
     RasterRenderer raster(*scene_, options);
-    return raster.render(make_view(scene_->cameras.at(0), scene_->bounds, size, size), *vpls_);
+    RasterTimings timings;
+    Image image = raster.render(make_view(scene_->cameras.at(0), scene_->bounds, size, size),
+                                *vpls_, &timings);
+    EXPECT_EQ(timings.single_passes, batch == 1 ? timings.passes : 0u);
+    return image;
   }
   static EdgeErrors errors(const Image& image) {
     return {jitter_test::masked_error(image, *reference_, *mask_, 1),
@@ -173,12 +180,12 @@ TEST_F(JitterEdges, ReferenceModeK1) {
   print("k=1 off", off);
   print("k=1 on", on);
   pictures("k1", off_image, on_image);
-  // Measured: edge relMSE 0.0235 -> 0.0050 (x0.21), RMSE 0.366 -> 0.076 (x0.21, the light's
-  // silhouette: L_e is jittered too).
+  // Measured (the batched passes, a G-buffer per jitter cell): edge relMSE 0.0235 -> 0.0046
+  // (x0.20), RMSE 0.366 -> 0.076 (x0.21, the light's silhouette: L_e is jittered too).
   EXPECT_LT(on.edge.relmse, 0.4 * off.edge.relmse);
   EXPECT_LT(on.edge.rmse, 0.4 * off.edge.rmse);
-  // Interior: RMSE 0.00076 -> 0.00107 (x1.41; each VPL's hard shadow edge now sampled at one
-  // sub-pixel position), relMSE 3e-5 -> 4e-5, both far below the VPLs' own error against pt.
+  // Interior: RMSE 0.00076 -> 0.00095 (x1.25; each VPL's hard shadow edge now sampled at one
+  // sub-pixel position), relMSE 3e-5 -> 3e-5, both far below the VPLs' own error against pt.
   EXPECT_LT(on.interior.rmse, 2.0 * off.interior.rmse);
   EXPECT_LT(on.interior.relmse, 1e-4);
 }
@@ -190,15 +197,57 @@ TEST_F(JitterEdges, InterleavedK4) {
   print("k=4 off", off);
   print("k=4 on", on);
   pictures("k4", off_image, on_image);
-  // Measured: edge RMSE 0.369 -> 0.088 (x0.24), relMSE 0.067 -> 0.047 (x0.70: the resolve takes
+  // Measured: edge RMSE 0.369 -> 0.088 (x0.24), relMSE 0.067 -> 0.048 (x0.71: the resolve takes
   // each pixel's irradiance from its neighbours on the surface its centre sees, so at a depth
   // discontinuity only the albedo and the light's silhouette are filtered fully).
   EXPECT_LT(on.edge.rmse, 0.4 * off.edge.rmse);
   EXPECT_LT(on.edge.relmse, 0.85 * off.edge.relmse);
   // The geometry-aware resolve still works with jittered tiles: interior RMSE 0.01003 -> 0.01008,
-  // relMSE 0.00222 -> 0.00229 (interleaving noise dominates both).
+  // relMSE 0.00222 -> 0.00228 (interleaving noise dominates both).
   EXPECT_LT(on.interior.rmse, 1.1 * off.interior.rmse);
   EXPECT_LT(on.interior.relmse, 1.1 * off.interior.relmse);
+}
+
+// The batched passes' jitter (each VPL at the centre of its offset's cell of a 4 x 4 grid,
+// reflection 2 and deeper at the pixel centre) against the per-VPL passes' (each VPL at its own
+// offset): the same filtering, as good on edges and in the interior.
+TEST_F(JitterEdges, CellsOfTheBatchedPassesFilterAsWellAsPerVplOffsets) {
+  for (int k : {1, 4}) {
+    const EdgeErrors cells = errors(render(k, true, kSize));
+    const EdgeErrors own = errors(render(k, true, kSize, 1));
+    print(k == 1 ? "k=1 cells" : "k=4 cells", cells);
+    print(k == 1 ? "k=1 own" : "k=4 own", own);
+    // Measured: k = 1 edge RMSE 0.0759 (cells) vs 0.0758 (own offsets), relMSE 0.0046 vs
+    // 0.0050, interior RMSE 0.00095 vs 0.00107; k = 4 edge RMSE 0.0878 vs 0.0876, relMSE 0.0477
+    // vs 0.0469, interior 0.01008 vs 0.01008. Rounding every depth to the 16 cells (the middle
+    // ones at +-1/8 for all reflections): k = 1 interior RMSE 0.00181 (x1.7 own).
+    EXPECT_LT(cells.edge.rmse, 1.05 * own.edge.rmse) << k;
+    EXPECT_LT(cells.edge.relmse, 1.1 * own.edge.relmse) << k;
+    EXPECT_LT(cells.interior.rmse, 1.05 * own.interior.rmse) << k;
+    EXPECT_LT(cells.interior.relmse, 1.1 * own.interior.relmse) << k;
+  }
+}
+
+// Shadow maps kept per path (the cached walkthrough) with jitter: the same cells, the same image.
+TEST_F(JitterEdges, KeptShadowMapsJitterAsTheFreshRender) {
+  const View view = make_view(scene_->cameras.at(0), scene_->bounds, kSize, kSize);
+  std::vector<std::vector<Vpl>> paths(64);
+  for (const Vpl& v : vpls_->vpls) paths.at(v.path).push_back(v);
+  for (int k : {1, 4}) {
+    RasterOptions options;
+    options.interleave = k;
+    options.jitter = true;
+    RasterRenderer raster(*scene_, options);
+    const Image fresh = raster.render(view, *vpls_);
+    for (std::uint32_t p = 0; p < paths.size(); ++p) raster.cache_path(p, paths[p], kSize, kSize);
+    RasterTimings timings;
+    const ImageMetrics m = compare_images(raster.render_cached(view, &timings), fresh);
+    std::printf("k=%d kept shadow maps with jitter: relMSE %.3g, max abs %.3g\n", k, m.relmse,
+                m.max_abs_error);
+    // Measured: relMSE 0, max abs 0 (the same draws in the same order).
+    EXPECT_LT(m.max_abs_error, 1e-5) << k;
+    EXPECT_EQ(timings.single_passes, 0u);
+  }
 }
 
 } // namespace
@@ -224,8 +273,8 @@ TEST_F(JitterEdges, AgainstThePathTracerOverThePixelFootprint) {
     std::printf("k=%d edges against pt (box filter, 1024 spp): rmse off %.4f on %.4f, relmse off "
                 "%.4f on %.4f\n",
                 k, off.rmse, on.rmse, off.relmse, on.relmse);
-    // Measured: edge RMSE 0.326 -> 0.049 (k = 1), 0.330 -> 0.072 (k = 4). The edge relMSE
-    // (0.067 -> 0.050, 0.234 -> 0.214) is dominated by the N = 64 VPLs' own error against pt.
+    // Measured: edge RMSE 0.326 -> 0.049 (k = 1), 0.330 -> 0.073 (k = 4). The edge relMSE
+    // (0.067 -> 0.053, 0.234 -> 0.218) is dominated by the N = 64 VPLs' own error against pt.
     EXPECT_LT(on.rmse, 0.5 * off.rmse) << k;
   }
 }

@@ -57,6 +57,27 @@ void JitterPasses::emitters(const CameraPasses& camera, const View& view, const 
   }
 }
 
+const GBuffer& JitterPasses::stratum_gbuffer(const CameraPasses& camera, const View& view,
+                                             int stratum, const GpuScene& gpu) {
+  const GladGLContext& api = *api_;
+  if (!stratum_gbuffer_ || stratum_gbuffer_->width() != view.width ||
+      stratum_gbuffer_->height() != view.height) {
+    stratum_gbuffer_.reset();
+    stratum_depth_ = make_renderbuffer(api);
+    api.BindRenderbuffer(GL_RENDERBUFFER, stratum_depth_.get());
+    api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, view.width, view.height);
+    stratum_gbuffer_ =
+        std::make_unique<GBuffer>(api, view.width, view.height, stratum_depth_.get());
+  }
+  stratum_gbuffer_->bind();
+  api.DepthMask(GL_TRUE);
+  camera.gbuffer(
+      jittered_projection(view.projection, stratum_offset(stratum), view.width, view.height) *
+          view.view,
+      gpu);
+  return *stratum_gbuffer_;
+}
+
 void JitterPasses::average_albedo(const CameraPasses& camera, const View& view,
                                   const GpuScene& gpu) const {
   const GladGLContext& api = *api_;

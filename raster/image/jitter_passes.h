@@ -6,11 +6,13 @@
 #include "core/scene.h"
 #include "core/view.h"
 #include "raster/context/shader_program.h"
+#include "raster/image/gbuffer.h"
 #include "raster/passes/background.h"
 #include "raster/passes/camera_passes.h"
 #include "raster/scene/gpu_scene.h"
 
 #include <glm/glm.hpp>
+#include <memory>
 
 namespace irad::gl {
 
@@ -30,6 +32,11 @@ public:
   // so the background's edges against the geometry antialias like the emitters'.
   void emitters(const CameraPasses& camera, const View& view, const Scene& scene,
                 const GpuScene& gpu, const Background* background = nullptr) const;
+  // The G-buffer of jitter cell `stratum` (raster/image/pixel_jitter.h): the scene seen through
+  // the view's projection moved to the cell's centre, for the batched passes' deferred shading.
+  // One G-buffer with its own depth, drawn anew by each call (the image's size on first use).
+  const GBuffer& stratum_gbuffer(const CameraPasses& camera, const View& view, int stratum,
+                                 const GpuScene& gpu);
   // With the interleaved G-buffer bound (albedo at colour attachment 2): replaces the albedo by
   // its average over kCameraJitterPasses jittered projections; position and normal stay the
   // pixel centre's (the resolve's geometry test), the shared depth is left jittered.
@@ -40,6 +47,8 @@ private:
   ShaderProgram gbuffer_;
   MaterialUniforms material_;
   GLint vp_;
+  Renderbuffer stratum_depth_;
+  std::unique_ptr<GBuffer> stratum_gbuffer_;
 };
 
 } // namespace irad::gl

@@ -38,6 +38,22 @@ float jitter_amplitude(int depth);
 // The offset of one VPL pass (pixels).
 glm::vec2 vpl_jitter(const Vpl& vpl);
 
+// Jitter with the batched passes (raster/passes/batched_passes.h): their deferred shading reads a
+// G-buffer drawn through one projection, so a VPL is shaded at the centre of the cell of a
+// kJitterGrid x kJitterGrid grid over the pixel that holds its offset (the offset rounded to the
+// nearest centre), and a G-buffer is drawn once per cell that has VPLs. Direct light (depth 0,
+// offsets over the whole pixel) is then stratified exactly like the 16x supersampled
+// reference's samples; the first reflection (amplitude 1/2) uses the four middle centres,
+// +-1/8 pixel; deeper reflections the pixel centre (stratum kJitterStrata: the image's own
+// G-buffer). tests/test_jitter.cpp measures it against the per-VPL offsets.
+inline constexpr int kJitterGrid = 4;
+inline constexpr int kJitterStrata = kJitterGrid * kJitterGrid;
+// The cell (0 .. kJitterStrata - 1, x + kJitterGrid y) that holds vpl_jitter(vpl), or
+// kJitterStrata (the pixel centre) for reflection 2 and deeper.
+int jitter_stratum(const Vpl& vpl);
+// The centre of cell `stratum` (< kJitterStrata) as an offset (pixels).
+glm::vec2 stratum_offset(int stratum);
+
 // The s-th of `count` offsets (s < count) of the camera passes that are not VPL passes (visible
 // emitters, the interleaved resolve's albedo): a Hammersley set ((s + 1/2)/count, Phi_2(s)) - 1/2
 // over the whole pixel, so their average is the same box filter.
