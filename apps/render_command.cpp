@@ -152,6 +152,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"vpls", r.vpls.vpls.size()},
           {"vpls_planned", r.vpls.planned},
           {"passes", r.passes},
+          {"single_passes", r.single_passes},
           {"paths", r.vpls.paths},
           {"sequence", args.sequence},
           {"light_allocation", args.light_allocation},

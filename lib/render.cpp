@@ -168,6 +168,7 @@ void run_raster(Stages& s, const RayScene& rays) {
   s.r.seconds.raster = since(t0);
   s.r.seconds.readback = timings.readback;
   s.r.passes = timings.passes;
+  s.r.single_passes = timings.single_passes;
   if (s.scene.has_specular() && !s.cancelled()) { // visible mirrors: walk/mirror_pass.h
     const auto t1 = Clock::now();
     add_mirror_pass(s.scene, rays, s.r.view, s.r.vpls,
@@ -399,6 +400,7 @@ void run_rounds(Stages& s, const RayScene& rays) {
     t.trace += rm.seconds.trace;
     t.compensation += rm.seconds.compensation;
     s.r.passes += rm.passes;
+    s.r.single_passes += rm.single_passes;
   }
   s.cancelled(); // a round cancelled: the mean of those done, marked cancelled
   for (std::size_t i = 0; i < sum.size(); ++i)

@@ -14,8 +14,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace irad {
@@ -254,6 +257,28 @@ TEST(Batched, KeptShadowMapsOfEveryPathMatchDrawingThemAnew) {
         EXPECT_EQ(timings.single_passes, batch == 1 ? timings.passes : 0u);
       }
     }
+  }
+}
+
+// `irad render --stats` counts the VPLs drawn one at a time: none with the batched passes, with
+// a mirror and jitter; every one with --batch 1.
+TEST(Batched, StatsCountTheVplsDrawnOneAtATime) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "irad_batched_stats";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string base = std::string(IRAD_BINARY) + " render " + IRAD_SOURCE_DIR +
+                           "/data/cornell_mirror.gltf --size 32x32 --paths 16 --jitter on "
+                           "--quiet -o " +
+                           (dir / "m.exr").string() + " --stats " + (dir / "s.json").string();
+  for (const char* batch : {"16", "1"}) {
+    ASSERT_EQ(std::system((base + " --batch " + batch).c_str()), 0);
+    std::ifstream in(dir / "s.json");
+    const nlohmann::json stats = nlohmann::json::parse(in);
+    const auto passes = stats["passes"].get<std::size_t>();
+    EXPECT_GT(passes, 16u);
+    EXPECT_EQ(stats["single_passes"].get<std::size_t>(), std::string(batch) == "1" ? passes : 0u)
+        << batch;
   }
 }
 
