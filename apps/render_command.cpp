@@ -440,8 +440,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
          "cluster representatives in images below 512 pixels, else 4")
       ->capture_default_str();
   cmd->add_option("--batch", args->batch,
-                  "Raster: VPLs per instanced draw of shadow maps and shading (1: one pass per "
-                  "VPL; jitter always draws one by one)")
+                  "Raster: VPLs per instanced draw of shadow maps and shading, every kind of VPL "
+                  "and jitter included (1: one pass per VPL, the reference)")
       ->capture_default_str();
   cmd->add_option("--shadow-lod", args->shadow_lod,
                   "Raster, batched: the shadow faces draw only the clusters they see (cull, the "
