@@ -70,7 +70,8 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::Context> context;
   const GladGLContext& api;
   gl::GpuScene gpu;
-  std::unique_ptr<gl::ShadowCube> shadow;
+  std::unique_ptr<gl::ShadowCube> shadow; // the per-VPL passes' cube, made on first use
+  int shadow_res = 0;                     // this image's cube resolution
   gl::CameraPasses camera;
   gl::VplShader vpl_shader;
   std::unique_ptr<gl::Target> target;
@@ -129,6 +130,10 @@ struct RasterRenderer::Impl {
   glm::mat4 bind_pass(const View& view, const Vpl& vpl, std::vector<glm::vec2>& last_offsets);
   // The orthographic shadow map of a directional VPL (shared by the VPLs of one direction).
   void directional_shadow(const Vpl& vpl) { directional->shadow(vpl, gpu); }
+  // A per-VPL pass's shadow map drawn now (ShadowFor): the VPL's cube, or for a directional VPL
+  // its orthographic map (0 returned, frame untouched).
+  GLuint shadow_now(const Vpl& vpl, glm::mat3& frame);
+  float texel_angle() const { return 2.0f / static_cast<float>(shadow_res); }
   gl::DeferredTarget deferred_target() const {
     return {gbuffer.get(), interleaved.get(), [t = target.get()] { t->bind(); }};
   }
@@ -187,8 +192,7 @@ void RasterRenderer::Impl::prepare(const View& view) {
   }
   if ((batched || options.interleave > 1) && !gbuffer)
     gbuffer = std::make_unique<gl::GBuffer>(api, view.width, view.height, target->depth());
-  if (!shadow || shadow->resolution() != resolution)
-    shadow = std::make_unique<gl::ShadowCube>(api, resolution, scene.bounds, gpu.features());
+  shadow_res = resolution;
   if (options.interleave > 1 && !interleaved)
     interleaved = std::make_unique<gl::Interleaved>(api, options.interleave, *gbuffer);
   const int ortho = gl::ortho_resolution_for(options.shadow_resolution, view.width, view.height);
@@ -241,15 +245,21 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
     before += some.size();
     return go;
   });
-  const auto draw_now = [&](std::size_t k, glm::mat3& frame) -> GLuint {
-    if (alone[k]->kind == VplKind::Directional) {
-      directional_shadow(*alone[k]);
-      return 0;
-    }
-    frame = shadow->render(*alone[k], gpu);
-    return shadow->texture();
+  const auto draw_now = [&](std::size_t k, glm::mat3& frame) {
+    return shadow_now(*alone[k], frame);
   };
-  return drawn + vpl_passes(view, alone, draw_now, shadow->texel_angle(), timer, {});
+  return drawn + vpl_passes(view, alone, draw_now, texel_angle(), timer, {});
+}
+
+GLuint RasterRenderer::Impl::shadow_now(const Vpl& vpl, glm::mat3& frame) {
+  if (vpl.kind == VplKind::Directional) {
+    directional_shadow(vpl);
+    return 0;
+  }
+  if (!shadow || shadow->resolution() != shadow_res)
+    shadow = std::make_unique<gl::ShadowCube>(api, shadow_res, scene.bounds, gpu.features());
+  frame = shadow->render(vpl, gpu);
+  return shadow->texture();
 }
 
 void RasterRenderer::Impl::by_stratum(const View& view,
@@ -440,18 +450,13 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   std::vector<const Vpl*> list;
   list.reserve(vpls.vpls.size());
   for (const Vpl& v : vpls.vpls) list.push_back(&v);
-  const auto draw_now = [&](std::size_t k, glm::mat3& frame) -> GLuint {
-    if (list[k]->kind == VplKind::Directional) {
-      im.directional_shadow(*list[k]);
-      return 0;
-    }
-    frame = im.shadow->render(*list[k], im.gpu);
-    return im.shadow->texture();
+  const auto draw_now = [&](std::size_t k, glm::mat3& frame) {
+    return im.shadow_now(*list[k], frame);
   };
   const std::size_t passes =
       im.batched ? im.batched_passes(view, list, timer ? &*timer : nullptr, progress)
-                 : im.vpl_passes(view, list, draw_now, im.shadow->texel_angle(),
-                                 timer ? &*timer : nullptr, progress);
+                 : im.vpl_passes(view, list, draw_now, im.texel_angle(), timer ? &*timer : nullptr,
+                                 progress);
   Image image = im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
   if (timings && im.batched) timings->shadow_triangles = im.batched->shadow_triangles();
   return image;
