@@ -8,6 +8,7 @@
 #include "walk/vpl_gather.h"
 
 #include <atomic>
+#include <cmath>
 #include <vector>
 
 namespace irad {
@@ -27,6 +28,12 @@ struct PixelSamples {
   std::vector<GatherSample> samples;
 };
 
+// What the camera sees at a pixel's centre: the point x the pixel's value belongs to.
+struct PixelCentre {
+  bool diffuse = false; // a surface that is not a mirror
+  ShadingPoint x{};
+};
+
 struct Context {
   const Scene& scene;
   const RayScene& rays;
@@ -42,7 +49,11 @@ struct Context {
   }
 
   // The pixel whose image value is the radiance leaving y toward the camera, or -1 when the
-  // camera does not see y's side `n` (outside the image, behind the camera, or hidden).
+  // camera does not see y's side `n` (outside the image, behind the camera, or hidden). The
+  // pixel must see y's surface at its centre (same_surface): y's own pixel, else the nearest of
+  // its 8 neighbours that does; a pixel whose centre sees another surface holds that surface's
+  // radiance, and at the creases and contacts where the clamp's residual lives that was a bias
+  // the rounds shared (docs/accuracy.md). None: -1 (y is evaluated exactly).
   int camera_pixel(const glm::vec3& y, const glm::vec3& n) const {
     const glm::vec4 clip = view.projection * view.view * glm::vec4(y, 1.0f);
     if (!(clip.w > 0.0f)) return -1;
@@ -61,24 +72,52 @@ struct Context {
     }
     if (!(glm::dot(n, to_eye) > 0.0f) || !(distance > 2.0f * eps)) return -1;
     if (rays.occluded(y + eps * n, to_eye, 0.0f, distance - 2.0f * eps)) return -1;
+    // A pixel's height in world units at y's depth (P[1][1] = cot(yfov / 2), or 1 / ymag).
+    const float depth = view.orthographic ? 1.0f : glm::dot(y - view.eye, view.forward);
+    const float footprint =
+        2.0f * depth / (static_cast<float>(view.height) * view.projection[1][1]);
     const int ix = static_cast<int>(px), iy = static_cast<int>(py);
-    if (scene_specular_at(ix, iy)) return -1;
-    return iy * view.width + ix;
+    int best = -1;
+    float best_d2 = 0.0f;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int qx = ix + dx, qy = iy + dy;
+        if (qx < 0 || qy < 0 || qx >= view.width || qy >= view.height) continue;
+        const float ex = float(qx) + 0.5f - px, ey = float(qy) + 0.5f - py;
+        const float d2 = (dx == 0 && dy == 0) ? -1.0f : ex * ex + ey * ey; // y's own pixel first
+        if (best >= 0 && d2 >= best_d2) continue;
+        const int i = qy * view.width + qx;
+        if (!same_surface(centres[std::size_t(i)], y, n, footprint)) continue;
+        best = i;
+        best_d2 = d2;
+      }
+    return best;
   }
 
-  // Mirrors reflect: their pixels hold another surface's light. Filled before the gathers.
-  std::vector<std::uint8_t> specular;
-  bool scene_specular_at(int x, int y) const {
-    return !specular.empty() && specular[std::size_t(y) * std::size_t(view.width) + x] != 0;
+  // Whether a pixel's centre sees y's surface: a diffuse surface (a mirror's pixel holds another
+  // surface's light) turned y's way (cos > 0.95: not the other face of a crease) and on y's
+  // tangent plane within half a pixel's footprint at y (not a surface behind or in front).
+  static bool same_surface(const PixelCentre& centre, const glm::vec3& y, const glm::vec3& n,
+                           float footprint) {
+    return centre.diffuse && glm::dot(centre.x.geometric, n) > 0.95f &&
+           std::abs(glm::dot(n, centre.x.position - y)) <= 0.5f * footprint;
   }
+
+  std::vector<PixelCentre> centres; // per pixel, filled before the gathers
 };
+
+PixelCentre pixel_centre(const Context& c, int px, int py) {
+  const CameraRay ray = pixel_ray(c.view, px, py);
+  const auto hit = c.rays.intersect(ray.origin, ray.direction, c.view.znear, 2.0f * c.view.zfar);
+  if (!hit || c.scene.material_of(hit->triangle).specular) return {};
+  return {true, shading_point(c.scene, *hit, ray.origin, ray.direction)};
+}
 
 void gather_pixel(const Context& c, int px, int py, std::uint32_t count, std::uint64_t seed,
                   PixelSamples& out, ScreenCompensationStats& stats) {
-  const CameraRay ray = pixel_ray(c.view, px, py);
-  const auto hit = c.rays.intersect(ray.origin, ray.direction, c.view.znear, 2.0f * c.view.zfar);
-  if (!hit || c.scene.material_of(hit->triangle).specular) return;
-  const ShadingPoint x = shading_point(c.scene, *hit, ray.origin, ray.direction);
+  const PixelCentre& centre = c.centres[std::size_t(py) * std::size_t(c.view.width) + px];
+  if (!centre.diffuse) return;
+  const ShadingPoint& x = centre.x;
   out.albedo = x.albedo;
   Pcg32 rng(mix64(seed ^ (static_cast<std::uint64_t>(py) * c.view.width + px)), 0);
   const glm::vec3 origin = x.position + c.eps * x.geometric;
@@ -124,18 +163,13 @@ Image screen_space_residual(const Scene& scene, const RayScene& rays, const View
             options.emission,
             {}};
   const std::size_t n = std::size_t(view.width) * std::size_t(view.height);
-  if (scene.has_specular()) {
-    c.specular.assign(n, 0);
-    parallel_rows(view.height, options.threads, [&](int y) {
-      for (int x = 0; x < view.width; ++x) {
-        const CameraRay ray = pixel_ray(view, x, y);
-        const auto h = rays.intersect(ray.origin, ray.direction, view.znear, 2.0f * view.zfar);
-        c.specular[std::size_t(y) * view.width + x] = h && scene.material_of(h->triangle).specular;
-      }
-    });
-  }
   Image residual(view.width, view.height);
   if (c.reach() <= 0.0f || options.samples == 0) return residual;
+  c.centres.resize(n);
+  parallel_rows(view.height, options.threads, [&](int y) {
+    for (int x = 0; x < view.width; ++x)
+      c.centres[std::size_t(y) * view.width + x] = pixel_centre(c, x, y);
+  });
 
   std::vector<PixelSamples> pixels(n);
   std::vector<ScreenCompensationStats> row_stats(std::size_t(view.height));
