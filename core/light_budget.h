@@ -32,4 +32,10 @@ std::uint32_t budget_paths(std::size_t pilot_vpls, const LightBudget& budget);
 // The representatives for a walk of `vpls` VPLs; 0: draw every VPL.
 std::size_t budget_clusters(std::size_t vpls, const LightBudget& budget);
 
+// The shadow faces' resolution for cluster representatives in a width x height image, given the
+// raster's rule for every VPL (`rule`, raster/raster_renderer.h shadow_resolution_for): at least
+// half the image's larger side up to 128 texels, and from 8 rounds on (`--rounds`) twice that,
+// at most 1024 (the .cpp has the measurements).
+int representative_shadow_resolution(int rule, int width, int height, std::uint32_t rounds);
+
 } // namespace irad

@@ -105,18 +105,13 @@ void log_planes(Log& log, const PlaneChoice& planes, int resolution, double seco
                          planes_reach(resolution), resolution, seconds));
 }
 
-// The shadow faces' resolution: as asked, else raster_renderer.h's rule, and for cluster
-// representatives at least half the image's larger side up to 128 texels. A representative
-// carries a cluster's light (about 16 VPLs under the light budget), so its shadow map's error
-// weighs as much as theirs together. Measured against pt references (4x4-block relMSE, time):
-// Cornell 256x256 (1910 representatives) R = 64 3.06e-4, 96 2.48e-4, 128 2.29e-4 for 15-20 %
-// more time; Cornell 512x512 R = 128 3.07e-4, 256 2.95e-4 for 20 % more; godot 128x128 (1940)
-// R = 64 3.1e-3, 128 2.5e-3 for 70 % more (its shadow passes draw finer levels of detail).
+// The shadow faces' resolution: as asked, else raster_renderer.h's rule, for cluster
+// representatives core/light_budget.h's.
 int shadow_resolution(const RenderOptions& o, const RenderResult& r) {
   if (o.raster.shadow_resolution != 0) return o.raster.shadow_resolution; // checked by the raster
   const int rule = shadow_resolution_for(0, r.view.width, r.view.height);
   if (r.clusters == 0) return rule;
-  return std::max(rule, std::min(128, std::max(r.view.width, r.view.height) / 2));
+  return representative_shadow_resolution(rule, r.view.width, r.view.height, o.rounds);
 }
 
 // The raster's k: as asked, or automatically 2 for cluster representatives in images below 512

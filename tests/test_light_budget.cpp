@@ -109,6 +109,19 @@ TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(ea.mean_ratio[c], 1.0, 0.01) << c;
 }
 
+// The representatives' faces: half the image's larger side, at least the rule's, up to 128; twice
+// that from 8 rounds on, up to 1024.
+TEST(LightBudget, RepresentativeShadowsGrowWithRounds) {
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 1), 128);
+  EXPECT_EQ(representative_shadow_resolution(64, 128, 96, 1), 64);
+  EXPECT_EQ(representative_shadow_resolution(64, 48, 48, 1), 64);
+  EXPECT_EQ(representative_shadow_resolution(256, 1024, 768, 4), 256);
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 7), 128);
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 8), 256);
+  EXPECT_EQ(representative_shadow_resolution(64, 48, 48, 16), 128);
+  EXPECT_EQ(representative_shadow_resolution(1024, 8192, 4096, 8), 1024);
+}
+
 // Representatives cast shadow faces of at least half the image's larger side up to 128 texels
 // and are interleaved 2x2 below 512 pixels; every VPL drawn one by one keeps raster_renderer.h's
 // rule (a quarter, at least 64) and k = 4; an explicit resolution stays.
