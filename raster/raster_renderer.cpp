@@ -99,7 +99,8 @@ struct RasterRenderer::Impl {
 
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
-        camera(api, gpu.features()), vpl_shader(api, s, o.clamp),
+        camera(api, gpu.features()),
+        vpl_shader(api, s, o.clamp, o.shadow_lod.planes != ShadowPlanes::Off),
         jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr),
         background(gl::Background::make(api, s)) {
     context->check("raster set-up");

@@ -184,9 +184,8 @@ vec3 vpl_light(vec3 x, vec3 n) {
     e = t * t;
   }
   if (e <= 0.0) return vec3(0.0);
-  // Normal-offset lookup (see vpl_fragment).
-  float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
-  vec3 dp = x + n * (dist * u_bias_texel * sin_x) - v_vpl_position;
+  // Normal-offset lookup (raster/glsl/cube_glsl.h).
+  vec3 dp = lookup_offset(x, n, dist, cos_x, u_bias_texel, v_vpl_position);
   mat3 frame = mat3(v_frame[0].xyz, v_frame[1].xyz, v_frame[2].xyz);
   if (shadowed(frame * dp, length(dp) - u_bias_constant)) return vec3(0.0);
   float g = e * cos_x / max(dist2, v_cone.z);

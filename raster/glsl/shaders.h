@@ -113,12 +113,8 @@ void main() {
     e = t * t;
   }
   if (e <= 0.0) discard;
-  // Normal-offset lookup: the receiver is moved off its surface by the footprint of a shadow
-  // texel there (dist * texel angle * sin theta_x), so its own surface never shadows it, while a
-  // wall between it and the VPL still does (a slope-scaled depth bias let light through walls
-  // thinner than the bias: 7 cm at 1 m with 256^2 faces).
-  float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
-  vec3 dp = v_position + n * (dist * u_bias_texel * sin_x) - u_vpl_position;
+  // Normal-offset lookup (raster/glsl/cube_glsl.h).
+  vec3 dp = lookup_offset(v_position, n, dist, cos_x, u_bias_texel, u_vpl_position);
   if (shadowed(u_shadow_frame * dp, length(dp) - u_bias_constant)) discard;
   vec3 albedo = u_apply_albedo ? material_albedo() : vec3(1.0);
   float g = e * cos_x / max(dist2, u_dmin2);

@@ -132,6 +132,7 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   // Scale-relative constants, as VplShader: the coincidence guard and the shadow bias.
   api.Uniform1f(program_.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
   api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * diagonal_);
+  api.Uniform1f(program_.uniform("u_offset_texels"), normal_offset_texels(planes));
   if (!mirrors_.empty()) {
     mirror_corners_ = corner_texture(api, mirrors_);
     api.Uniform1i(program_.uniform("u_mirror_corners"), mirror_unit);

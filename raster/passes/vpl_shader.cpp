@@ -19,12 +19,12 @@ void set_additive_state(const GladGLContext& api) {
   api.BlendFunc(GL_ONE, GL_ONE);
 }
 
-VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp)
-    : VplShader(api, scene, clamp, shaders::vpl_fragment) {
+VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp, bool planes)
+    : VplShader(api, scene, clamp, planes, shaders::vpl_fragment) {
   if (!scene.has_specular()) return;
   mirrors_ = find_mirrors(scene);
-  mirrored_.reset(
-      new VplShader(api, scene, clamp, shaders::mirror_vpl_fragment(shaders::vpl_fragment)));
+  mirrored_.reset(new VplShader(api, scene, clamp, planes,
+                                shaders::mirror_vpl_fragment(shaders::vpl_fragment)));
   const ShaderProgram& p = mirrored_->program_;
   mirrored_->mirror_plane_ = p.uniform("u_mirror_plane");
   mirrored_->mirror_triangles_ = p.uniform("u_mirror_triangles");
@@ -42,7 +42,7 @@ void VplShader::set_mirror(const MirrorPolygon& mirror, const glm::vec4& plane) 
                    glm::value_ptr(mirror.triangles.front()));
 }
 
-VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp,
+VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp, bool planes,
                      const std::string& fragment)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp),
       program_(api, "vpl", material_source(shaders::camera_vertex, MaterialFeatures::of(scene)),
@@ -61,6 +61,7 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp,
   // Scale-relative constants: the clamp, the coincidence guard and the shadow bias.
   api.Uniform1f(min_dist2_, 1e-10f * diagonal_ * diagonal_); // 1e-5 of the diagonal, as rt-vpl
   api.Uniform1f(bias_constant_, 2e-4f * diagonal_);
+  api.Uniform1f(program_.uniform("u_offset_texels"), normal_offset_texels(planes));
 }
 
 void VplShader::draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,
