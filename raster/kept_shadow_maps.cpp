@@ -1,0 +1,127 @@
+// The shadow maps kept per light path (RasterRenderer::cache_path, render_cached): the cached
+// walkthrough shades every kept VPL from a moving camera without redrawing a shadow map.
+#include "raster/raster_renderer_impl.h"
+
+namespace irad {
+
+std::size_t RasterRenderer::Impl::shade_kept(const View& view) {
+  const int sets = interleaved ? interleaved->sets() : 1;
+  std::vector<gl::ShadowCache::Page> pages = shadow_cache->pages();
+  std::vector<const Vpl*> directional_vpls;
+  for (const CachedPath& p : cache)
+    for (const Vpl& v : p.directional) directional_vpls.push_back(&v);
+  std::array<bool, kJitterStrata + 1> used{};
+  if (jitter) {
+    for (const gl::ShadowCache::Page& page : pages)
+      for (const gl::AtlasVpl& v : page.vpls)
+        used[static_cast<std::size_t>(jitter_stratum(*v.vpl))] = true;
+    for (const Vpl* v : directional_vpls) used[static_cast<std::size_t>(jitter_stratum(*v))] = true;
+  }
+  const auto in = [](const Vpl& v, int s) { return s < 0 || jitter_stratum(v) == s; };
+  std::size_t passes = 0;
+  by_stratum(view, used, [&](const gl::DeferredTarget& into, int s) {
+    for (const gl::ShadowCache::Page& page : pages) {
+      std::vector<gl::AtlasVpl> some;
+      for (const gl::AtlasVpl& v : page.vpls)
+        if (in(*v.vpl, s)) some.push_back(v);
+      for (gl::AtlasVpl& v : some) v.set = set_of(v.vpl->path, sets);
+      batched->shade(some, page.lookup, into);
+      passes += some.size();
+    }
+    std::vector<const Vpl*> some;
+    for (const Vpl* v : directional_vpls)
+      if (in(*v, s)) some.push_back(v);
+    passes += batched->draw(some, [&](const Vpl& v) { return set_of(v.path, sets); }, into, gpu,
+                            nullptr, {});
+    return true;
+  });
+  return passes;
+}
+
+void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width,
+                                int height) {
+  Impl& im = *impl_;
+  const gl::CurrentScope current(*im.context);
+  const int resolution = shadow_resolution_for(im.options.shadow_resolution, width, height);
+  if (!im.cache_shadow || im.cache_shadow->resolution() != resolution) {
+    im.cache.clear(); // cubes of another resolution
+    im.shadow_cache.reset();
+    im.cache_shadow =
+        std::make_unique<gl::ShadowCube>(im.api, resolution, im.scene.bounds, im.gpu.features());
+    // The batched passes shade kept atlas blocks; the reference (batch 1, jitter) keeps cubes.
+    im.ensure_batched(width, height);
+    if (im.batched)
+      im.shadow_cache = std::make_unique<gl::ShadowCache>(
+          im.api, resolution, gl::ShadowAtlas::capacity(im.api, resolution, im.options.batch),
+          im.scene.bounds, im.gpu.features());
+  }
+  if (slot >= im.cache.size()) im.cache.resize(std::size_t(slot) + 1);
+  Impl::CachedPath& path = im.cache[slot];
+  // The slot's cubes are drawn over again: no texture allocation per frame once the ring is full.
+  std::vector<gl::Texture> spare;
+  for (gl::Texture& c : path.cubes)
+    if (c.get() != 0) spare.push_back(std::move(c));
+  path = {};
+  std::vector<Vpl> in_atlas;
+  for (const Vpl& v : vpls) {
+    if (!v.carries_light()) continue;
+    if (im.shadow_cache && v.kind != VplKind::Directional) {
+      in_atlas.push_back(v);
+      continue;
+    }
+    if (im.shadow_cache && im.batched && im.batched->directional()) {
+      path.directional.push_back(v);
+      continue;
+    }
+    path.vpls.push_back(v);
+    if (v.kind == VplKind::Directional) { // its orthographic map is drawn per image
+      path.cubes.emplace_back();
+      path.frames.emplace_back(1.0f);
+      continue;
+    }
+    if (spare.empty()) {
+      path.cubes.push_back(gl::ShadowCube::make_cube(im.api, resolution));
+    } else {
+      path.cubes.push_back(std::move(spare.back()));
+      spare.pop_back();
+    }
+    path.frames.push_back(im.cache_shadow->render_into(v, im.gpu, path.cubes.back().get()));
+  }
+  if (im.shadow_cache) im.shadow_cache->store(slot, in_atlas, im.gpu);
+  im.context->check("cached shadow maps");
+}
+
+Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
+  Impl& im = *impl_;
+  const auto t0 = Clock::now();
+  const gl::CurrentScope current(*im.context);
+  im.begin_image(view);
+  std::size_t passes = 0;
+  if (im.shadow_cache && im.batched) passes += im.shade_kept(view);
+  std::vector<const Vpl*> list;
+  std::vector<std::pair<GLuint, glm::mat3>> maps;
+  for (const Impl::CachedPath& p : im.cache)
+    for (std::size_t i = 0; i < p.vpls.size(); ++i) {
+      list.push_back(&p.vpls[i]);
+      maps.emplace_back(p.cubes[i].get(), p.frames[i]);
+    }
+  const auto kept = [&](std::size_t k, glm::mat3& frame) {
+    if (list[k]->kind == VplKind::Directional) im.directional_shadow(*list[k]);
+    frame = maps[k].second;
+    return maps[k].first;
+  };
+  const float texel = im.cache_shadow ? im.cache_shadow->texel_angle() : 1.0f;
+  passes += im.vpl_passes(view, list, kept, texel, nullptr, {});
+  return im.finish_image(view, t0, passes, nullptr, timings);
+}
+
+std::size_t RasterRenderer::cache_bytes() const {
+  std::size_t cubes = 0;
+  for (const Impl::CachedPath& p : impl_->cache)
+    for (const gl::Texture& c : p.cubes) cubes += c.get() != 0 ? 1 : 0;
+  const std::size_t r = impl_->cache_shadow ? std::size_t(impl_->cache_shadow->resolution()) : 0;
+  return cubes * 6 * r * r * sizeof(float) +
+         (impl_->shadow_cache ? impl_->shadow_cache->bytes() : 0);
+}
+
+} // namespace irad

@@ -1,0 +1,136 @@
+#pragma once
+// RasterRenderer's state, shared by raster/raster_renderer.cpp (an image's passes) and
+// raster/kept_shadow_maps.cpp (the shadow maps kept per path, render_cached). Private to raster/.
+#include "raster/raster_renderer.h"
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "raster/context/gl_context.h"
+#include "raster/context/pass_timer.h"
+#include "raster/image/gbuffer.h"
+#include "raster/image/interleaved.h"
+#include "raster/image/jitter_passes.h"
+#include "raster/image/pixel_jitter.h"
+#include "raster/image/target.h"
+#include "raster/passes/background.h"
+#include "raster/passes/batched_passes.h"
+#include "raster/passes/camera_passes.h"
+#include "raster/passes/directional_pass.h"
+#include "raster/passes/vpl_shader.h"
+#include "raster/scene/gpu_scene.h"
+#include "raster/shadow/shadow_cache.h"
+#include "raster/shadow/shadow_cube.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <functional>
+#include <optional>
+
+namespace irad {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+// The interleaved set of a particle: a hash of its index, so every set holds a random share of
+// each reflection depth. Measured against the alternatives: i mod k^2 fixes the leading base-2
+// digits of Phi_2(i) within a set (every set lights from one strip of the light: 4x the error at
+// the light's silhouette in RasterAnalytic.InterleavedSquareLightOverPlaneMatchesLambert);
+// contiguous segments of the paths leave the deep reflections to the first set (few particles
+// reach them), which the resolve cannot average where its window is cut by geometry: relMSE
+// 7.0e-4 against 8.0e-5 with the hash on the integrating sphere (128x128, N = 256).
+inline int set_of(std::uint32_t path, int sets) {
+  return static_cast<int>(mix64(path) % static_cast<std::uint64_t>(sets));
+}
+
+struct RasterRenderer::Impl {
+  const Scene& scene;
+  RasterOptions options;
+  std::unique_ptr<gl::Context> context;
+  const GladGLContext& api;
+  gl::GpuScene gpu;
+  std::unique_ptr<gl::ShadowCube> shadow; // the per-VPL passes' cube, made on first use
+  int shadow_res = 0;                     // this image's cube resolution
+  gl::CameraPasses camera;
+  gl::VplShader vpl_shader;
+  std::unique_ptr<gl::Target> target;
+  std::unique_ptr<gl::GBuffer> gbuffer; // for the batched passes and the interleaved resolve
+  std::unique_ptr<gl::Interleaved> interleaved;
+  bool tile_depths = false;      // interleaved: each set's depth drawn in its tile for this image
+  std::size_t single_passes = 0; // this image's VPLs drawn by vpl_passes
+  std::unique_ptr<gl::JitterPasses> jitter;         // with options.jitter
+  std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
+  std::unique_ptr<gl::BatchedPasses> batched;       // options.batch > 1
+  std::unique_ptr<gl::Background> background;       // only for scenes that show one
+  // Shadow maps kept per path slot (render_cached). Batched: the slot's VPLs in the atlas pages
+  // of shadow_cache, the directional ones drawn by the batched passes per image (their
+  // orthographic maps are cheap: one per direction). The per-VPL reference (batch 1) keeps a
+  // cube per VPL and draws a directional VPL's map per image.
+  struct CachedPath {
+    std::vector<Vpl> vpls; // those shaded per VPL
+    std::vector<gl::Texture> cubes;
+    std::vector<glm::mat3> frames;
+    std::vector<Vpl> directional; // batched: drawn anew per image
+  };
+  std::vector<CachedPath> cache;
+  std::unique_ptr<gl::ShadowCube> cache_shadow;  // draws into the cached cubes
+  std::unique_ptr<gl::ShadowCache> shadow_cache; // batched: the kept atlas blocks
+
+  Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
+      : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
+        camera(api, gpu.features()),
+        vpl_shader(api, s, o.clamp, o.shadow_lod.planes != ShadowPlanes::Off),
+        jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr),
+        background(gl::Background::make(api, s)) {
+    context->check("raster set-up");
+  }
+
+  void prepare(const View& view);
+  // The batched passes for a width x height image (batch > 1, no jitter, a GL that fits them).
+  void ensure_batched(int width, int height);
+  // Clears the target and draws what every VPL pass adds to: the G-buffer (batched or
+  // interleaved) or else the visible surface's depth.
+  void begin_image(const View& view);
+  // Interleaved: each set's depth in its tile, which the per-VPL passes test against (drawn once
+  // per image, only when such a pass comes).
+  void ensure_tile_depths(const View& view);
+  // A VPL pass needs its shadow cube: drawn now (render) or kept from before (render_cached).
+  using ShadowFor = std::function<GLuint(std::size_t k, glm::mat3& frame)>;
+  // The VPL passes of vpls[k] for every k, each VPL's shadow map then shading; returns the number
+  // drawn.
+  std::size_t vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
+                         const ShadowFor& shadow_for, float texel_angle, gl::PassTimer* timer,
+                         const Progress& progress);
+  // vpl_passes with the VPLs drawn in batches (raster/passes/batched_passes.h), directional ones
+  // alone.
+  std::size_t batched_passes(const View& view, const std::vector<const Vpl*>& vpls,
+                             gl::PassTimer* timer, const Progress& progress);
+  // Binds the VPL's framebuffer and viewport and returns the view-projection it is shaded with;
+  // with jitter, the depth there is redrawn for its offset when that differs from the last one.
+  glm::mat4 bind_pass(const View& view, const Vpl& vpl, std::vector<glm::vec2>& last_offsets);
+  // The orthographic shadow map of a directional VPL (shared by the VPLs of one direction).
+  void directional_shadow(const Vpl& vpl) { directional->shadow(vpl, gpu); }
+  // A per-VPL pass's shadow map drawn now (ShadowFor): the VPL's cube, or for a directional VPL
+  // its orthographic map (0 returned, frame untouched).
+  GLuint shadow_now(const Vpl& vpl, glm::mat3& frame);
+  float texel_angle() const { return 2.0f / static_cast<float>(shadow_res); }
+  gl::DeferredTarget deferred_target() const {
+    return {gbuffer.get(), interleaved.get(), [t = target.get()] { t->bind(); }};
+  }
+  // The deferred passes' G-buffers: without jitter shade(deferred_target(), -1) once; with it,
+  // for every jitter cell s with used[s] (raster/image/pixel_jitter.h), shade(target, s) reading
+  // the cell's G-buffer, until shade returns false.
+  using ShadeInto = std::function<bool(const gl::DeferredTarget&, int stratum)>;
+  void by_stratum(const View& view, const std::array<bool, kJitterStrata + 1>& used,
+                  const ShadeInto& shade);
+  // render_cached's batched passes: the kept atlas pages and the directional VPLs (their maps
+  // drawn now), with jitter cell by cell. Returns the number of VPLs shaded.
+  std::size_t shade_kept(const View& view);
+  // The resolve (interleaved), the emitters, the background and the readback.
+  Image finish_image(const View& view, Clock::time_point t0, std::size_t passes,
+                     gl::PassTimer* timer, RasterTimings* timings);
+};
+
+} // namespace irad
