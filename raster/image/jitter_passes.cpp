@@ -93,7 +93,9 @@ void JitterPasses::average_albedo(const CameraPasses& camera, const View& view,
     set_weighted_add(api, 1.0f / static_cast<float>(kCameraJitterPasses));
     gbuffer_.use();
     api.UniformMatrix4fv(vp_, 1, GL_FALSE, glm::value_ptr(vp));
-    gpu.draw([&](const Material& m) { material_.bind_base(api, gpu, m, m.base_color); });
+    gpu.draw([&](const Material& m) { // mirrors: no diffuse albedo, as CameraPasses::gbuffer
+      material_.bind_base(api, gpu, m, m.specular ? glm::vec3(0.0f) : m.base_color);
+    });
   }
   api.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
