@@ -6,33 +6,35 @@ namespace irad {
 
 std::size_t RasterRenderer::Impl::shade_kept(const View& view) {
   const int sets = interleaved ? interleaved->sets() : 1;
+  const bool jittered = jitter != nullptr;
+  // Each page's VPLs and the directional ones by the G-buffer they read.
   std::vector<gl::ShadowCache::Page> pages = shadow_cache->pages();
+  std::vector<JitterCells<gl::AtlasVpl>> page_cells;
+  for (gl::ShadowCache::Page& page : pages) {
+    for (gl::AtlasVpl& v : page.vpls) v.set = set_of(v.vpl->path, sets);
+    page_cells.push_back(jitter_cells(jittered, std::move(page.vpls),
+                                      [](const gl::AtlasVpl& v) -> const Vpl& { return *v.vpl; }));
+  }
   std::vector<const Vpl*> directional_vpls;
   for (const CachedPath& p : cache)
     for (const Vpl& v : p.directional) directional_vpls.push_back(&v);
+  const JitterCells<const Vpl*> directional_cells = jitter_cells(
+      jittered, std::move(directional_vpls), [](const Vpl* v) -> const Vpl& { return *v; });
   std::array<bool, kJitterStrata + 1> used{};
-  if (jitter) {
-    for (const gl::ShadowCache::Page& page : pages)
-      for (const gl::AtlasVpl& v : page.vpls)
-        used[static_cast<std::size_t>(jitter_stratum(*v.vpl))] = true;
-    for (const Vpl* v : directional_vpls) used[static_cast<std::size_t>(jitter_stratum(*v))] = true;
+  for (std::size_t s = 0; s < used.size(); ++s) {
+    used[s] = !directional_cells[s].empty();
+    for (const JitterCells<gl::AtlasVpl>& cells : page_cells)
+      used[s] = used[s] || !cells[s].empty();
   }
-  const auto in = [](const Vpl& v, int s) { return s < 0 || jitter_stratum(v) == s; };
   std::size_t passes = 0;
-  by_stratum(view, used, [&](const gl::DeferredTarget& into, int s) {
-    for (const gl::ShadowCache::Page& page : pages) {
-      std::vector<gl::AtlasVpl> some;
-      for (const gl::AtlasVpl& v : page.vpls)
-        if (in(*v.vpl, s)) some.push_back(v);
-      for (gl::AtlasVpl& v : some) v.set = set_of(v.vpl->path, sets);
-      batched->shade(some, page.lookup, into);
-      passes += some.size();
+  by_cell(view, used, [&](const gl::DeferredTarget& into, std::size_t s) {
+    for (std::size_t p = 0; p < pages.size(); ++p) {
+      batched->shade(page_cells[p][s], pages[p].lookup, into);
+      passes += page_cells[p][s].size();
     }
-    std::vector<const Vpl*> some;
-    for (const Vpl* v : directional_vpls)
-      if (in(*v, s)) some.push_back(v);
-    passes += batched->draw(some, [&](const Vpl& v) { return set_of(v.path, sets); }, into, gpu,
-                            nullptr, {});
+    passes +=
+        batched->draw(directional_cells[s], [&](const Vpl& v) { return set_of(v.path, sets); },
+                      into, gpu, nullptr, {});
     return true;
   });
   return passes;

@@ -94,18 +94,13 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
     return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
   });
   const int sets = interleaved ? interleaved->sets() : 1;
-  // With jitter, the VPLs by jitter cell: one G-buffer each.
-  std::array<std::vector<const Vpl*>, kJitterStrata + 1> cells;
+  const JitterCells<const Vpl*> cells = jitter_cells(jitter != nullptr, std::move(many),
+                                                     [](const Vpl* v) -> const Vpl& { return *v; });
   std::array<bool, kJitterStrata + 1> used{};
-  if (jitter)
-    for (const Vpl* v : many) {
-      const auto s = static_cast<std::size_t>(jitter_stratum(*v));
-      cells[s].push_back(v);
-      used[s] = true;
-    }
+  for (std::size_t s = 0; s < cells.size(); ++s) used[s] = !cells[s].empty();
   std::size_t drawn = 0, before = 0;
-  by_stratum(view, used, [&](const gl::DeferredTarget& into, int s) {
-    const std::vector<const Vpl*>& some = s < 0 ? many : cells[static_cast<std::size_t>(s)];
+  by_cell(view, used, [&](const gl::DeferredTarget& into, std::size_t s) {
+    const std::vector<const Vpl*>& some = cells[s];
     bool go = true;
     drawn += batched->draw(
         some, [&](const Vpl& v) { return set_of(v.path, sets); }, into, gpu, timer,
@@ -134,20 +129,16 @@ GLuint RasterRenderer::Impl::shadow_now(const Vpl& vpl, glm::mat3& frame) {
   return shadow->texture();
 }
 
-void RasterRenderer::Impl::by_stratum(const View& view,
-                                      const std::array<bool, kJitterStrata + 1>& used,
-                                      const ShadeInto& shade) {
-  if (!jitter) {
-    shade(deferred_target(), -1);
-    return;
-  }
-  for (int s = 0; s <= kJitterStrata; ++s) {
-    if (!used[static_cast<std::size_t>(s)]) continue;
+void RasterRenderer::Impl::by_cell(const View& view,
+                                   const std::array<bool, kJitterStrata + 1>& used,
+                                   const ShadeInto& shade) {
+  for (std::size_t s = 0; s < used.size(); ++s) {
+    if (!used[s]) continue;
     if (s == kJitterStrata) { // the pixel centre: the image's G-buffer
       if (!shade(deferred_target(), s)) return;
       continue;
     }
-    const gl::GBuffer& cell = jitter->stratum_gbuffer(camera, view, s, gpu);
+    const gl::GBuffer& cell = jitter->stratum_gbuffer(camera, view, static_cast<int>(s), gpu);
     if (!shade({&cell, interleaved.get(), [t = target.get()] { t->bind(); }}, s)) return;
   }
 }

@@ -45,6 +45,25 @@ inline int set_of(std::uint32_t path, int sets) {
   return static_cast<int>(mix64(path) % static_cast<std::uint64_t>(sets));
 }
 
+// What the deferred passes shade, by the G-buffer they read: cell s < kJitterStrata the one
+// drawn at that jitter cell's centre, cell kJitterStrata the image's own (the pixel centre).
+template <class T>
+using JitterCells = std::array<std::vector<T>, kJitterStrata + 1>;
+
+// `items` by the jitter cell of their VPL (vpl_of(item), raster/image/pixel_jitter.h); without
+// jitter all of them, unmoved, in the image's own cell.
+template <class T, class VplOf>
+JitterCells<T> jitter_cells(bool jitter, std::vector<T> items, const VplOf& vpl_of) {
+  JitterCells<T> cells;
+  if (!jitter) {
+    cells[kJitterStrata] = std::move(items);
+    return cells;
+  }
+  for (const T& item : items)
+    cells[static_cast<std::size_t>(jitter_stratum(vpl_of(item)))].push_back(item);
+  return cells;
+}
+
 struct RasterRenderer::Impl {
   const Scene& scene;
   RasterOptions options;
@@ -119,12 +138,11 @@ struct RasterRenderer::Impl {
   gl::DeferredTarget deferred_target() const {
     return {gbuffer.get(), interleaved.get(), [t = target.get()] { t->bind(); }};
   }
-  // The deferred passes' G-buffers: without jitter shade(deferred_target(), -1) once; with it,
-  // for every jitter cell s with used[s] (raster/image/pixel_jitter.h), shade(target, s) reading
-  // the cell's G-buffer, until shade returns false.
-  using ShadeInto = std::function<bool(const gl::DeferredTarget&, int stratum)>;
-  void by_stratum(const View& view, const std::array<bool, kJitterStrata + 1>& used,
-                  const ShadeInto& shade);
+  // For every cell s (JitterCells) with used[s], in order, shade(target, s) with the target
+  // reading the cell's G-buffer (drawn now for a jitter cell), until shade returns false.
+  using ShadeInto = std::function<bool(const gl::DeferredTarget&, std::size_t cell)>;
+  void by_cell(const View& view, const std::array<bool, kJitterStrata + 1>& used,
+               const ShadeInto& shade);
   // render_cached's batched passes: the kept atlas pages and the directional VPLs (their maps
   // drawn now), with jitter cell by cell. Returns the number of VPLs shaded.
   std::size_t shade_kept(const View& view);
