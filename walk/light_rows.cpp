@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <optional>
 
 namespace irad {
 
@@ -31,15 +30,6 @@ std::vector<std::pair<int, int>> row_pixels(const View& view, std::size_t rows,
                           y0 + int(rng.next_double() * (y1 - y0)));
     }
   return pixels;
-}
-
-// The diffuse point a pixel sees, if any.
-std::optional<ShadingPoint> visible_point(const Scene& scene, const RayScene& rays,
-                                          const View& view, int x, int y) {
-  const CameraRay ray = pixel_ray(view, x, y);
-  const auto hit = rays.intersect(ray.origin, ray.direction, view.znear, 2.0f * view.zfar);
-  if (!hit || scene.material_of(hit->triangle).specular) return std::nullopt;
-  return shading_point(scene, *hit, ray.origin, ray.direction);
 }
 
 } // namespace

@@ -28,11 +28,9 @@ struct PixelSamples {
   std::vector<GatherSample> samples;
 };
 
-// What the camera sees at a pixel's centre: the point x the pixel's value belongs to.
-struct PixelCentre {
-  bool diffuse = false; // a surface that is not a mirror
-  ShadingPoint x{};
-};
+// What the camera sees at a pixel's centre (visible_point): the point x the pixel's value
+// belongs to; nothing for the background and mirrors.
+using PixelCentre = std::optional<ShadingPoint>;
 
 struct Context {
   const Scene& scene;
@@ -99,25 +97,18 @@ struct Context {
   // tangent plane within half a pixel's footprint at y (not a surface behind or in front).
   static bool same_surface(const PixelCentre& centre, const glm::vec3& y, const glm::vec3& n,
                            float footprint) {
-    return centre.diffuse && glm::dot(centre.x.geometric, n) > 0.95f &&
-           std::abs(glm::dot(n, centre.x.position - y)) <= 0.5f * footprint;
+    return centre && glm::dot(centre->geometric, n) > 0.95f &&
+           std::abs(glm::dot(n, centre->position - y)) <= 0.5f * footprint;
   }
 
   std::vector<PixelCentre> centres; // per pixel, filled before the gathers
 };
 
-PixelCentre pixel_centre(const Context& c, int px, int py) {
-  const CameraRay ray = pixel_ray(c.view, px, py);
-  const auto hit = c.rays.intersect(ray.origin, ray.direction, c.view.znear, 2.0f * c.view.zfar);
-  if (!hit || c.scene.material_of(hit->triangle).specular) return {};
-  return {true, shading_point(c.scene, *hit, ray.origin, ray.direction)};
-}
-
 void gather_pixel(const Context& c, int px, int py, std::uint32_t count, std::uint64_t seed,
                   PixelSamples& out, ScreenCompensationStats& stats) {
   const PixelCentre& centre = c.centres[std::size_t(py) * std::size_t(c.view.width) + px];
-  if (!centre.diffuse) return;
-  const ShadingPoint& x = centre.x;
+  if (!centre) return;
+  const ShadingPoint& x = *centre;
   out.albedo = x.albedo;
   Pcg32 rng(mix64(seed ^ (static_cast<std::uint64_t>(py) * c.view.width + px)), 0);
   const glm::vec3 origin = x.position + c.eps * x.geometric;
@@ -168,7 +159,7 @@ Image screen_space_residual(const Scene& scene, const RayScene& rays, const View
   c.centres.resize(n);
   parallel_rows(view.height, options.threads, [&](int y) {
     for (int x = 0; x < view.width; ++x)
-      c.centres[std::size_t(y) * view.width + x] = pixel_centre(c, x, y);
+      c.centres[std::size_t(y) * view.width + x] = visible_point(scene, rays, view, x, y);
   });
 
   std::vector<PixelSamples> pixels(n);

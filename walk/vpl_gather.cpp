@@ -8,6 +8,14 @@
 
 namespace irad {
 
+std::optional<ShadingPoint> visible_point(const Scene& scene, const RayScene& rays,
+                                          const View& view, int x, int y) {
+  const CameraRay ray = pixel_ray(view, x, y);
+  const auto hit = rays.intersect(ray.origin, ray.direction, view.znear, 2.0f * view.zfar);
+  if (!hit || scene.material_of(hit->triangle).specular) return std::nullopt;
+  return shading_point(scene, *hit, ray.origin, ray.direction);
+}
+
 ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec3& origin,
                            const glm::vec3& dir) {
   const SurfacePoint sp = surface_at(scene, hit.triangle, hit.bary);

@@ -2,10 +2,12 @@
 // Exact-visibility evaluation of a VPL list at one surface point: the rt-vpl estimator's core,
 // also used by the clamp's bias compensation.
 #include "core/scene.h"
+#include "core/view.h"
 #include "core/vpl.h"
 #include "walk/ray_scene.h"
 
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 namespace irad {
@@ -21,6 +23,10 @@ struct ShadingPoint {
 
 ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec3& origin,
                            const glm::vec3& dir);
+
+// The diffuse point the centre of pixel (x, y) sees, if any (nothing: the background or a mirror).
+std::optional<ShadingPoint> visible_point(const Scene& scene, const RayScene& rays,
+                                          const View& view, int x, int y);
 
 // The VPLs' reflected radiance at x toward the viewer:
 //   rho(x)/pi * sum_k I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)   (core/vpl.h),
