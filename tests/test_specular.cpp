@@ -446,14 +446,10 @@ TEST(Specular, JitterLeavesTheMirrorsUnlit) {
   // The pixels inside a mirror: every sub-pixel ray of the pixel (4 x 4) hits a mirror.
   const auto inside_mirror = [&](int x, int y) {
     for (int j = 0; j < 16; ++j) {
-      const float u = (static_cast<float>(x) + (static_cast<float>(j % 4) + 0.5f) / 4.0f) /
-                      static_cast<float>(view.width);
-      const float v = (static_cast<float>(y) + (static_cast<float>(j / 4) + 0.5f) / 4.0f) /
-                      static_cast<float>(view.height);
-      const glm::vec4 far =
-          view.inverse_view_projection * glm::vec4(2.0f * u - 1.0f, 1.0f - 2.0f * v, 1.0f, 1.0f);
-      const glm::vec3 d = glm::normalize(glm::vec3(far) / far.w - view.eye);
-      const auto hit = rays.intersect(view.eye, d, view.znear, 2.0f * view.zfar);
+      const CameraRay ray =
+          image_point_ray(view, static_cast<float>(x) + (static_cast<float>(j % 4) + 0.5f) / 4.0f,
+                          static_cast<float>(y) + (static_cast<float>(j / 4) + 0.5f) / 4.0f);
+      const auto hit = rays.intersect(ray.origin, ray.direction, view.znear, 2.0f * view.zfar);
       if (!hit || !s.material_of(hit->triangle).specular) return false;
     }
     return true;
