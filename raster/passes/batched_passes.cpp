@@ -116,14 +116,7 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
                                 const std::function<int(const Vpl&)>& set_of,
                                 const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer,
                                 const std::function<bool(std::size_t)>& after) {
-  // Mirrored VPLs after the others: a batch that holds one draws the scene twice per face and
-  // without the shadow hierarchy (raster/shadow/shadow_atlas.h), so they share batches.
-  std::vector<const Vpl*> order;
-  order.reserve(vpls.size());
-  for (const Vpl* v : vpls)
-    if (v->mirror < 0) order.push_back(v);
-  for (const Vpl* v : vpls)
-    if (v->mirror >= 0) order.push_back(v);
+  const std::vector<const Vpl*> order = ShadowAtlas::batch_order(vpls);
   std::vector<Entry> batch;
   int blocks = 0;
   std::vector<glm::vec3> directions; // the batch's distinct directions
@@ -150,8 +143,8 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
       }
       batch.push_back({&vpl, into.interleaved ? set_of(vpl) : 0});
     }
-    const bool mirrors_next = k + 1 < order.size() && vpl.mirror < 0 && order[k + 1]->mirror >= 0;
-    if (static_cast<int>(batch.size()) == atlas_.batch() || k + 1 == order.size() || mirrors_next) {
+    const bool apart = k + 1 < order.size() && !ShadowAtlas::same_batch(vpl, *order[k + 1]);
+    if (static_cast<int>(batch.size()) == atlas_.batch() || k + 1 == order.size() || apart) {
       send();
       if (after && !after(k + 1)) break;
     }

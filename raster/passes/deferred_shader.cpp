@@ -104,13 +104,12 @@ int DeferredShader::capacity(const GladGLContext& api, int wanted) {
 }
 
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch,
-                               bool planes)
+                               bool planes, const std::vector<MirrorPolygon>& mirrors)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch), planes_(planes),
-      mirrors_(scene.has_specular() ? find_mirrors(scene) : std::vector<MirrorPolygon>{}),
       program_(api, "deferred vpl",
                shaders::batched_source(shaders::deferred_vpl_vertex, batch,
-                                       mirror_define(!mirrors_.empty())),
-               fragment_source(batch, planes, !mirrors_.empty())),
+                                       mirror_define(!mirrors.empty())),
+               fragment_source(batch, planes, !mirrors.empty())),
       first_(program_.uniform("u_first")), tile_origin_(program_.uniform("u_tile_origin")),
       pixel_(program_.uniform("u_pixel")), size_(program_.uniform("u_size")),
       shadow_res_(program_.uniform("u_shadow_res")),
@@ -133,10 +132,12 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   api.Uniform1f(program_.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
   api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * diagonal_);
   api.Uniform1f(program_.uniform("u_offset_texels"), normal_offset_texels(planes));
-  if (!mirrors_.empty()) {
-    mirror_corners_ = corner_texture(api, mirrors_);
-    api.Uniform1i(program_.uniform("u_mirror_corners"), mirror_unit);
-  }
+  if (mirrors.empty()) return;
+  mirror_corners_ = corner_texture(api, mirrors);
+  api.Uniform1i(program_.uniform("u_mirror_corners"), mirror_unit);
+  for (const MirrorPolygon& m : mirrors)
+    mirror_triangles_.push_back(
+        static_cast<int>(std::min(m.triangles.size() / 3, MirrorPolygon::max_triangles)));
 }
 
 void DeferredShader::upload(const AtlasVpl* vpls, int n) {
@@ -145,10 +146,8 @@ void DeferredShader::upload(const AtlasVpl* vpls, int n) {
     const Vpl& vpl = *vpls[s].vpl;
     const float dmin2 = clamp_distance2(vpl, clamp_ * diagonal_);
     const auto mirror = static_cast<std::size_t>(vpl.mirror);
-    const int triangles = vpl.mirror >= 0 && mirror < mirrors_.size()
-                              ? static_cast<int>(std::min(mirrors_[mirror].triangles.size() / 3,
-                                                          MirrorPolygon::max_triangles))
-                              : 0;
+    const int triangles =
+        vpl.mirror >= 0 && mirror < mirror_triangles_.size() ? mirror_triangles_[mirror] : 0;
     write_vpl(vpl_data_.data() + kFloatsPerVpl * static_cast<std::size_t>(s), vpls[s], dmin2,
               triangles);
   }

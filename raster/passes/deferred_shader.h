@@ -6,7 +6,7 @@
 // ShadowAtlas or an OrthoAtlas. The cost of a batch is pixels x VPLs, whatever the number of
 // triangles, and a pixel is lit once even where two faces coincide (duplicated faces, back-to-back
 // walls), which the forward passes light once per face that passes the depth test.
-#include "core/mirror_polygon.h"
+#include "core/mirrors.h"
 #include "core/scene.h"
 #include "core/vpl.h"
 #include "raster/context/shader_program.h"
@@ -56,7 +56,9 @@ public:
   // Up to `batch` VPLs per upload.
   // planes: the occluder planes' lookup (raster/glsl/cube_glsl.h) compiled in; every draw's
   // ShadowLookup must then carry gradients. Without, gradients are not read.
-  DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch, bool planes);
+  DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch, bool planes)
+      : DeferredShader(api, scene, clamp, batch, planes,
+                       scene.has_specular() ? find_mirrors(scene) : std::vector<MirrorPolygon>{}) {}
 
   // The largest batch (<= wanted) this GL's uniform blocks hold.
   static int capacity(const GladGLContext& api, int wanted);
@@ -70,11 +72,16 @@ public:
   int batch() const { return batch_; }
 
 private:
+  // `mirrors`: the scene's mirror polygons (find_mirrors), their corners uploaded to a texture.
+  DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch, bool planes,
+                 const std::vector<MirrorPolygon>& mirrors);
+
   const GladGLContext* api_;
   float diagonal_, clamp_;
   int batch_;
   bool planes_;
-  std::vector<MirrorPolygon> mirrors_; // core/mirrors.h's, for the mirrored VPLs' pyramids
+  // Per mirror polygon (core/mirrors.h) the triangles its pyramid test reads (<= max_triangles).
+  std::vector<int> mirror_triangles_;
   ShaderProgram program_;
   GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
       apply_albedo_;

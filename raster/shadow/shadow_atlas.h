@@ -26,6 +26,7 @@
 #include "raster/scene/material_glsl.h"
 #include "raster/shadow/shadow_lod.h"
 
+#include <algorithm>
 #include <array>
 #include <glm/glm.hpp>
 #include <memory>
@@ -54,6 +55,14 @@ public:
   }
   // Blocks a VPL takes: 1 for a surface VPL's hemisphere, 2 for a whole cube.
   static int blocks_for(const Vpl& vpl) { return vpl.kind == VplKind::Surface ? 1 : 2; }
+  // A batch that holds a mirrored VPL draws the whole scene twice per face, without the
+  // hierarchy (render below), so mirrored VPLs are batched apart: `vpls` in the order to batch
+  // them, the mirrored ones last (else in their order), and whether b may follow a in a batch.
+  static std::vector<const Vpl*> batch_order(std::vector<const Vpl*> vpls) {
+    std::stable_partition(vpls.begin(), vpls.end(), [](const Vpl* v) { return v->mirror < 0; });
+    return vpls;
+  }
+  static bool same_batch(const Vpl& a, const Vpl& b) { return (a.mirror < 0) == (b.mirror < 0); }
 
   // Clears the atlas and draws the cubes of vpls[0..n) (n <= batch(), their blocks_for summing to
   // at most blocks(); no directional VPLs). A mirrored VPL (core/mirrors.h; the scene's

@@ -127,24 +127,20 @@ void ShadowCache::store(std::uint32_t slot, const std::vector<Vpl>& vpls, const 
     }
     batch.clear();
   };
-  // Mirrored VPLs in batches of their own (their cubes draw the scene twice, without the
-  // hierarchy: raster/shadow/shadow_atlas.h).
+  std::vector<const Vpl*> all;
+  for (const Vpl& v : vpls) all.push_back(&v);
   int blocks_used = 0;
-  for (const bool mirrored : {false, true}) {
-    for (const Vpl& v : vpls) {
-      if ((v.mirror >= 0) != mirrored) continue;
-      const int need = ShadowAtlas::blocks_for(v);
-      if (static_cast<int>(batch.size()) == atlas_.batch() ||
-          blocks_used + need > atlas_.blocks()) {
-        flush();
-        blocks_used = 0;
-      }
-      batch.push_back(&v);
-      blocks_used += need;
+  for (const Vpl* v : ShadowAtlas::batch_order(std::move(all))) {
+    const int need = ShadowAtlas::blocks_for(*v);
+    if (static_cast<int>(batch.size()) == atlas_.batch() || blocks_used + need > atlas_.blocks() ||
+        (!batch.empty() && !ShadowAtlas::same_batch(*batch.back(), *v))) {
+      flush();
+      blocks_used = 0;
     }
-    flush();
-    blocks_used = 0;
+    batch.push_back(v);
+    blocks_used += need;
   }
+  flush();
 }
 
 std::vector<ShadowCache::Page> ShadowCache::pages() const {
