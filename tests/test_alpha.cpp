@@ -12,6 +12,7 @@
 #include "walk/bias_compensation.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
+#include "walk/ray_scene.h"
 #include "walk/vpl_tracer.h"
 
 #include <cmath>
@@ -19,6 +20,7 @@
 #include <gtest/gtest.h>
 #include <memory>
 #include <numbers>
+#include <vector>
 
 namespace irad {
 namespace {
@@ -333,6 +335,42 @@ TEST(Alpha, BlendTransmitsOneMinusCoverage) {
   // An opaque occluder leaves the umbra black (no light reaches it by any path): exactly 0.
   EXPECT_EQ(rt0, 0.0);
   EXPECT_EQ(pt0, 0.0);
+}
+
+// RayScene::occluded over many segments from one origin (packets of 8, the light rows' and
+// rt-vpl's shadow rays) answers as the single-ray query does, the alpha filters included: Blend
+// (a = 0.25, hashed per ray), a Mask texture cut-out and no alpha at all, with two salts.
+TEST(Alpha, PacketsAnswerAsSingleRays) {
+  const Scene scenes[] = {blend_occluder(0.25f), occluded_light(Cut::Texture),
+                          occluded_light(Cut::Removed)};
+  for (const Scene& s : scenes) {
+    const RayScene rays(s);
+    std::size_t blocked_count = 0, total = 0;
+    for (int i = 0; i < 16; ++i) {
+      const glm::vec3 origin(-0.9f + 0.12f * float(i), 0.05f * float(i % 5) - 0.1f, 0.0f);
+      std::vector<glm::vec3> directions;
+      std::vector<float> tmax;
+      for (int j = 0; j < 37; ++j) { // not a multiple of the packet: a partial last packet
+        const glm::vec3 target(-0.45f + 0.025f * float(j), 0.3f * std::sin(float(j)), 1.0f);
+        directions.push_back(glm::normalize(target - origin));
+        tmax.push_back(glm::length(target - origin) - 1e-3f);
+      }
+      for (const std::uint64_t salt : {0ull, 12345ull}) {
+        bool blocked[37] = {};
+        rays.occluded(origin, directions.data(), tmax.data(), directions.size(), 1e-4f, blocked,
+                      salt);
+        for (std::size_t j = 0; j < directions.size(); ++j) {
+          const bool single = rays.occluded(origin, directions[j], 1e-4f, tmax[j], salt);
+          ASSERT_EQ(blocked[j], single) << s.materials.size() << " " << i << " " << j;
+          blocked_count += single;
+          ++total;
+        }
+      }
+    }
+    std::printf("packets: %zu of %zu segments blocked\n", blocked_count, total);
+    EXPECT_GT(blocked_count, 0u); // each scene blocks some segments and not others
+    EXPECT_LT(blocked_count, total);
+  }
 }
 
 // Blend decisions hash the ray, never a shared counter: the same images at 1 and 2 threads.

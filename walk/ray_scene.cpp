@@ -248,4 +248,32 @@ bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, flo
   return ray.tfar < 0.0f; // Embree sets tfar = -inf on a hit
 }
 
+void RayScene::occluded(const glm::vec3& origin, const glm::vec3* directions, const float* tmax,
+                        std::size_t n, float tmin, bool* blocked, std::uint64_t salt) const {
+  constexpr std::size_t kLanes = 16;
+  SaltedContext context;
+  rtcInitIntersectContext(&context.base);
+  context.salt = salt;
+  for (std::size_t first = 0; first < n; first += kLanes) {
+    const std::size_t lanes = std::min(kLanes, n - first);
+    RTCRay16 packet{};
+    alignas(64) int valid[kLanes] = {};
+    for (std::size_t i = 0; i < lanes; ++i) {
+      const glm::vec3& d = directions[first + i];
+      packet.org_x[i] = origin.x;
+      packet.org_y[i] = origin.y;
+      packet.org_z[i] = origin.z;
+      packet.dir_x[i] = d.x;
+      packet.dir_y[i] = d.y;
+      packet.dir_z[i] = d.z;
+      packet.tnear[i] = tmin;
+      packet.tfar[i] = tmax[first + i];
+      packet.mask[i] = 0xffffffffu;
+      valid[i] = -1;
+    }
+    rtcOccluded16(valid, impl_->scene, &context.base, &packet);
+    for (std::size_t i = 0; i < lanes; ++i) blocked[first + i] = packet.tfar[i] < 0.0f;
+  }
+}
+
 } // namespace irad

@@ -2,6 +2,7 @@
 
 #include "walk/mirror_walk.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -56,31 +57,79 @@ glm::vec3 gather_directional(const RayScene& rays, const ShadingPoint& x, const 
   return v.intensity * cos_x;
 }
 
-glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl& v,
-                         const std::vector<MirrorPolygon>& mirrors, float dmin, float eps) {
-  if (v.kind == VplKind::Directional) return gather_directional(rays, x, v, eps);
+namespace {
+
+// A point or surface VPL's term without V, and the shadow ray that decides V: from x toward the
+// VPL, t in (eps, tmax). Zero (and no ray needed) where the VPL does not reach x.
+struct Unshadowed {
+  glm::vec3 term{0.0f};
+  glm::vec3 toward{0.0f}; // unit, x -> VPL
+  float tmax = 0.0f;
+};
+
+Unshadowed unshadowed(const ShadingPoint& x, const Vpl& v, float dmin, float eps) {
   const glm::vec3 d = x.position - v.position;
   const float dist2 = glm::dot(d, d);
-  if (!(dist2 > eps * eps)) return glm::vec3(0.0f);
+  if (!(dist2 > eps * eps)) return {};
   const float dist = std::sqrt(dist2);
   const glm::vec3 w = d / dist;
   const float cos_x = -glm::dot(x.normal, w);
-  if (cos_x <= 0.0f) return glm::vec3(0.0f);
+  if (cos_x <= 0.0f) return {};
   const float e = emission_profile(v, glm::dot(v.normal, w));
-  if (e <= 0.0f) return glm::vec3(0.0f);
+  if (e <= 0.0f) return {};
+  return {v.intensity * (e * cos_x / glm::max(dist2, clamp_distance2(v, dmin))), -w, dist - eps};
+}
+
+} // namespace
+
+glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl& v,
+                         const std::vector<MirrorPolygon>& mirrors, float dmin, float eps) {
+  if (v.kind == VplKind::Directional) return gather_directional(rays, x, v, eps);
+  const Unshadowed u = unshadowed(x, v, dmin, eps);
+  if (u.term == glm::vec3(0.0f)) return u.term;
   // Shadow ray from the receiver toward the VPL, stopping short of both ends; a mirrored VPL
   // (core/mirrors.h) by way of its mirror polygon.
   if (v.mirror >= 0
           ? !mirrored_visible(rays, v, mirrors[static_cast<std::size_t>(v.mirror)], x.position, eps)
-          : rays.occluded(x.position, -w, eps, dist - eps))
+          : rays.occluded(x.position, u.toward, eps, u.tmax))
     return glm::vec3(0.0f);
-  return v.intensity * (e * cos_x / glm::max(dist2, clamp_distance2(v, dmin)));
+  return u.term;
+}
+
+void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls,
+                          std::size_t first, std::size_t n, float dmin, float eps, glm::vec3* out) {
+  glm::vec3 toward[kVplChunk] = {};
+  float tmax[kVplChunk] = {};
+  bool blocked[kVplChunk];
+  std::size_t index[kVplChunk];
+  std::size_t rays_n = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vpl& v = vpls.vpls[first + i];
+    if (v.kind == VplKind::Directional || v.mirror >= 0) { // their own visibility tests
+      out[i] = vpl_irradiance(rays, x, v, vpls.mirrors, dmin, eps);
+      continue;
+    }
+    const Unshadowed u = unshadowed(x, v, dmin, eps);
+    out[i] = u.term;
+    if (u.term == glm::vec3(0.0f)) continue;
+    toward[rays_n] = u.toward;
+    tmax[rays_n] = u.tmax;
+    index[rays_n++] = i;
+  }
+  rays.occluded(x.position, toward, tmax, rays_n, eps, blocked);
+  for (std::size_t k = 0; k < rays_n; ++k)
+    if (blocked[k]) out[index[k]] = glm::vec3(0.0f);
 }
 
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps) {
+  glm::vec3 terms[kVplChunk];
   glm::vec3 sum(0.0f);
-  for (const Vpl& v : vpls.vpls) sum += vpl_irradiance(rays, x, v, vpls.mirrors, dmin, eps);
+  for (std::size_t first = 0; first < vpls.vpls.size(); first += kVplChunk) {
+    const std::size_t n = std::min(kVplChunk, vpls.vpls.size() - first);
+    vpl_irradiance_chunk(rays, x, vpls, first, n, dmin, eps, terms);
+    for (std::size_t i = 0; i < n; ++i) sum += terms[i];
+  }
   return sum * x.albedo * std::numbers::inv_pi_v<float>;
 }
 

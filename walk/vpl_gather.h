@@ -6,6 +6,7 @@
 #include "core/vpl.h"
 #include "walk/ray_scene.h"
 
+#include <cstddef>
 #include <glm/glm.hpp>
 #include <optional>
 #include <vector>
@@ -41,6 +42,13 @@ glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet&
 // (for a directional VPL, gather_directional's); mirrors: the set's mirror polygons.
 glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl& v,
                          const std::vector<MirrorPolygon>& mirrors, float dmin, float eps);
+
+// vpl_irradiance of vpls.vpls[first, first + n) at x into out[0, n), n <= kVplChunk: the same
+// terms, the plain VPLs' shadow rays traced together (RayScene's packets; mirrored and
+// directional VPLs test their own visibility). gather_vpls and the light rows go through it.
+inline constexpr std::size_t kVplChunk = 64;
+void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls,
+                          std::size_t first, std::size_t n, float dmin, float eps, glm::vec3* out);
 
 // E_k of core/vpl.h: the VPL's emission profile toward a direction with cosine cos_y (1 for a
 // directional VPL, which gather_directional() evaluates).
