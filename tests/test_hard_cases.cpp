@@ -15,6 +15,7 @@
 #include "tests/test_rooms.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
+#include "walk/thin_walls.h"
 #include "walk/vpl_tracer.h"
 
 #include <algorithm>
@@ -327,7 +328,8 @@ struct Leak {
   std::array<double, 6> wall_max{}, wall_reach{};
 };
 
-Leak measure_leak(const Image& image, const RayScene& rays, const View& view, float k = 1.0f) {
+Leak measure_leak(const Image& image, const RayScene& rays, const View& view, float k = 1.0f,
+                  float wall_b = 2.002f) {
   Leak leak;
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
@@ -346,7 +348,7 @@ Leak measure_leak(const Image& image, const RayScene& rays, const View& view, fl
         continue;
       }
       const std::size_t w = quad - 6;
-      const double reach = double((ray.origin + hit->t * dir).x) / k - 2.002;
+      const double reach = double((ray.origin + hit->t * dir).x) / k - wall_b;
       leak.reach = std::max(leak.reach, reach);
       ++leak.wall_pixels[w];
       leak.wall_max[w] = std::max(leak.wall_max[w], v);
@@ -475,9 +477,12 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
   // 6.75e-5 (26 pixels, max 0.029 x, up to 2 cm), at every scale; issue 14 asks for below 1e-4.
   // Before the occluder planes (raster/glsl/cube_glsl.h) 2.70e-4 and 3.39e-4: one distance per
   // texel, at its centre, while across the texel the distance of a wall seen at theta varies by
-  // dist * (2 / R) * tan(theta), far more than 2 mm; `--shadow-planes off` still gives 2.70e-4
-  // (the switch works; it is bounded from below). Bounds ~1.5-1.8x the measurements.
-  const double bound[] = {5e-5, 5e-5, 1e-4, 4e-4};
+  // dist * (2 / R) * tan(theta), far more than 2 mm. `--shadow-planes off` gives 8.25e-4 (the
+  // switch works; it is bounded from below): without the planes a lookup trusts the receiver's
+  // own plane within 12 footprints (cube_glsl.h in_front_of_receiver), which carries light along
+  // the floor under a wall this thin (2.70e-4 with the centre's distance alone); `auto` never
+  // turns them off for it. Bounds ~1.5-1.8x the measurements.
+  const double bound[] = {5e-5, 5e-5, 1e-4, 1.3e-3};
   EXPECT_GT(modes[3].ratio[0], 1.5e-4);
   for (std::size_t i = 0; i < modes.size(); ++i) {
     EXPECT_LT(modes[i].ratio[0], bound[i]) << modes[i].name;
@@ -487,6 +492,46 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
       std::printf("%s: leak at %gx / at 1x = %.6f\n", modes[i].name, scales[j],
                   modes[i].ratio[j] / modes[i].ratio[0]);
       EXPECT_NEAR(modes[i].ratio[j] / modes[i].ratio[0], 1.0, 0.01) << modes[i].name << scales[j];
+    }
+  }
+}
+
+// Without the occluder planes a shadow lookup trusts the receiver's own plane (raster/glsl/
+// cube_glsl.h in_front_of_receiver): a texel whose centre ray meets a surface nearer than the
+// receiver leaves it lit when that surface lies on the receiver's plane within 3 texels'
+// footprints of it. That lets light along a plane under a wall thinner than those footprints,
+// which is why thinner walls get the planes (raster_renderer.h planes_needed, walls below
+// 4/R of the diagonal). The rooms with a double wall 1.25x that reach, the planes off as `auto`
+// chooses them, every mode that reads them, at R = 64 and 128.
+TEST(HardCases, AWallJustPastThePlanesReachLeaksNothingWithoutThem) {
+  Log log = quiet_log();
+  for (const int resolution : {64, 128}) {
+    // The gap as a fraction of the diagonal, which itself grows with the gap: two steps suffice.
+    float gap = 0.0f;
+    for (int i = 0; i < 3; ++i)
+      gap = 1.25f * planes_reach(resolution) * std::sqrt((4.0f + gap) * (4.0f + gap) + 8.0f);
+    const TwoRooms rooms = two_rooms(1.0f, gap);
+    const Scene& s = rooms.scene;
+    const RayScene rays(s);
+    ASSERT_FALSE(planes_needed(thinnest_wall(s, rays, planes_reach(resolution)), resolution));
+    const VplSet set = quasi_random_walk(s, rays, {128, 64}, log);
+    const View view_b = make_view(rooms.in_b, s.bounds, 64, 64);
+    const View view_a = make_view(rooms.in_a, s.bounds, 32, 32);
+    for (const int batch : {16, 1}) {
+      RasterOptions o;
+      o.shadow_resolution = resolution;
+      o.batch = batch;
+      o.shadow_lod.planes = ShadowPlanes::Off;
+      RasterRenderer raster(s, o);
+      const Image b = raster.render(view_b, set);
+      const double ratio = mean_rgb(b) / mean_rgb(raster.render(view_a, set));
+      const Leak leak = measure_leak(b, rays, view_b, 1.0f, rooms.wall_b);
+      std::printf("wall %.3f m, R = %d, batch %d: leak %.3g of room A's mean, %zu lit pixels, up "
+                  "to %.3f m from the wall\n",
+                  gap, resolution, batch, ratio, leak.pixels, leak.reach);
+      // Measured: 0 (no lit pixel) in every case; 1.02x the reach 5.9e-7 at R = 128 (14 pixels);
+      // without the 12-footprint limit 4e-6 (1165 pixels). Issue 14 asks for below 1e-4.
+      EXPECT_LT(ratio, 1e-6) << resolution << " batch " << batch;
     }
   }
 }

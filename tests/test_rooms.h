@@ -25,26 +25,30 @@ struct TwoRooms {
   Scene scene;
   Camera in_b;
   Camera in_a;
+  float wall_b = 2.002f; // x of room B's wall on the A side, before scaling
 };
 
-// Two closed rooms side by side, 2 m each, separated by a 2 mm double wall; the light is in room
-// A (x in [0, 2]) only, the cameras look at the shared wall from inside each room. At k times the
-// size (every coordinate, the cameras with it; radiance is unchanged).
-inline TwoRooms two_rooms(float k = 1.0f) {
+// Two closed rooms side by side, 2 m each, separated by a double wall `gap` thick (2 mm by
+// default); the light is in room A (x in [0, 2]) only, the cameras look at the shared wall from
+// inside each room. At k times the size (every coordinate, the cameras with it; radiance is
+// unchanged).
+inline TwoRooms two_rooms(float k = 1.0f, float gap = 0.002f) {
   TwoRooms r;
   Scene& s = r.scene;
   s.source = "two_rooms";
   const std::uint32_t wall = add_material(s, glm::vec3(0.6f));
   const std::uint32_t light = add_material(s, glm::vec3(0.6f), glm::vec3(5.0f));
+  r.wall_b = 2.0f + gap;
   // Room A: quads 0..5, room B: quads 6..11.
   add_room(s, k * glm::vec3(0.0f), k * glm::vec3(2.0f), wall);
-  add_room(s, k * glm::vec3(2.002f, 0.0f, 0.0f), k * glm::vec3(4.002f, 2.0f, 2.0f), wall);
+  add_room(s, k * glm::vec3(r.wall_b, 0.0f, 0.0f), k * glm::vec3(r.wall_b + 2.0f, 2.0f, 2.0f),
+           wall);
   // Ceiling light of room A, facing down, 1 mm below the ceiling.
   add_quad(s, k * glm::vec3(0.7f, 1.999f, 0.7f), k * glm::vec3(1.3f, 1.999f, 0.7f),
            k * glm::vec3(1.3f, 1.999f, 1.3f), k * glm::vec3(0.7f, 1.999f, 1.3f), light);
   finish(s);
-  r.in_b = look_at(k * glm::vec3(3.95f, 1.05f, 1.03f), k * glm::vec3(2.002f, 0.9f, 1.0f), {0, 1, 0},
-                   1.5f);
+  r.in_b = look_at(k * glm::vec3(r.wall_b + 1.948f, 1.05f, 1.03f),
+                   k * glm::vec3(r.wall_b, 0.9f, 1.0f), {0, 1, 0}, 1.5f);
   r.in_a =
       look_at(k * glm::vec3(0.05f, 1.05f, 1.03f), k * glm::vec3(2.0f, 0.9f, 1.0f), {0, 1, 0}, 1.5f);
   return r;

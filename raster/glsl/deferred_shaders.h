@@ -114,18 +114,21 @@ ivec2 face_offset(int f) {
 
 #pragma irad_cube_lookup
 // Whether the VPL's cube hides the receiver at distance r (bias included) in direction q (cube
-// frame; raster/glsl/cube_glsl.h): the atlas holds distances / far, the gradients beside it. The
-// gradient only where the centre's distance lets the receiver through, the neighbours only where
-// the plane alone would shadow.
-bool shadowed(vec3 q, float r) {
+// frame; raster/glsl/cube_glsl.h), nq the receiver's normal in that frame: the atlas holds
+// distances / far, the gradients beside it. Without them the centre's distance and the receiver's
+// plane; with them the gradient only where the centre's distance lets the receiver through, the
+// neighbours only where the plane alone would shadow.
+bool shadowed(vec3 q, float r, vec3 nq) {
   vec2 st;
   int face = cube_face(q, st);
   vec2 at = (st * 0.5 + 0.5) * float(u_shadow_res);
   ivec2 texel = clamp(ivec2(floor(at)), ivec2(0), ivec2(u_shadow_res - 1));
   ivec2 origin = face_offset(face);
   float centre = texelFetch(u_shadow_atlas, texel + origin, 0).r * v_cone.w;
+  if (!u_planes)
+    return r > centre &&
+           in_front_of_receiver(q, nq, face, texel, float(u_shadow_res), centre, u_bias_constant);
   if (r > centre) return true;
-  if (!u_planes) return false;
   vec2 gradient = texelFetch(u_shadow_gradient, texel + origin, 0).rg * v_cone.w;
   if (!(r > plane_distance(centre, gradient, at))) return false;
   ivec2 step = toward(at), nx = texel + ivec2(step.x, 0), ny = texel + ivec2(0, step.y);
@@ -187,7 +190,7 @@ vec3 vpl_light(vec3 x, vec3 n) {
   // Normal-offset lookup (raster/glsl/cube_glsl.h).
   vec3 dp = lookup_offset(x, n, dist, cos_x, u_bias_texel, v_vpl_position);
   mat3 frame = mat3(v_frame[0].xyz, v_frame[1].xyz, v_frame[2].xyz);
-  if (shadowed(frame * dp, length(dp) - u_bias_constant)) return vec3(0.0);
+  if (shadowed(frame * dp, length(dp) - u_bias_constant, frame * n)) return vec3(0.0);
   float g = e * cos_x / max(dist2, v_cone.z);
   return v_vpl_intensity * (g * INV_PI);
 }

@@ -65,22 +65,27 @@ uniform samplerCube u_shadow;
 uniform mat3 u_shadow_frame;     // world -> the cube's frame
 uniform float u_bias_constant;   // scale-relative
 uniform float u_bias_texel;      // angular size of a shadow texel
+uniform bool u_planes;           // the occluder planes' test (else the receiver's plane)
 uniform bool u_apply_albedo;     // false: irradiance / pi only (interleaved mode multiplies later)
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
 #pragma irad_cube_lookup
-// Whether the cube hides the receiver at distance r (bias included) in direction q (cube frame):
-// it holds (distance, gradient) per texel (raster/glsl/cube_glsl.h); R = 2 / u_bias_texel texels
-// per face edge. The neighbours only where the plane alone would shadow.
-bool shadowed(vec3 q, float r) {
+// Whether the cube hides the receiver at distance r (bias included) in direction q (cube frame),
+// nq the receiver's normal in that frame: it holds (distance, gradient) per texel
+// (raster/glsl/cube_glsl.h); R = 2 / u_bias_texel texels per face edge. Without the occluder
+// planes (u_planes false: the batched passes' test) the centre's distance and the receiver's
+// plane; with them the neighbours only where the plane alone would shadow.
+bool shadowed(vec3 q, float r, vec3 nq) {
   vec3 s = texture(u_shadow, q).rgb;
-  if (r > s.r) return true;
   vec2 st;
   int face = cube_face(q, st);
   float res = 2.0 / u_bias_texel;
   vec2 at = (st * 0.5 + 0.5) * res;
-  if (!(r > plane_distance(s.r, s.gb, at))) return false;
   vec2 texel = clamp(floor(at), vec2(0.0), vec2(res - 1.0));
+  if (!u_planes)
+    return r > s.r && in_front_of_receiver(q, nq, face, ivec2(texel), res, s.r, u_bias_constant);
+  if (r > s.r) return true;
+  if (!(r > plane_distance(s.r, s.gb, at))) return false;
   vec2 step = vec2(toward(at));
   vec2 nx = texel + vec2(step.x, 0.0), ny = texel + vec2(0.0, step.y);
   float next_x = nx.x >= 0.0 && nx.x < res
@@ -115,7 +120,7 @@ void main() {
   if (e <= 0.0) discard;
   // Normal-offset lookup (raster/glsl/cube_glsl.h).
   vec3 dp = lookup_offset(v_position, n, dist, cos_x, u_bias_texel, u_vpl_position);
-  if (shadowed(u_shadow_frame * dp, length(dp) - u_bias_constant)) discard;
+  if (shadowed(u_shadow_frame * dp, length(dp) - u_bias_constant, u_shadow_frame * n)) discard;
   vec3 albedo = u_apply_albedo ? material_albedo() : vec3(1.0);
   float g = e * cos_x / max(dist2, u_dmin2);
   o_color = vec4(u_vpl_intensity * (g * INV_PI) * albedo, 0.0);
