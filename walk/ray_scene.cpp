@@ -250,14 +250,14 @@ bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, flo
 
 void RayScene::occluded(const glm::vec3& origin, const glm::vec3* directions, const float* tmax,
                         std::size_t n, float tmin, bool* blocked, std::uint64_t salt) const {
-  constexpr std::size_t kLanes = 16;
+  constexpr std::size_t kLanes = 8;
   SaltedContext context;
   rtcInitIntersectContext(&context.base);
   context.salt = salt;
   for (std::size_t first = 0; first < n; first += kLanes) {
     const std::size_t lanes = std::min(kLanes, n - first);
-    RTCRay16 packet{};
-    alignas(64) int valid[kLanes] = {};
+    RTCRay8 packet{};
+    alignas(32) int valid[kLanes] = {};
     for (std::size_t i = 0; i < lanes; ++i) {
       const glm::vec3& d = directions[first + i];
       packet.org_x[i] = origin.x;
@@ -271,7 +271,7 @@ void RayScene::occluded(const glm::vec3& origin, const glm::vec3* directions, co
       packet.mask[i] = 0xffffffffu;
       valid[i] = -1;
     }
-    rtcOccluded16(valid, impl_->scene, &context.base, &packet);
+    rtcOccluded8(valid, impl_->scene, &context.base, &packet);
     for (std::size_t i = 0; i < lanes; ++i) blocked[first + i] = packet.tfar[i] < 0.0f;
   }
 }
