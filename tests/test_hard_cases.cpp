@@ -477,12 +477,12 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
   // 6.75e-5 (26 pixels, max 0.029 x, up to 2 cm), at every scale; issue 14 asks for below 1e-4.
   // Before the occluder planes (raster/glsl/cube_glsl.h) 2.70e-4 and 3.39e-4: one distance per
   // texel, at its centre, while across the texel the distance of a wall seen at theta varies by
-  // dist * (2 / R) * tan(theta), far more than 2 mm. `--shadow-planes off` gives 8.25e-4 (the
+  // dist * (2 / R) * tan(theta), far more than 2 mm. `--shadow-planes off` gives 5.1e-3 (the
   // switch works; it is bounded from below): without the planes a lookup trusts the receiver's
-  // own plane within 12 footprints (cube_glsl.h in_front_of_receiver), which carries light along
+  // own plane and neighbourhood (cube_glsl.h in_front_of_receiver), which carries light along
   // the floor under a wall this thin (2.70e-4 with the centre's distance alone); `auto` never
   // turns them off for it. Bounds ~1.5-1.8x the measurements.
-  const double bound[] = {5e-5, 5e-5, 1e-4, 1.3e-3};
+  const double bound[] = {5e-5, 5e-5, 1e-4, 8e-3};
   EXPECT_GT(modes[3].ratio[0], 1.5e-4);
   for (std::size_t i = 0; i < modes.size(); ++i) {
     EXPECT_LT(modes[i].ratio[0], bound[i]) << modes[i].name;
@@ -529,8 +529,9 @@ TEST(HardCases, AWallJustPastThePlanesReachLeaksNothingWithoutThem) {
       std::printf("wall %.3f m, R = %d, batch %d: leak %.3g of room A's mean, %zu lit pixels, up "
                   "to %.3f m from the wall\n",
                   gap, resolution, batch, ratio, leak.pixels, leak.reach);
-      // Measured: 0 (no lit pixel) in every case; 1.02x the reach 5.9e-7 at R = 128 (14 pixels);
-      // without the 12-footprint limit 4e-6 (1165 pixels). Issue 14 asks for below 1e-4.
+      // Measured: 0 (no lit pixel) in every case (1.02x the reach: 5.9e-7 at R = 128); with twice
+      // the reach of in_front_of_receiver's plane crossing 1.7e-6 (37 pixels), with no limit on it
+      // 4e-6 (1165 pixels). Issue 14 asks for below 1e-4.
       EXPECT_LT(ratio, 1e-6) << resolution << " batch " << batch;
     }
   }

@@ -75,28 +75,40 @@ float plane_distance(float centre, vec2 gradient, vec2 at) {
 }
 
 // The receiver-plane test of a lookup without the occluder planes (the centre's distance
-// alone): whether the surface that the centre ray of the texel `texel` of face `face` (R = res
-// texels per edge) met at distance `centre` lies in front of the receiver's own plane, the plane
-// of normal nq through the moved receiver q (cube frame, relative to the VPL). A flat receiver's
-// own surface lies behind that plane by the normal offset along any ray, so it never shadows
-// itself however grazing the angle (the centre's distance alone needs the offset to exceed the
-// texel's depth range there: half a texel and more; 0.75 of a texel kept the blocks' contact
-// shadows up to 20 % too bright: raster/passes/vpl_shader.h normal_offset_texels). Something
-// nearer than the plane along the centre ray still shadows; so does a centre ray that runs along
-// or away from the plane, or that meets it more than 12 texels' footprints (12 |q| / R) from q:
-// there the texel's surface need not be the receiver's own, and the plane would carry light
-// along itself under a wall standing on it. Walls thinner than 4 / R of the diagonal get the
-// occluder planes instead (raster_renderer.h planes_needed); tests/test_hard_cases measures
-// walls 1.02x and 1.25x that thick. On the Cornell box the 12 keeps most of the gain (4x4-block
-// relMSE against rt-vpl, the setting of normal_offset_texels: 6 footprints 3.8e-5, 12 1.65e-5,
-// 24 1.49e-5, no limit 1.48e-5, where walls 1.25x the reach leaked 4e-6 of the lit room).
+// alone), for a receiver that lies beyond the surface o which the centre ray of the texel
+// `texel` of face `face` (R = res texels per edge) met at distance `centre`: whether o shadows
+// it. q: the moved receiver, nq its normal (cube frame, relative to the VPL); f = 2 |q| / R, a
+// texel's footprint at the receiver. o does not shadow
+//   - where it lies within 2 f of q and less than f in front of the receiver's plane: the
+//     receiver's own neighbourhood, its own surface or the other face of a concave crease, which
+//     the centre ray meets where the lookup ray meets the receiver;
+//   - where it lies behind the receiver's plane, the plane crossing the centre ray within 6 f
+//     of q: the receiver's own surface, seen a little farther along the texel.
+// So a flat receiver never shadows itself, however grazing the angle, and creases do not shadow
+// their faces; the centre's distance alone needs the normal offset to exceed the texel's depth
+// range (0.75 of a texel kept the blocks' contact shadows up to 20 % too bright: raster/passes/
+// vpl_shader.h normal_offset_texels). Anything else nearer than the receiver shadows, as does o
+// when the plane runs along or away from the centre ray. Both exceptions would carry light under
+// a wall thinner than their reach that stands on the receiver's plane: walls thinner than 4 / R
+// of the diagonal get the occluder planes instead (raster_renderer.h planes_needed), and
+// tests/test_hard_cases measures walls 1.02x and 1.25x that thick (nothing passes; with a 12 f
+// reach 1.7e-6 of the lit room did). Measured on the Cornell box (256x256, R = 128, 4 rounds,
+// interleave 1, no compensation, 4x4-block relMSE against rt-vpl over the same VPLs): the
+// centre's distance alone with 0.75 texel's offset 2.6e-5 (7.1e-5 per pixel); the plane crossing
+// alone (0.2 texel, a 6 f reach) 1.48e-5; with the neighbourhood 3.6e-6 (1.1e-5 per pixel). With
+// a 12 f reach 2.4e-6, and there f / 2 in front 3.3e-6, 2 f 2.0e-6; within f around 2.5e-6,
+// 3 f 2.4e-6. (N = 1024 paths, every VPL, one round, the plane crossing alone: reach 3 f 3.8e-5,
+// 6 f 1.65e-5, 12 f 1.49e-5.)
 bool in_front_of_receiver(vec3 q, vec3 nq, int face, ivec2 texel, float res, float centre,
                           float bias) {
   vec3 c = normalize(face_direction(face, (vec2(texel) + 0.5) / res * 2.0 - 1.0));
+  float f = 2.0 * length(q) / res;
+  vec3 o = centre * c;
+  if (dot(nq, o - q) < f && distance(o, q) < 2.0 * f) return false;
   float den = dot(nq, c), num = dot(nq, q);
   if (den >= 0.0 || num >= 0.0) return true;
-  float e = num / den;
-  if (distance(e * c, q) > 12.0 * length(q) / res) return true;
+  float e = num / den; // the plane's distance along the centre ray
+  if (distance(e * c, q) > 6.0 * f) return true;
   return e > centre + bias;
 }
 
