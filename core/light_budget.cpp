@@ -30,13 +30,13 @@ std::size_t budget_clusters(std::size_t vpls, const LightBudget& budget) {
 // for 15-20 % more time; Cornell 512x512 R = 128 3.07e-4, 256 2.95e-4 for 20 % more; godot
 // 128x128 (1940) R = 64 3.1e-3, 128 2.5e-3 for 70 % more (its shadow passes draw finer levels
 // of detail). With rounds the mean's light-set error falls as 1/rounds while the shadow maps'
-// stays (a representative's map is as coarse in every round). Cornell 256x256, the mean's 4x4
-// relMSE (one batch of runs): 8 rounds R = 128 5.3e-5 in 11.6 s, R = 256 3.2e-5 in 18.4 s,
-// R = 512 2.7e-5 in 29 s (one round: 2.05e-4, so 8 rounds' noise is about 2.6e-5); 4 rounds
-// R = 128 7.1e-5 in 5.6 s, R = 256 4.9e-5 in 9.3 s (about level at equal time).
-int representative_shadow_resolution(int rule, int width, int height, std::uint32_t rounds) {
-  const int r = std::max(rule, std::min(128, std::max(width, height) / 2));
-  return rounds >= 8 ? std::min(2 * r, 1024) : r;
+// stays; until session 13 the faces doubled from 8 rounds on (Cornell 256x256, 8 rounds: R = 128
+// 5.3e-5 in 11.6 s, R = 256 3.2e-5 in 18.4 s). Since the lookups trust the receiver's plane
+// (raster/glsl/cube_glsl.h in_front_of_receiver) the maps' error at R = 128 is a fifth of what it
+// was, and doubling no longer pays: 8 rounds R = 128 2.97e-5 in 10.7 s, R = 256 2.80e-5 in
+// 15.9 s (pt: 3.4e-5 and 2.3e-5 at those times).
+int representative_shadow_resolution(int rule, int width, int height) {
+  return std::max(rule, std::min(128, std::max(width, height) / 2));
 }
 
 } // namespace irad

@@ -34,8 +34,7 @@ std::size_t budget_clusters(std::size_t vpls, const LightBudget& budget);
 
 // The shadow faces' resolution for cluster representatives in a width x height image, given the
 // raster's rule for every VPL (`rule`, raster/raster_renderer.h shadow_resolution_for): at least
-// half the image's larger side up to 128 texels, and from 8 rounds on (`--rounds`) twice that,
-// at most 1024 (the .cpp has the measurements).
-int representative_shadow_resolution(int rule, int width, int height, std::uint32_t rounds);
+// half the image's larger side up to 128 texels (the .cpp has the measurements).
+int representative_shadow_resolution(int rule, int width, int height);
 
 } // namespace irad

@@ -111,15 +111,13 @@ TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
 
 // The representatives' faces: half the image's larger side, at least the rule's, up to 128; twice
 // that from 8 rounds on, up to 1024.
-TEST(LightBudget, RepresentativeShadowsGrowWithRounds) {
-  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 1), 128);
-  EXPECT_EQ(representative_shadow_resolution(64, 128, 96, 1), 64);
-  EXPECT_EQ(representative_shadow_resolution(64, 48, 48, 1), 64);
-  EXPECT_EQ(representative_shadow_resolution(256, 1024, 768, 4), 256);
-  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 7), 128);
-  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 8), 256);
-  EXPECT_EQ(representative_shadow_resolution(64, 48, 48, 16), 128);
-  EXPECT_EQ(representative_shadow_resolution(1024, 8192, 4096, 8), 1024);
+TEST(LightBudget, RepresentativeShadowsFollowTheImage) {
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256), 128);
+  EXPECT_EQ(representative_shadow_resolution(64, 128, 96), 64);
+  EXPECT_EQ(representative_shadow_resolution(64, 48, 48), 64);
+  EXPECT_EQ(representative_shadow_resolution(256, 1024, 768), 256);
+  EXPECT_EQ(representative_shadow_resolution(64, 4096, 256), 128);
+  EXPECT_EQ(representative_shadow_resolution(1024, 8192, 4096), 1024);
 }
 
 // Representatives cast shadow faces of at least half the image's larger side up to 128 texels
