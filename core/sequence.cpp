@@ -31,12 +31,16 @@ Sequence::Sequence(SequenceKind kind, std::size_t dimensions, std::uint64_t seed
     : kind_(kind), seed_(seed), bases_(first_primes(dimensions)) {
   if (kind != SequenceKind::ScrambledHalton) return;
   for (std::size_t d = 0; d < dimensions; ++d) {
-    std::vector<std::uint32_t> perm(bases_[d]);
-    std::iota(perm.begin(), perm.end(), 0u);
-    Pcg32 rng(mix64(seed), d); // Fisher-Yates with one stream per dimension
-    for (std::uint32_t k = bases_[d] - 1; k > 0; --k)
-      std::swap(perm[k], perm[rng.next_u32() % (k + 1)]);
-    permutations_.push_back(std::move(perm));
+    const std::uint32_t b = bases_[d];
+    std::vector<std::uint32_t> perms;
+    Pcg32 rng(mix64(seed), d); // Fisher-Yates, one stream per dimension, one shuffle per digit
+    for (std::uint64_t scale = 1; scale < (1ULL << 32); scale *= b) {
+      const std::size_t first = perms.size();
+      for (std::uint32_t k = 0; k < b; ++k) perms.push_back(k);
+      for (std::uint32_t k = b - 1; k > 0; --k)
+        std::swap(perms[first + k], perms[first + rng.next_u32() % (k + 1)]);
+    }
+    permutations_.push_back(std::move(perms));
   }
 }
 
@@ -55,12 +59,12 @@ double Sequence::sample(std::size_t dimension, std::uint32_t i) const {
 }
 
 double scrambled_radical_inverse(std::uint32_t base, std::uint32_t i,
-                                 const std::vector<std::uint32_t>& perm) {
+                                 const std::vector<std::uint32_t>& perms) {
   // D digits cover every 32-bit index; reversed < b^D <= b * 2^32 fits 64 bits for b < 2^21.
   std::uint64_t scale = 1, reversed = 0;
   std::uint64_t n = i;
-  while (scale < (1ULL << 32)) {
-    reversed = reversed * base + perm[n % base];
+  for (std::size_t j = 0; scale < (1ULL << 32); ++j) {
+    reversed = reversed * base + perms[j * base + n % base];
     n /= base;
     scale *= base;
   }

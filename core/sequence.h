@@ -1,9 +1,13 @@
 #pragma once
 // The point sets the walk can draw its particles from (design.md section 1 uses Halton):
 //   halton:           x_i = (Phi_2(i), Phi_3(i), Phi_5(i), ...)
-//   scrambled-halton: the same digits, each dimension's digits mapped through one random
-//                     permutation of {0..b-1} (seeded): still low-discrepancy, no regular
-//                     patterns, an unbiased-in-expectation randomisation
+//   scrambled-halton: the same digits, digit j of each dimension mapped through its own random
+//                     permutation of {0..b-1} (seeded; random digit scrambling): still
+//                     stratified and low-discrepancy, and every point uniform on [0, 1) up to
+//                     2^-32, so each seed's estimate is unbiased and seeds are independent (the
+//                     rounds of `--rounds`). One permutation for all digits (before session 13)
+//                     left a point only b! values (2 in base 2), so the rounds' light sets were
+//                     correlated and their mean converged to the mean over those few sets.
 //   random:           independent uniform numbers from a hash of (seed, dimension, index)
 // Every value lies in [0, 1).
 #include "core/radical_inverse.h"
@@ -31,13 +35,14 @@ private:
   SequenceKind kind_;
   std::uint64_t seed_;
   std::vector<std::uint32_t> bases_;
-  std::vector<std::vector<std::uint32_t>> permutations_; // scrambled-halton: one per dimension
+  // scrambled-halton: per dimension D permutations of {0..b-1} back to back, one per digit
+  std::vector<std::vector<std::uint32_t>> permutations_;
 };
 
-// Radical inverse with every digit (including the leading zeros up to 32 bits' worth of digits)
-// mapped through perm: sum_{j < D} perm[a_j] b^(-j-1) with b^D >= 2^32. perm must be a
-// permutation of {0..b-1}; the result is below 1.
+// Radical inverse with digit j (including the leading zeros up to 32 bits' worth of digits)
+// mapped through the j-th permutation in perms: sum_{j < D} perms[j b + a_j] b^(-j-1) with
+// b^D >= 2^32. perms holds D permutations of {0..b-1}; the result is below 1.
 double scrambled_radical_inverse(std::uint32_t base, std::uint32_t i,
-                                 const std::vector<std::uint32_t>& perm);
+                                 const std::vector<std::uint32_t>& perms);
 
 } // namespace irad
