@@ -17,7 +17,7 @@ now = [r for r in csv.DictReader(open(os.path.join(DATA, "light_budget_rounds_se
        if r["scene"] == "cornell_256"]
 before = list(csv.DictReader(open(os.path.join(DATA, "light_budget_rounds_session12.csv"))))
 series = [
-    ("raster (session 13)", "o", [r for r in now if r["label"].startswith("raster_rounds")],
+    ("raster (session 13)", "o", [r for r in now if r["label"].startswith("final_raster_rounds")],
      "relmse_pixel", "relmse_block4"),
     ("raster (session 12)", "x", [r for r in before if r["label"] in ("final_r1", "final_r2", "final_r4", "final_r8")], "px",
      "block4"),
@@ -36,7 +36,7 @@ for ax, which, title in zip(axes, [0, 1], ["per pixel", "4x4 blocks"]):
         ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=marker, label=label)
         if label == "raster (session 13)":
             for t, e, name in pts:
-                ax.annotate(name.replace("raster_rounds", "M="), (t, e), fontsize=6,
+                ax.annotate(name.replace("final_raster_rounds", "M="), (t, e), fontsize=6,
                             xytext=(3, 3), textcoords="offset points")
     ax.set_xscale("log")
     ax.set_yscale("log")
