@@ -50,15 +50,10 @@ ReducedMatrix light_rows(const Scene& scene, const RayScene& rays, const View& v
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
     const ShadingPoint& p = points[static_cast<std::size_t>(i)];
     const glm::vec3 k = p.albedo * std::numbers::inv_pi_v<float>;
-    glm::vec3 terms[kVplChunk];
-    for (std::size_t first = 0; first < m.columns; first += kVplChunk) {
-      const std::size_t n = std::min(kVplChunk, m.columns - first);
-      vpl_irradiance_chunk(rays, p, vpls, first, n, dmin, eps, terms);
-      for (std::size_t j = 0; j < n; ++j) {
-        const glm::vec3 c = k * terms[j];
-        m.column(first + j)[i] = c.x + c.y + c.z;
-      }
-    }
+    for_each_vpl_irradiance(rays, p, vpls, dmin, eps, [&](std::size_t j, const glm::vec3& term) {
+      const glm::vec3 c = k * term;
+      m.column(j)[i] = c.x + c.y + c.z;
+    });
   });
   return m;
 }

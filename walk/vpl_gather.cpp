@@ -123,13 +123,9 @@ void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const Vpl
 
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps) {
-  glm::vec3 terms[kVplChunk];
   glm::vec3 sum(0.0f);
-  for (std::size_t first = 0; first < vpls.vpls.size(); first += kVplChunk) {
-    const std::size_t n = std::min(kVplChunk, vpls.vpls.size() - first);
-    vpl_irradiance_chunk(rays, x, vpls, first, n, dmin, eps, terms);
-    for (std::size_t i = 0; i < n; ++i) sum += terms[i];
-  }
+  for_each_vpl_irradiance(rays, x, vpls, dmin, eps,
+                          [&sum](std::size_t, const glm::vec3& term) { sum += term; });
   return sum * x.albedo * std::numbers::inv_pi_v<float>;
 }
 

@@ -6,6 +6,7 @@
 #include "core/vpl.h"
 #include "walk/ray_scene.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <optional>
@@ -45,10 +46,23 @@ glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl&
 
 // vpl_irradiance of vpls.vpls[first, first + n) at x into out[0, n), n <= kVplChunk: the same
 // terms, the plain VPLs' shadow rays traced together (RayScene's packets; mirrored and
-// directional VPLs test their own visibility). gather_vpls and the light rows go through it.
+// directional VPLs test their own visibility).
 inline constexpr std::size_t kVplChunk = 64;
 void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls,
                           std::size_t first, std::size_t n, float dmin, float eps, glm::vec3* out);
+
+// f(j, vpl_irradiance of VPL j at x) for every VPL of the set in order, kVplChunk at a time
+// (vpl_irradiance_chunk): gather_vpls and the light rows go through it.
+template <class F>
+void for_each_vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls,
+                             float dmin, float eps, F&& f) {
+  glm::vec3 terms[kVplChunk];
+  for (std::size_t first = 0; first < vpls.vpls.size(); first += kVplChunk) {
+    const std::size_t n = std::min(kVplChunk, vpls.vpls.size() - first);
+    vpl_irradiance_chunk(rays, x, vpls, first, n, dmin, eps, terms);
+    for (std::size_t j = 0; j < n; ++j) f(first + j, terms[j]);
+  }
+}
 
 // E_k of core/vpl.h: the VPL's emission profile toward a direction with cosine cos_y (1 for a
 // directional VPL, which gather_directional() evaluates).
