@@ -219,7 +219,7 @@ TEST(LightBudget, RoundsAreTheMeanOfIndependentLightSets) {
   EXPECT_THROW(render(scene, two, log), Error); // a part: split one round's paths instead
 }
 
-// The 2 mm wall of tests/test_hard_cases.cpp under irad render's default, the light budget (many
+// The 2 mm wall of tests/test_two_rooms.cpp under irad render's default, the light budget (many
 // VPLs as cluster representatives, 2x2 interleaving, the local clamp and the screen compensation):
 // render() from a camera in each room. Seen from room B no row (exact shadow rays) sees any VPL,
 // so every VPL is dropped (core/light_clusters.h) and nothing is drawn: the clustered default

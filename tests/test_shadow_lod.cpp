@@ -293,7 +293,7 @@ TEST(ShadowLod, TheFacesDrawFewerTrianglesWithLod) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// No new light leaks: tests/test_hard_cases.cpp's two rooms (a 2 mm wall between them, every VPL
+// No new light leaks: tests/test_two_rooms.cpp's two rooms (a 2 mm wall between them, every VPL
 // in room A) with every quad split 4^5 times, so that the shadow faces draw simplified walls
 // (each room is one closed box: its root mesh is 12 triangles at error 0).
 

@@ -91,7 +91,7 @@ float plane_distance(float centre, vec2 gradient, vec2 at) {
 // when the plane runs along or away from the centre ray. Both exceptions would carry light under
 // a wall thinner than their reach that stands on the receiver's plane: walls thinner than 4 / R
 // of the diagonal get the occluder planes instead (raster_renderer.h planes_needed), and
-// tests/test_hard_cases measures walls 1.02x and 1.25x that thick (nothing passes; with a 12 f
+// tests/test_two_rooms measures walls 1.02x and 1.25x that thick (nothing passes; with a 12 f
 // reach 1.7e-6 of the lit room did). Measured on the Cornell box (256x256, R = 128, 4 rounds,
 // interleave 1, no compensation, 4x4-block relMSE against rt-vpl over the same VPLs): the
 // centre's distance alone with 0.75 texel's offset 2.6e-5 (7.1e-5 per pixel); the plane crossing

@@ -20,7 +20,7 @@ namespace irad::gl {
 // The normal offset of a shadow lookup in shadow texels (raster/glsl/cube_glsl.h lookup_offset).
 // Where the occluder planes are drawn (`planes`: walls thinner than a texel's depth range,
 // raster_renderer.h planes_needed) a whole texel, which also keeps a receiver on a thin wall's
-// far face behind the wall: the 2 mm wall of tests/test_hard_cases leaks 2.8e-5 of the lit room
+// far face behind the wall: the 2 mm wall of tests/test_two_rooms leaks 2.8e-5 of the lit room
 // with 1 texel, 5.5e-5 with 0.75. Without them the lookup trusts the receiver's own plane
 // (cube_glsl.h in_front_of_receiver), so the offset need not cover the texel's depth range (with
 // the centre's distance alone it had to: 0.75 texel, half the texel's diagonal with a margin;
