@@ -5,13 +5,12 @@
 namespace irad {
 
 std::size_t RasterRenderer::Impl::shade_kept(const View& view) {
-  const int sets = interleaved ? interleaved->sets() : 1;
   const bool jittered = jitter != nullptr;
   // Each page's VPLs and the directional ones by the G-buffer they read.
   std::vector<gl::ShadowCache::Page> pages = shadow_cache->pages();
   std::vector<JitterCells<gl::AtlasVpl>> page_cells;
   for (gl::ShadowCache::Page& page : pages) {
-    for (gl::AtlasVpl& v : page.vpls) v.set = set_of(v.vpl->path, sets);
+    for (gl::AtlasVpl& v : page.vpls) v.set = interleave_sets.set_of(v.vpl->path);
     page_cells.push_back(jitter_cells(jittered, std::move(page.vpls),
                                       [](const gl::AtlasVpl& v) -> const Vpl& { return *v.vpl; }));
   }
@@ -32,9 +31,9 @@ std::size_t RasterRenderer::Impl::shade_kept(const View& view) {
       batched->shade(page_cells[p][s], pages[p].lookup, into);
       passes += page_cells[p][s].size();
     }
-    passes +=
-        batched->draw(directional_cells[s], [&](const Vpl& v) { return set_of(v.path, sets); },
-                      into, gpu, nullptr, {});
+    passes += batched->draw(directional_cells[s],
+                            [&](const Vpl& v) { return interleave_sets.set_of(v.path); }, into, gpu,
+                            nullptr, {});
     return true;
   });
   return passes;
@@ -58,6 +57,8 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
           im.scene.bounds, im.gpu.features());
   }
   if (slot >= im.cache.size()) im.cache.resize(std::size_t(slot) + 1);
+  im.cached_paths = std::max(im.cached_paths, slot + 1);
+  for (const Vpl& v : vpls) im.cached_paths = std::max(im.cached_paths, v.path + 1);
   Impl::CachedPath& path = im.cache[slot];
   // The slot's cubes are drawn over again: no texture allocation per frame once the ring is full.
   std::vector<gl::Texture> spare;
@@ -98,6 +99,7 @@ Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
   const auto t0 = Clock::now();
   const gl::CurrentScope current(*im.context);
   im.begin_image(view);
+  im.deal_paths(im.cached_paths); // the ring's paths
   std::size_t passes = 0;
   if (im.shadow_cache && im.batched) passes += im.shade_kept(view);
   std::vector<const Vpl*> list;

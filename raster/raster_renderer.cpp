@@ -25,7 +25,7 @@ bool planes_needed(float thinnest_wall, int resolution) {
 
 glm::mat4 RasterRenderer::Impl::bind_pass(const View& view, const Vpl& vpl,
                                           std::vector<glm::vec2>& last_offsets) {
-  const int set = interleaved ? set_of(vpl.path, interleaved->sets()) : 0;
+  const int set = interleave_sets.set_of(vpl.path);
   if (interleaved)
     interleaved->bind_tile(set);
   else
@@ -93,7 +93,6 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
     const glm::vec3 &p = a->normal, &q = b->normal;
     return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : p.z < q.z;
   });
-  const int sets = interleaved ? interleaved->sets() : 1;
   const JitterCells<const Vpl*> cells = jitter_cells(jitter != nullptr, std::move(many),
                                                      [](const Vpl* v) -> const Vpl& { return *v; });
   std::array<bool, kJitterStrata + 1> used{};
@@ -103,7 +102,7 @@ std::size_t RasterRenderer::Impl::batched_passes(const View& view,
     const std::vector<const Vpl*>& some = cells[s];
     bool go = true;
     drawn += batched->draw(
-        some, [&](const Vpl& v) { return set_of(v.path, sets); }, into, gpu, timer,
+        some, [&](const Vpl& v) { return interleave_sets.set_of(v.path); }, into, gpu, timer,
         [&](std::size_t done) {
           if (progress) progress(before + done, vpls.size());
           go = options.cancel == nullptr || !options.cancel->load(std::memory_order_relaxed);
@@ -210,7 +209,7 @@ void RasterRenderer::Impl::ensure_tile_depths(const View& view) {
 Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                                          gl::PassTimer* timer, RasterTimings* timings) {
   target->bind();
-  if (interleaved) interleaved->resolve();
+  if (interleaved) interleaved->resolve(interleave_sets.scales());
   if (jitter) {
     jitter->emitters(camera, view, scene, gpu, background.get());
   } else {
@@ -274,6 +273,10 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   const auto t0 = Clock::now();
   const gl::CurrentScope current(*im.context);
   im.begin_image(view);
+  // N: the walk's paths (or past them, for a hand-made set whose VPLs name more).
+  std::uint32_t paths = vpls.paths;
+  for (const Vpl& v : vpls.vpls) paths = std::max(paths, v.path + 1);
+  im.deal_paths(paths);
   std::optional<gl::PassTimer> timer;
   if (im.options.gpu_timers) timer.emplace(im.api);
   std::vector<const Vpl*> list;

@@ -4,6 +4,7 @@
 #include "raster/raster_renderer.h"
 
 #include "core/error.h"
+#include "core/interleave_sets.h"
 #include "core/rng.h"
 #include "raster/context/gl_context.h"
 #include "raster/context/pass_timer.h"
@@ -32,17 +33,6 @@ namespace irad {
 using Clock = std::chrono::steady_clock;
 inline double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
-}
-
-// The interleaved set of a particle: a hash of its index, so every set holds a random share of
-// each reflection depth. Measured against the alternatives: i mod k^2 fixes the leading base-2
-// digits of Phi_2(i) within a set (every set lights from one strip of the light: 4x the error at
-// the light's silhouette in RasterAnalytic.InterleavedSquareLightOverPlaneMatchesLambert);
-// contiguous segments of the paths leave the deep reflections to the first set (few particles
-// reach them), which the resolve cannot average where its window is cut by geometry: relMSE
-// 7.0e-4 against 8.0e-5 with the hash on the integrating sphere (128x128, N = 256).
-inline int set_of(std::uint32_t path, int sets) {
-  return static_cast<int>(mix64(path) % static_cast<std::uint64_t>(sets));
 }
 
 // What the deferred passes shade, by the G-buffer they read: cell s < kJitterStrata the one
@@ -77,8 +67,9 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::Target> target;
   std::unique_ptr<gl::GBuffer> gbuffer; // for the batched passes and the interleaved resolve
   std::unique_ptr<gl::Interleaved> interleaved;
-  bool tile_depths = false;      // interleaved: each set's depth drawn in its tile for this image
-  std::size_t single_passes = 0; // this image's VPLs drawn by vpl_passes
+  InterleaveSets interleave_sets; // this image's paths dealt to the interleaved sets
+  bool tile_depths = false;       // interleaved: each set's depth drawn in its tile for this image
+  std::size_t single_passes = 0;  // this image's VPLs drawn by vpl_passes
   std::unique_ptr<gl::JitterPasses> jitter;         // with options.jitter
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   std::unique_ptr<gl::BatchedPasses> batched;       // options.batch > 1
@@ -94,6 +85,7 @@ struct RasterRenderer::Impl {
     std::vector<Vpl> directional; // batched: drawn anew per image
   };
   std::vector<CachedPath> cache;
+  std::uint32_t cached_paths = 0; // past the largest slot and path index cached so far
   std::unique_ptr<gl::ShadowCube> cache_shadow;  // draws into the cached cubes
   std::unique_ptr<gl::ShadowCache> shadow_cache; // batched: the kept atlas blocks
 
@@ -107,6 +99,10 @@ struct RasterRenderer::Impl {
   }
 
   void prepare(const View& view);
+  // This image's interleaved sets for paths 0..paths-1 (one set without interleaving).
+  void deal_paths(std::uint32_t paths) {
+    interleave_sets = InterleaveSets(paths, interleaved ? interleaved->sets() : 1);
+  }
   // The batched passes for a width x height image (batch > 1, no jitter, a GL that fits them).
   void ensure_batched(int width, int height);
   // Clears the target and draws what every VPL pass adds to: the G-buffer (batched or

@@ -21,14 +21,16 @@ TEST(RasterAnalytic, SquareLightOverPlaneMatchesLambert) {
   EXPECT_LT(e.max_rel, 0.008);
 }
 
-// Interleaved sampling: each pixel sees 1/16 of the light's VPLs (a hashed share of the paths),
+// Interleaved sampling: each pixel sees 1/16 of the light's VPLs (a share of the paths dealt out in
+// blocks of 16, core/interleave_sets.h),
 // and the resolve averages the 16 sets over a 5x5 window centred on it (outer rows and
 // columns at half weight) on the same surface: a blur of about two pixels, which this small
 // image (a pixel covers up to 8 cm of the plane) makes visible.
 TEST(RasterAnalytic, InterleavedSquareLightOverPlaneMatchesLambert) {
   const LambertError e = square_light_error(4, 0);
-  // Measured: relative RMS 0.0076, max 0.062 (next to the light's silhouette, where the window
-  // keeps only part of the sets); at 320x240 the RMS is about half. Before the window was
+  // Measured: relative RMS 0.0079, max 0.063 (next to the light's silhouette, where the window
+  // keeps only part of the sets; sets by a hash of the path: 0.0076, 0.062); at 320x240 the RMS
+  // is about half. Before the window was
   // centred (a k x k window is half a pixel off centre) the RMS was 0.041; with sets taken as
   // path mod 16 (Halton strips) the max was 0.15. Bounds: 1.5x the measurement.
   EXPECT_GT(e.count, 10000);

@@ -199,17 +199,20 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
                   leak.reach);
     }
   }
-  // Measured (llvmpipe, 64^2 faces, N = 128): default and --batch 1 2.76e-5 (44 pixels, max
-  // 0.0065 x room A's mean, up to 0.22 m from the wall: the resolve spreads it), --interleave 1
-  // 6.75e-5 (26 pixels, max 0.029 x, up to 2 cm), at every scale; issue 14 asks for below 1e-4.
+  // Measured (llvmpipe, 64^2 faces, N = 128): default and --batch 1 5.73e-5 (73 pixels, max
+  // 0.011 x room A's mean, up to 0.22 m from the wall: the resolve spreads it), --interleave 1
+  // 6.86e-5 (26 pixels, max 0.029 x, up to 2 cm), at every scale; issue 14 asks for below 1e-4.
+  // With k = 2 each pixel sees a quarter of the VPLs, 4x as bright: which of the few leaking
+  // VPLs reach which pixels is the draw of the sets, and the expected leak is k = 1's (the sets
+  // by a hash of the path, before core/interleave_sets.h, drew 2.76e-5 in 44 pixels).
   // Before the occluder planes (raster/glsl/cube_glsl.h) 2.70e-4 and 3.39e-4: one distance per
   // texel, at its centre, while across the texel the distance of a wall seen at theta varies by
   // dist * (2 / R) * tan(theta), far more than 2 mm. `--shadow-planes off` gives 5.1e-3 (the
   // switch works; it is bounded from below): without the planes a lookup trusts the receiver's
   // own plane and neighbourhood (cube_glsl.h in_front_of_receiver), which carries light along
   // the floor under a wall this thin (2.70e-4 with the centre's distance alone); `auto` never
-  // turns them off for it. Bounds ~1.5-1.8x the measurements.
-  const double bound[] = {5e-5, 5e-5, 1e-4, 8e-3};
+  // turns them off for it. Bounds: the issue's 1e-4 (1.5-1.7x the measurements), 8e-3.
+  const double bound[] = {1e-4, 1e-4, 1e-4, 8e-3};
   EXPECT_GT(modes[3].ratio[0], 1.5e-4);
   for (std::size_t i = 0; i < modes.size(); ++i) {
     EXPECT_LT(modes[i].ratio[0], bound[i]) << modes[i].name;

@@ -207,7 +207,18 @@ uniform sampler2D u_albedo;
 uniform int u_k;
 uniform ivec2 u_tile;   // tile size in the atlas
 uniform ivec2 u_size;   // full image size
+uniform float u_scale[256]; // per set (core/interleave_sets.h), set = x + k y of its tile
 out vec4 o_color;
+// Whether pixel q sees the surface that p does (x, n: p's point and normal): on the image, on
+// p's plane within 5 % of the distance, its normal within 18 degrees.
+bool same_surface(ivec2 q, vec3 x, vec3 n) {
+  if (q.x < 0 || q.y < 0 || q.x >= u_size.x || q.y >= u_size.y) return false;
+  vec4 xq = texelFetch(u_position, q, 0);
+  if (xq.w <= 0.0) return false;
+  vec3 d = xq.xyz - x;
+  if (abs(dot(n, d)) > 0.05 * length(d)) return false;
+  return dot(texelFetch(u_normal, q, 0).xyz, n) >= 0.95;
+}
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 xp = texelFetch(u_position, p, 0);
@@ -227,17 +238,13 @@ void main() {
     for (int dx = -h; dx <= h; ++dx) {
       if (!even && (abs(dx) > (u_k - 1) / 2 || abs(dy) > (u_k - 1) / 2)) continue;
       ivec2 q = p + ivec2(dx, dy);
-      if (q.x < 0 || q.y < 0 || q.x >= u_size.x || q.y >= u_size.y) continue;
-      vec4 xq = texelFetch(u_position, q, 0);
-      if (xq.w <= 0.0) continue;
-      vec3 d = xq.xyz - xp.xyz;
-      if (abs(dot(np, d)) > 0.05 * length(d)) continue;
-      if (dot(texelFetch(u_normal, q, 0).xyz, np) < 0.95) continue;
+      if (!same_surface(q, xp.xyz, np)) continue;
       float w = (even && abs(dx) == h ? 0.5 : 1.0) * (even && abs(dy) == h ? 0.5 : 1.0);
       ivec2 m = pm + ivec2(dx, dy); // in (-k, 2k): one wrap at most
       ivec2 below = ivec2(lessThan(m, ivec2(0))), above = ivec2(greaterThanEqual(m, ivec2(u_k)));
       m += (below - above) * u_k;
-      sum += w * texelFetch(u_atlas, m * u_tile + pd - below + above, 0).rgb;
+      float scaled = w * u_scale[m.x + u_k * m.y];
+      sum += scaled * texelFetch(u_atlas, m * u_tile + pd - below + above, 0).rgb;
       weight += w;
     }
   vec3 albedo = texelFetch(u_albedo, p, 0).rgb;

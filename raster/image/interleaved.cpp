@@ -65,10 +65,14 @@ glm::mat4 Interleaved::tile_projection(int set, const glm::mat4& projection) con
   return shift * projection;
 }
 
-void Interleaved::resolve() const {
+void Interleaved::resolve(const std::vector<float>& scales) const {
+  if (scales.size() != static_cast<std::size_t>(sets()))
+    throw Error("interleaved resolve: " + std::to_string(scales.size()) + " scales for " +
+                std::to_string(sets()) + " sets");
   api_->Disable(GL_DEPTH_TEST);
   api_->Disable(GL_BLEND);
   resolve_.use();
+  api_->Uniform1fv(resolve_.uniform("u_scale"), sets(), scales.data());
   api_->ActiveTexture(GL_TEXTURE0 + atlas_unit);
   api_->BindTexture(GL_TEXTURE_2D, atlas_.get());
   gbuffer_->bind_textures(position_unit);

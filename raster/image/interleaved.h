@@ -10,6 +10,7 @@
 #include "raster/image/gbuffer.h"
 
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace irad::gl {
 
@@ -30,8 +31,9 @@ public:
   glm::ivec4 tile(int set) const {
     return {(set % k_) * tile_w_, (set / k_) * tile_h_, tile_w_, tile_h_};
   }
-  // Writes the resolved VPL light into the bound framebuffer (full resolution, no blending).
-  void resolve() const;
+  // Writes the resolved VPL light into the bound framebuffer (full resolution, no blending), set s
+  // scaled by scales[s] (core/interleave_sets.h; sets() of them).
+  void resolve(const std::vector<float>& scales) const;
 
 private:
   const GladGLContext* api_;
