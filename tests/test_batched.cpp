@@ -117,12 +117,14 @@ TEST(Batched, MirrorBoxMatchesThePerVplPasses) {
   const View view = make_view(scene.cameras.at(0), scene.bounds, 96, 96);
   for (int k : {1, 4}) {
     const Difference d = batched_against_reference(scene, vpls, view, k, 16, "mirror");
-    // Measured: relMSE 4.1e-9, max abs 1.2e-3 (k = 1) and 2.9e-12 (k = 4), no pixel off by 1 %
-    // (the mirrored VPLs' per-VPL passes had given 1.4e-14: the atlas's gradients, as for the
-    // Cornell box). With the mirror's albedo not zeroed in the batched pass: relMSE 0.63 at k = 1.
-    // Without the pyramid test in the deferred shader, or without the reflected scene in the
-    // atlas's cubes: relMSE 3.0e-3 (k = 1), 39 % of the pixels off by more than 1 %.
-    EXPECT_LT(d.metrics.relmse, 1e-8);
+    // Measured: relMSE 2.7e-8, max abs 1.5e-3 (k = 1; 0.065 % of the pixels off by more than
+    // 1 %) and 1e-13 (k = 4) (the mirrored VPLs' per-VPL passes had given 1.4e-14: the atlas's
+    // gradients, as for the Cornell box; before the concave corners of cube_glsl.h, another
+    // threshold on them, 4.1e-9 and no pixel). With the mirror's albedo not zeroed in the batched
+    // pass: relMSE 0.63 at k = 1. Without the pyramid test in the deferred shader, or without the
+    // reflected scene in the atlas's cubes: relMSE 3.0e-3 (k = 1), 39 % of the pixels off by more
+    // than 1 %.
+    EXPECT_LT(d.metrics.relmse, 1e-7);
     EXPECT_NEAR(d.metrics.mean_ratio[1], 1.0, 1e-4);
     EXPECT_LT(d.differing, 0.001);
   }

@@ -116,8 +116,8 @@ ivec2 face_offset(int f) {
 // Whether the VPL's cube hides the receiver at distance r (bias included) in direction q (cube
 // frame; raster/glsl/cube_glsl.h), nq the receiver's normal in that frame: the atlas holds
 // distances / far, the gradients beside it. Without them the centre's distance and the receiver's
-// plane; with them the gradient only where the centre's distance lets the receiver through, the
-// neighbours only where the plane alone would shadow.
+// plane; with them the gradients and the neighbours (their distances and gradients: cube_glsl.h
+// occluder_distance) only where the centre's distance lets the receiver through.
 bool shadowed(vec3 q, float r, vec3 nq) {
   vec2 st;
   int face = cube_face(q, st);
@@ -130,13 +130,13 @@ bool shadowed(vec3 q, float r, vec3 nq) {
            in_front_of_receiver(q, nq, face, texel, float(u_shadow_res), centre, u_bias_constant);
   if (r > centre) return true;
   vec2 gradient = texelFetch(u_shadow_gradient, texel + origin, 0).rg * v_cone.w;
-  if (!(r > plane_distance(centre, gradient, at))) return false;
   ivec2 step = toward(at), nx = texel + ivec2(step.x, 0), ny = texel + ivec2(0, step.y);
-  float next_x = nx.x >= 0 && nx.x < u_shadow_res
-                     ? texelFetch(u_shadow_atlas, nx + origin, 0).r * v_cone.w : -1.0;
-  float next_y = ny.y >= 0 && ny.y < u_shadow_res
-                     ? texelFetch(u_shadow_atlas, ny + origin, 0).r * v_cone.w : -1.0;
-  return r > occluder_distance(centre, gradient, at, next_x, next_y);
+  bool has_x = nx.x >= 0 && nx.x < u_shadow_res, has_y = ny.y >= 0 && ny.y < u_shadow_res;
+  float next_x = has_x ? texelFetch(u_shadow_atlas, nx + origin, 0).r * v_cone.w : -1.0;
+  float next_y = has_y ? texelFetch(u_shadow_atlas, ny + origin, 0).r * v_cone.w : -1.0;
+  vec2 grad_x = has_x ? texelFetch(u_shadow_gradient, nx + origin, 0).rg * v_cone.w : vec2(0.0);
+  vec2 grad_y = has_y ? texelFetch(u_shadow_gradient, ny + origin, 0).rg * v_cone.w : vec2(0.0);
+  return r > occluder_distance(centre, gradient, at, next_x, grad_x, next_y, grad_y);
 }
 
 #ifdef IRAD_MIRRORS

@@ -85,16 +85,15 @@ bool shadowed(vec3 q, float r, vec3 nq) {
   if (!u_planes)
     return r > s.r && in_front_of_receiver(q, nq, face, ivec2(texel), res, s.r, u_bias_constant);
   if (r > s.r) return true;
-  if (!(r > plane_distance(s.r, s.gb, at))) return false;
   vec2 step = vec2(toward(at));
   vec2 nx = texel + vec2(step.x, 0.0), ny = texel + vec2(0.0, step.y);
-  float next_x = nx.x >= 0.0 && nx.x < res
-                     ? texture(u_shadow, face_direction(face, (nx + 0.5) / res * 2.0 - 1.0)).r
-                     : -1.0;
-  float next_y = ny.y >= 0.0 && ny.y < res
-                     ? texture(u_shadow, face_direction(face, (ny + 0.5) / res * 2.0 - 1.0)).r
-                     : -1.0;
-  return r > occluder_distance(s.r, s.gb, at, next_x, next_y);
+  vec3 sx = nx.x >= 0.0 && nx.x < res
+                ? texture(u_shadow, face_direction(face, (nx + 0.5) / res * 2.0 - 1.0)).rgb
+                : vec3(-1.0, 0.0, 0.0);
+  vec3 sy = ny.y >= 0.0 && ny.y < res
+                ? texture(u_shadow, face_direction(face, (ny + 0.5) / res * 2.0 - 1.0)).rgb
+                : vec3(-1.0, 0.0, 0.0);
+  return r > occluder_distance(s.r, s.gb, at, sx.r, sx.gb, sy.r, sy.gb);
 }
 void main() {
 #ifdef IRAD_ALPHA
