@@ -209,7 +209,7 @@ uniform ivec2 u_size;   // full image size
 uniform float u_scale[256]; // per set (core/interleave_sets.h), set = x + k y of its tile
 out vec4 o_color;
 // Whether pixel q sees the surface that p does (x, n: p's point and normal): on the image, its
-// normal m within 26 degrees of n, and the chord d from x to q's point within 5 % of its length
+// normal m within 18 degrees of n, and the chord d from x to q's point within 5 % of its length
 // of the plane normal to n + m. On a flat surface that is p's plane; on a sphere or a cylinder
 // the chord is normal to the bisector of the two normals, so a smooth curved mesh is averaged
 // as a flat one (with p's plane alone, a sphere a few pixels wide kept each pixel's own set: the
@@ -219,7 +219,7 @@ bool same_surface(ivec2 q, vec3 x, vec3 n) {
   vec4 xq = texelFetch(u_position, q, 0);
   if (xq.w <= 0.0) return false;
   vec3 m = texelFetch(u_normal, q, 0).xyz;
-  if (dot(m, n) < 0.9) return false;
+  if (dot(m, n) < 0.95) return false;
   vec3 d = xq.xyz - x;
   return abs(dot(n + m, d)) <= 0.05 * length(d) * length(n + m);
 }
