@@ -3,21 +3,27 @@
 #include "core/error.h"
 #include "core/rng.h"
 
+#include <array>
 #include <numeric>
+#include <string>
 #include <utility>
 
 namespace irad {
 
 namespace {
 
-// The permutation of block b (a Fisher-Yates shuffle of 0..sets-1 by a stream keyed by b).
-std::vector<int> block_permutation(std::uint64_t block, int sets) {
-  std::vector<int> p(static_cast<std::size_t>(sets));
-  std::iota(p.begin(), p.end(), 0);
+// At most k^2 sets for k <= 16 (RasterOptions::interleave).
+constexpr int kMaxSets = 256;
+using Permutation = std::array<std::uint8_t, kMaxSets>;
+
+// The permutation of block b's `sets` positions (a Fisher-Yates shuffle by a stream keyed by b).
+Permutation block_permutation(std::uint64_t block, int sets) {
+  Permutation p{};
+  std::iota(p.begin(), p.begin() + sets, std::uint8_t{0});
   Pcg32 rng(mix64(block), 0x1e7e4ea5u);
   for (int i = sets - 1; i > 0; --i) {
-    const auto j = static_cast<int>(rng.next_u32() % static_cast<std::uint32_t>(i + 1));
-    std::swap(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(j)]);
+    const auto j = rng.next_u32() % static_cast<std::uint32_t>(i + 1);
+    std::swap(p[static_cast<std::size_t>(i)], p[j]);
   }
   return p;
 }
@@ -25,12 +31,13 @@ std::vector<int> block_permutation(std::uint64_t block, int sets) {
 } // namespace
 
 InterleaveSets::InterleaveSets(std::uint32_t paths, int sets) : sets_(sets) {
-  if (sets < 1) throw Error("", "--interleave", "needs at least one set");
+  if (sets < 1 || sets > kMaxSets)
+    throw Error("", "--interleave", "needs between 1 and " + std::to_string(kMaxSets) + " sets");
   const auto k2 = static_cast<std::uint32_t>(sets);
   std::vector<std::uint32_t> counts(static_cast<std::size_t>(sets), paths / k2);
   const std::uint32_t rest = paths % k2;
   if (rest > 0) {
-    const std::vector<int> last = block_permutation(paths / k2, sets);
+    const Permutation last = block_permutation(paths / k2, sets);
     for (std::uint32_t r = 0; r < rest; ++r) ++counts[static_cast<std::size_t>(last[r])];
   }
   scales_.assign(static_cast<std::size_t>(sets), 0.0f);

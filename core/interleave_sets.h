@@ -23,7 +23,7 @@ class InterleaveSets {
 public:
   // One set: every path in set 0, scale 1.
   InterleaveSets() = default;
-  // N paths (indices 0..N-1) dealt to `sets` sets (>= 1).
+  // N paths (indices 0..N-1) dealt to `sets` sets (1..256).
   InterleaveSets(std::uint32_t paths, int sets);
 
   int sets() const { return sets_; }
