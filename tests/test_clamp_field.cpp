@@ -119,11 +119,13 @@ TEST(ClampField, EstimatorsAgreeOnLocalClampDistances) {
   std::printf("batched vs per-VPL relMSE %.3g; per-VPL vs rt-vpl relMSE %.3g, mean %.5f; "
               "local vs global clamp mean %.5f\n",
               ab.relmse, at.relmse, at.mean_ratio[1], ag.mean_ratio[1]);
-  // Measured (64x64): batched against per-VPL relMSE 1.0e-10 (tests/test_batched.cpp: 1.1e-14
-  // with the global clamp); raster against rt-vpl relMSE 2.3e-4, mean 0.9987 (the shadow
-  // maps); the local clamp lets 0.27 % more light through than the global one at this N.
-  EXPECT_LT(ab.relmse, 1e-8);
-  EXPECT_LT(at.relmse, 1e-3);
+  // Measured (64x64): batched against per-VPL relMSE 4.8e-7 (the atlas's RG16F gradients against
+  // the cube's 32-bit ones, which the lookup's plane now uses both ways; 1.0e-10 while it only
+  // added shadow); raster against rt-vpl relMSE 4.1e-5, mean 0.9997 (2.3e-4 and 0.9987 with
+  // the lesser of the centre's distance and the plane and a whole texel's offset); the local
+  // clamp lets 0.27 % more light through than the global one at this N. Bounds ~4-5x.
+  EXPECT_LT(ab.relmse, 2e-6);
+  EXPECT_LT(at.relmse, 2e-4);
   EXPECT_NEAR(at.mean_ratio[1], 1.0, 0.005);
   EXPECT_GT(ag.mean_ratio[1], 1.0015);
 }

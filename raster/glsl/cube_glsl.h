@@ -6,15 +6,18 @@
 // Each texel of a cube face stores the distance d_c of the nearest surface on the ray through
 // its centre and that surface's gradient g = (dd/dx, dd/dy) per face texel (dFdx, dFdy of the
 // triangle's own interpolated distance). A receiver looked up at the face point `at` (texels)
-// is compared with the lesser of d_c and the plane through the centre, d_c + g . (at - centre):
-// a surface seen at a grazing angle theta changes its distance by about dist (2/R) tan(theta)
-// across one texel, far more than a thin wall's thickness, so with d_c alone a receiver just
-// behind such a wall but nearer than its texel's centre passed (issue 14: a 2 mm wall let 2.7e-4
-// of the lit room's light through). The plane only ever shadows more, and only receivers behind
-// the occluder's own plane: exact at concave corners (the receiver lies in front of the other
-// face's plane). Next to a convex edge seen from both sides it would darken the far face for up
-// to a texel's footprint (the plane extended past the edge floats in front of it); there the
-// neighbouring texel sees something behind the plane, and that direction's term is dropped.
+// is compared with the plane through the centre, d_c + g . (at - centre): a surface seen at a
+// grazing angle theta changes its distance by about dist (2/R) tan(theta) across one texel, far
+// more than a thin wall's thickness, so with d_c alone a receiver just behind such a wall but
+// nearer than its texel's centre passed (issue 14: a 2 mm wall let 2.7e-4 of the lit room's
+// light through), and a receiver on the surface itself but farther than the centre was shadowed
+// unless the normal offset lifted it over the texel's depth range. Until session 14 the lookup
+// took the lesser of d_c and the plane (the plane only added shadow), which kept that second
+// need: a whole texel of offset, then 0.75, which darkened receivers in narrow gaps (godot's
+// stacked spheres). The plane both ways is exact for a planar occluder. Next to a convex edge
+// seen from both sides it would darken the far face for up to a texel's footprint (the plane
+// extended past the edge floats in front of it); there the neighbouring texel sees something
+// behind the plane, and that direction's term is dropped (the centre's distance in it).
 // Where a texel holds a concave corner (the floor at a wall's foot, seen from the wall's lit
 // side), the centre may see the floor and the neighbour the wall: past the line where their
 // planes meet, the wall's plane is the nearer surface, and a receiver behind it (the floor on
@@ -71,11 +74,9 @@ ivec2 toward(vec2 at) {
   return ivec2(offset.x >= 0.0 ? 1 : -1, offset.y >= 0.0 ? 1 : -1);
 }
 
-// The plane's distance at the face point `at` (texels), not yet checked against the neighbours:
-// occluder_distance is never below it, so a receiver in front of it is lit without them.
-float plane_distance(float centre, vec2 gradient, vec2 at) {
-  vec2 offset = clamp(at - (floor(at) + 0.5), vec2(-0.5), vec2(0.5));
-  return min(centre, centre + dot(gradient, offset));
+// The plane's distance at the face point `at` (texels) with gradient terms g (per texel).
+float plane_distance(float centre, vec2 g, vec2 at) {
+  return centre + dot(g, clamp(at - (floor(at) + 0.5), vec2(-0.5), vec2(0.5)));
 }
 
 // The receiver-plane test of a lookup without the occluder planes (the centre's distance
@@ -117,7 +118,7 @@ bool in_front_of_receiver(vec3 q, vec3 nq, int face, ivec2 texel, float res, flo
 }
 
 // The occluder's distance at the face point `at` (texels) from its texel's stored centre
-// distance and gradient: the lesser of the centre's and the plane's. A direction's term counts
+// distance and gradient: the plane's through the centre. A direction's term counts
 // only where the neighbour toward `at` in it (next_x, next_y: its stored distance; below 0 where
 // there is none on the face) is not behind the plane at its centre: behind, the occluder ends
 // inside the texel (a convex edge seen from both sides) and its plane would float over the
@@ -126,8 +127,8 @@ bool in_front_of_receiver(vec3 q, vec3 nq, int face, ivec2 texel, float res, flo
 // whose own plane (grad_x, grad_y: its gradient) lies behind the centre's distance at the
 // centre, so that the two planes meet between the centres (a concave corner, not a nearer
 // object's silhouette), bounds the distance by its plane too. Measured (tests/test_two_rooms,
-// the 2 mm wall, k = 2, normal offset 1 texel): the leak 5.7e-5 -> 3.3e-5 of the lit room; it
-// let the offset drop to 0.75 texel (raster/passes/vpl_shader.h normal_offset_texels).
+// the 2 mm wall, k = 2, normal offset 1 texel, the lesser of centre and plane): the leak
+// 5.7e-5 -> 3.3e-5 of the lit room; with the plane both ways, 0.5 texel: 4.1e-5.
 float occluder_distance(float centre, vec2 gradient, vec2 at, float next_x, vec2 grad_x,
                         float next_y, vec2 grad_y) {
   vec2 step = vec2(toward(at));

@@ -116,8 +116,8 @@ ivec2 face_offset(int f) {
 // Whether the VPL's cube hides the receiver at distance r (bias included) in direction q (cube
 // frame; raster/glsl/cube_glsl.h), nq the receiver's normal in that frame: the atlas holds
 // distances / far, the gradients beside it. Without them the centre's distance and the receiver's
-// plane; with them the gradients and the neighbours (their distances and gradients: cube_glsl.h
-// occluder_distance) only where the centre's distance lets the receiver through.
+// plane; with them the occluder's plane and the neighbours' (their distances and gradients:
+// cube_glsl.h occluder_distance).
 bool shadowed(vec3 q, float r, vec3 nq) {
   vec2 st;
   int face = cube_face(q, st);
@@ -128,7 +128,6 @@ bool shadowed(vec3 q, float r, vec3 nq) {
   if (!u_planes)
     return r > centre &&
            in_front_of_receiver(q, nq, face, texel, float(u_shadow_res), centre, u_bias_constant);
-  if (r > centre) return true;
   vec2 gradient = texelFetch(u_shadow_gradient, texel + origin, 0).rg * v_cone.w;
   ivec2 step = toward(at), nx = texel + ivec2(step.x, 0), ny = texel + ivec2(0, step.y);
   bool has_x = nx.x >= 0 && nx.x < u_shadow_res, has_y = ny.y >= 0 && ny.y < u_shadow_res;

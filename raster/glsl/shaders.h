@@ -84,7 +84,6 @@ bool shadowed(vec3 q, float r, vec3 nq) {
   vec2 texel = clamp(floor(at), vec2(0.0), vec2(res - 1.0));
   if (!u_planes)
     return r > s.r && in_front_of_receiver(q, nq, face, ivec2(texel), res, s.r, u_bias_constant);
-  if (r > s.r) return true;
   vec2 step = vec2(toward(at));
   vec2 nx = texel + vec2(step.x, 0.0), ny = texel + vec2(0.0, step.y);
   vec3 sx = nx.x >= 0.0 && nx.x < res

@@ -19,14 +19,17 @@ namespace irad::gl {
 
 // The normal offset of a shadow lookup in shadow texels (raster/glsl/cube_glsl.h lookup_offset).
 // Where the occluder planes are drawn (`planes`: walls thinner than a texel's depth range,
-// raster_renderer.h planes_needed) 0.75 texel: with the concave corners of cube_glsl.h
-// occluder_distance the 2 mm wall of tests/test_two_rooms leaks 3.3e-5 of the lit room with 1
-// texel, 4.0e-5 with 0.75, 4.1e-5 with 0.5 (without the corners 5.7e-5 with 1 texel, 1.0e-4 with
-// 0.5). A smaller offset keeps receivers in narrow gaps out of the surface across the gap (the
-// stacked spheres of godot_occlusion_room, 128x128, R = 64, raster against rt-vpl over the same
-// representatives, 4x4 blocks, no compensation: 1.58e-3 with 1 texel, 9.7e-4 with 0.75, 5.7e-4
-// with 0.5); 0.5 shadowed single pixels of a flat textured quad by 2.5 % (tests/
-// test_material_features) and parted the batched from the per-VPL passes. Without them the lookup
+// raster_renderer.h planes_needed) 0.5 texel: the lookup compares the receiver with the
+// occluder's plane both ways (cube_glsl.h occluder_distance), so the offset need not cover the
+// texel's depth range, and a smaller offset keeps receivers in narrow gaps out of the surface
+// across the gap. Measured (godot_occlusion_room's stacked spheres, 128x128, R = 64, raster
+// against rt-vpl over the same representatives, 4x4 blocks, no compensation): the lesser of the
+// centre's distance and the plane with 1 texel 1.58e-3, 0.75 9.7e-4 (0.5 shadowed single pixels
+// of a flat textured quad by 2.5 %, tests/test_material_features); the plane both ways with 0.75
+// 7.0e-4, 0.5 4.0e-4, 0.2 5.9e-4 (means 1 % low, and the batched passes parted from the
+// per-VPL ones on 0.4-0.5 % of the pixels). The 2 mm wall of tests/test_two_rooms leaks 4.1e-5
+// of the lit room with 0.5 (4.0e-5 with 0.75; the concave corners of occluder_distance keep
+// it there: without them 1.0e-4 with 0.5). Without them the lookup
 // trusts the receiver's own plane (cube_glsl.h in_front_of_receiver), so the offset need not cover
 // the texel's depth range (with the centre's distance alone it had to: 0.75 texel, half the texel's
 // diagonal with a margin; 0.4 and below shadowed the surfaces themselves), and 0.2 is left for
@@ -35,7 +38,7 @@ namespace irad::gl {
 // 4x4-block relMSE, the plane crossing alone): the centre alone with 0.75 texel 2.67e-5;
 // 0.3 1.72e-5, 0.2 1.65e-5, 0.1 1.59e-5.
 inline float normal_offset_texels(bool planes) {
-  return planes ? 0.75f : 0.2f;
+  return planes ? 0.5f : 0.2f;
 }
 
 class VplShader {
