@@ -74,11 +74,6 @@ ivec2 toward(vec2 at) {
   return ivec2(offset.x >= 0.0 ? 1 : -1, offset.y >= 0.0 ? 1 : -1);
 }
 
-// The plane's distance at the face point `at` (texels) with gradient terms g (per texel).
-float plane_distance(float centre, vec2 g, vec2 at) {
-  return centre + dot(g, clamp(at - (floor(at) + 0.5), vec2(-0.5), vec2(0.5)));
-}
-
 // The receiver-plane test of a lookup without the occluder planes (the centre's distance
 // alone), for a receiver that lies beyond the surface o which the centre ray of the texel
 // `texel` of face `face` (R = res texels per edge) met at distance `centre`: whether o shadows
@@ -136,8 +131,8 @@ float occluder_distance(float centre, vec2 gradient, vec2 at, float next_x, vec2
   vec2 g = gradient;
   if (next_x > centre + g.x * step.x + slack) g.x = 0.0;
   if (next_y > centre + g.y * step.y + slack) g.y = 0.0;
-  float d = plane_distance(centre, g, at);
   vec2 offset = clamp(at - (floor(at) + 0.5), vec2(-0.5), vec2(0.5));
+  float d = centre + dot(g, offset); // the plane at `at`
   // A neighbour in front of the own plane whose plane meets the own surface between the two
   // centres (a concave corner: a wall on a floor seen from the wall's lit side): beyond the
   // meeting line its surface is the nearer one.

@@ -18,7 +18,8 @@ Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer
       atlas_(make_float_texture(api, k * tile_w_, k * tile_h_)),
       atlas_depth_(make_renderbuffer(api)), atlas_fbo_(make_framebuffer(api)),
       empty_vao_(make_vertex_array(api)),
-      resolve_(api, "resolve", shaders::fullscreen_vertex, shaders::resolve_fragment) {
+      resolve_(api, "resolve", shaders::fullscreen_vertex, shaders::resolve_fragment),
+      scale_location_(resolve_.uniform("u_scale")) {
   if (k < 1) throw Error("", "--interleave", "must be at least 1");
   api.BindRenderbuffer(GL_RENDERBUFFER, atlas_depth_.get());
   api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, k * tile_w_, k * tile_h_);
@@ -72,7 +73,7 @@ void Interleaved::resolve(const std::vector<float>& scales) const {
   api_->Disable(GL_DEPTH_TEST);
   api_->Disable(GL_BLEND);
   resolve_.use();
-  api_->Uniform1fv(resolve_.uniform("u_scale"), sets(), scales.data());
+  api_->Uniform1fv(scale_location_, sets(), scales.data());
   api_->ActiveTexture(GL_TEXTURE0 + atlas_unit);
   api_->BindTexture(GL_TEXTURE_2D, atlas_.get());
   gbuffer_->bind_textures(position_unit);

@@ -44,6 +44,7 @@ private:
   Framebuffer atlas_fbo_;
   VertexArray empty_vao_;
   ShaderProgram resolve_;
+  GLint scale_location_; // u_scale, the sets' scales (resolve)
 };
 
 } // namespace irad::gl
