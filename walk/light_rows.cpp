@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <numeric>
 
 namespace irad {
 
@@ -32,6 +34,35 @@ std::vector<std::pair<int, int>> row_pixels(const View& view, std::size_t rows,
   return pixels;
 }
 
+// 30-bit Morton code of p's cell in a 1024^3 grid over the box [lo, lo + extent].
+std::uint32_t morton_code(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& extent) {
+  const glm::uvec3 q(glm::clamp((p - lo) / extent, 0.0f, 0.999999f) * 1024.0f);
+  std::uint32_t code = 0;
+  for (int b = 9; b >= 0; --b)
+    code = (code << 3u) | (((q.x >> b) & 1u) << 2u) | (((q.y >> b) & 1u) << 1u) | ((q.z >> b) & 1u);
+  return code;
+}
+
+// The VPLs' indices in Morton order of their positions: neighbours in the order lie close, so a
+// packet of shadow rays from one shading point toward them runs in nearly one direction
+// (Embree's packets then traverse the same nodes). Measured on the Cornell box (256 rows, 30570
+// VPLs, 2 threads): the rows 0.19 s -> 0.13 s, the same matrix.
+std::vector<std::uint32_t> spatial_order(const std::vector<Vpl>& vpls) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const Vpl& v : vpls) {
+    lo = glm::min(lo, v.position);
+    hi = glm::max(hi, v.position);
+  }
+  const glm::vec3 extent = glm::max(hi - lo, glm::vec3(std::numeric_limits<float>::min()));
+  std::vector<std::uint32_t> code(vpls.size());
+  for (std::size_t j = 0; j < vpls.size(); ++j) code[j] = morton_code(vpls[j].position, lo, extent);
+  std::vector<std::uint32_t> order(vpls.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&code](std::uint32_t a, std::uint32_t b) { return code[a] < code[b]; });
+  return order;
+}
+
 } // namespace
 
 ReducedMatrix light_rows(const Scene& scene, const RayScene& rays, const View& view,
@@ -45,14 +76,18 @@ ReducedMatrix light_rows(const Scene& scene, const RayScene& rays, const View& v
   m.values.assign(m.rows * m.columns, 0.0f);
   const float dmin = options.clamp * scene.bounds.diagonal();
   const float eps = rays.epsilon();
+  // The VPLs traced in spatial order, each term stored in its own column.
+  const std::vector<std::uint32_t> order = spatial_order(vpls.vpls);
+  VplSet sorted = vpls;
+  for (std::size_t j = 0; j < order.size(); ++j) sorted.vpls[j] = vpls.vpls[order[j]];
   parallel_rows(static_cast<int>(m.rows), options.threads, [&](int i) {
     // A cancelled render leaves the rows not started at 0 (a row: a few ms).
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
     const ShadingPoint& p = points[static_cast<std::size_t>(i)];
     const glm::vec3 k = p.albedo * std::numbers::inv_pi_v<float>;
-    for_each_vpl_irradiance(rays, p, vpls, dmin, eps, [&](std::size_t j, const glm::vec3& term) {
+    for_each_vpl_irradiance(rays, p, sorted, dmin, eps, [&](std::size_t j, const glm::vec3& term) {
       const glm::vec3 c = k * term;
-      m.column(j)[i] = c.x + c.y + c.z;
+      m.column(order[j])[i] = c.x + c.y + c.z;
     });
   });
   return m;
