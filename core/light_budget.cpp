@@ -29,13 +29,19 @@ std::size_t budget_clusters(std::size_t vpls, const LightBudget& budget) {
 // relMSE, time): Cornell 256x256 (1910 representatives) R = 64 3.06e-4, 96 2.48e-4, 128 2.29e-4
 // for 15-20 % more time; Cornell 512x512 R = 128 3.07e-4, 256 2.95e-4 for 20 % more; godot
 // 128x128 (1940) R = 64 3.1e-3, 128 2.5e-3 for 70 % more (its shadow passes draw finer levels
-// of detail). With rounds the mean's light-set error falls as 1/rounds while the shadow maps'
-// stays; until session 13 the faces doubled from 8 rounds on (Cornell 256x256, 8 rounds: R = 128
-// 5.3e-5 in 11.6 s, R = 256 3.2e-5 in 18.4 s). Since the lookups trust the receiver's plane
-// (raster/glsl/cube_glsl.h in_front_of_receiver) the maps' error at R = 128 is a fifth of what it
-// was, and doubling no longer pays: 8 rounds R = 128 2.97e-5 in 10.7 s, R = 256 2.80e-5 in
-// 15.9 s (pt: 3.4e-5 and 2.3e-5 at those times).
-int representative_shadow_resolution(int rule, int width, int height) {
+// of detail). So until session 15 the faces were at least half the image's side up to 128.
+// Since the lookups trust the receiver's plane (session 13) and take the occluder's plane both
+// ways (session 14), the maps' error is small against one light set's: Cornell 256x256, seeds
+// 0-4, R = 64 1.58e-4 in 1.02-1.14 s (median 1.04) against R = 128 1.52e-4 in 1.15-1.47 s
+// (median 1.21); 2 rounds (seeds 0-2) 9.1e-5 in 2.0-2.4 s against 8.7e-5 in 2.35-2.9 s. The
+// maps' error stays while the mean of M rounds divides the light sets' by M: at 4 rounds the two
+// are level (5.6e-5 in 4.2-5.2 s against 5.1e-5 in 5.1-5.7 s), and godot 128x128 (where the rule
+// gives 64) at 8 rounds is better off with 128 (5.4e-4 in 30 s; R = 64 needs 8 rounds and 16 s
+// for 7.1e-4, R = 128 4 rounds and 15 s for 6.6e-4). Doubling again no longer pays (Cornell
+// 256x256, 8 rounds: R = 128 2.97e-5 in 10.7 s, R = 256 2.80e-5 in 15.9 s; pt: 3.4e-5 and 2.3e-5
+// at those times).
+int representative_shadow_resolution(int rule, int width, int height, unsigned rounds) {
+  if (rounds < 4) return rule;
   return std::max(rule, std::min(128, std::max(width, height) / 2));
 }
 

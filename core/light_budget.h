@@ -32,9 +32,10 @@ std::uint32_t budget_paths(std::size_t pilot_vpls, const LightBudget& budget);
 // The representatives for a walk of `vpls` VPLs; 0: draw every VPL.
 std::size_t budget_clusters(std::size_t vpls, const LightBudget& budget);
 
-// The shadow faces' resolution for cluster representatives in a width x height image, given the
-// raster's rule for every VPL (`rule`, raster/raster_renderer.h shadow_resolution_for): at least
-// half the image's larger side up to 128 texels (the .cpp has the measurements).
-int representative_shadow_resolution(int rule, int width, int height);
+// The shadow faces' resolution for cluster representatives in a width x height image rendered as
+// the mean of `rounds` light sets, given the raster's rule for every VPL (`rule`,
+// raster/raster_renderer.h shadow_resolution_for): the rule below 4 rounds, from 4 rounds on at
+// least half the image's larger side up to 128 texels (the .cpp has the measurements).
+int representative_shadow_resolution(int rule, int width, int height, unsigned rounds);
 
 } // namespace irad

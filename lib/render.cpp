@@ -111,7 +111,7 @@ int shadow_resolution(const RenderOptions& o, const RenderResult& r) {
   if (o.raster.shadow_resolution != 0) return o.raster.shadow_resolution; // checked by the raster
   const int rule = shadow_resolution_for(0, r.view.width, r.view.height);
   if (r.clusters == 0) return rule;
-  return representative_shadow_resolution(rule, r.view.width, r.view.height);
+  return representative_shadow_resolution(rule, r.view.width, r.view.height, o.rounds);
 }
 
 // The raster's k: as asked, or automatically 2 for cluster representatives in images below 512

@@ -109,20 +109,24 @@ TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(ea.mean_ratio[c], 1.0, 0.01) << c;
 }
 
-// The representatives' faces: half the image's larger side, at least the rule's, up to 128; twice
-// that from 8 rounds on, up to 1024.
-TEST(LightBudget, RepresentativeShadowsFollowTheImage) {
-  EXPECT_EQ(representative_shadow_resolution(64, 256, 256), 128);
-  EXPECT_EQ(representative_shadow_resolution(64, 128, 96), 64);
-  EXPECT_EQ(representative_shadow_resolution(64, 48, 48), 64);
-  EXPECT_EQ(representative_shadow_resolution(256, 1024, 768), 256);
-  EXPECT_EQ(representative_shadow_resolution(64, 4096, 256), 128);
-  EXPECT_EQ(representative_shadow_resolution(1024, 8192, 4096), 1024);
+// The representatives' faces: the rule's below 4 rounds; from 4 rounds on half the image's larger
+// side, at least the rule's, up to 128.
+TEST(LightBudget, RepresentativeShadowsFollowTheImageAndTheRounds) {
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 1), 64);
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 3), 64);
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 4), 128);
+  EXPECT_EQ(representative_shadow_resolution(64, 128, 96, 8), 64);
+  EXPECT_EQ(representative_shadow_resolution(64, 48, 48, 16), 64);
+  EXPECT_EQ(representative_shadow_resolution(256, 1024, 768, 1), 256);
+  EXPECT_EQ(representative_shadow_resolution(256, 1024, 768, 4), 256);
+  EXPECT_EQ(representative_shadow_resolution(64, 4096, 256, 4), 128);
+  EXPECT_EQ(representative_shadow_resolution(1024, 8192, 4096, 4), 1024);
 }
 
-// Representatives cast shadow faces of at least half the image's larger side up to 128 texels
-// and are interleaved 2x2 below 512 pixels; every VPL drawn one by one keeps raster_renderer.h's
-// rule (a quarter, at least 64) and k = 4; an explicit resolution stays.
+// Representatives cast shadow faces of raster_renderer.h's rule (a quarter of the image's larger
+// side, at least 64) below 4 rounds and of at least half the side up to 128 from 4 rounds on, and
+// are interleaved 2x2 below 512 pixels; every VPL drawn one by one keeps the rule and k = 4; an
+// explicit resolution stays.
 TEST(LightBudget, ShadowsOfRepresentatives) {
   Log log = quiet();
   const Scene scene = cornell(log);
@@ -131,8 +135,11 @@ TEST(LightBudget, ShadowsOfRepresentatives) {
   o.raster.interleave = 0; // automatic: 2 for representatives below 512 pixels
   const RenderResult clustered = render(scene, o, log);
   EXPECT_EQ(clustered.clusters, 478u);
-  EXPECT_EQ(clustered.shadow_resolution, 128);
+  EXPECT_EQ(clustered.shadow_resolution, 64);
   EXPECT_EQ(clustered.interleave, 2);
+  o.rounds = 4;
+  EXPECT_EQ(render(scene, o, log).shadow_resolution, 128);
+  o.rounds = 1;
   o.raster.shadow_resolution = 32;
   EXPECT_EQ(render(scene, o, log).shadow_resolution, 32);
   o.raster.shadow_resolution = 0;
