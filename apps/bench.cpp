@@ -46,6 +46,10 @@ struct Sweep {
   std::uint32_t raster_max = ~0u;                // raster: only the N up to this
   std::uint32_t k1_max = ~0u;                    // raster-k1: only the N up to this
   std::vector<std::uint32_t> cluster_paths = {}; // raster-clusters (walk/vpl_clustering.h)
+  // raster-default and rt-vpl-default: `irad render`'s default with --rounds M for each M here
+  // (rt-vpl only up to rt_rounds_max), the error against time past one light set.
+  std::vector<std::uint32_t> rounds = {1};
+  std::uint32_t rt_rounds_max = ~0u;
 };
 
 // The sweep of scene `name`. Real scenes (58k-64k triangles): every raster pass draws all of
@@ -63,15 +67,27 @@ Sweep sweep_for(const BenchOptions& o, const std::string& name) {
     s.rt_paths.insert(s.rt_paths.end(), {1024, 4096});
     s.k1_max = 4096;
   }
-  if (name == "cornell")
+  if (name == "cornell") {
     s.cluster_paths = o.quick ? std::vector<std::uint32_t>{256}
                               : std::vector<std::uint32_t>{2048, 4096, 8192, 16384, 32768};
+    s.rounds =
+        o.quick ? std::vector<std::uint32_t>{1, 2} : std::vector<std::uint32_t>{1, 2, 4, 8, 16};
+    s.rt_rounds_max = o.quick ? 2u : 4u; // rt-vpl: about 4 s a round at 256x256
+  }
   if (is_real_scene(name) || name == "sphere2m") {
+    // Full, zdm2 and godot: pt up to 1024 spp and the default up to 8 rounds (about 30 s on
+    // godot, 50 s on zdm2), against a 4096-spp reference (a 1024-spp one carries a third of pt
+    // 1024 spp's error per 4x4 block: godot 1.9e-4 of 5.5e-4).
     s = o.quick ? Sweep{64, 256, {16}, {16}, {4, 16}, 0}
                 : Sweep{128, 1024, {16, 64, 256}, {16, 64, 256}, {4, 16, 64, 256}, 0};
     s.every_sequence = false;
     s.k1_max = 16;
     if (!o.quick) s.cluster_paths = {64, 256, 1024};
+    if (!o.quick && is_real_scene(name)) {
+      s.reference_spp = 4096;
+      s.spp.push_back(1024);
+      s.rounds = {1, 2, 4, 8};
+    }
   }
   if (o.size > 0) s.size = o.size;
   if (o.reference_spp > 0) s.reference_spp = o.reference_spp;
@@ -162,6 +178,7 @@ void log_row(const BenchRow& r, Log& log) {
   if (r.vpls > 0 && r.shadow >= 0 && r.shading >= 0)
     line += fmt::format(" (shadow {:.3f}, shading {:.3f})", 1e3 * r.shadow / vpls,
                         1e3 * r.shading / vpls);
+  if (r.rounds > 0) line += fmt::format("  rounds {}", r.rounds);
   if (r.peak_mib > 0) line += fmt::format("  peak {:.0f} MiB", r.peak_mib);
   if (r.setup > 0) line += fmt::format("  set-up {:.2f} s", r.setup);
   log.info(line);
@@ -298,24 +315,34 @@ void bench_clusters(const Target& g, const Sweep& sw, std::vector<BenchRow>& row
 }
 
 // `irad render`'s default (the light budget: --paths auto --clusters auto --interleave auto,
-// core/light_budget.h) through the library, as one row; `total` leaves out render()'s load (the
-// BVH, in `bvh`), and includes the GL context and shaders, as the CLI pays them.
-void bench_default(const Target& g, std::vector<BenchRow>& rows, Log& log) {
-  RenderOptions o = with_light_budget();
-  o.size = std::pair{g.view.width, g.view.height};
-  const RenderResult r = render(g.b.scene, o, log);
-  BenchRow row = base_row(g.b, g.bvh, "raster-default");
-  row.sequence = "halton";
-  row.paths = r.vpls.paths;
-  row.vpls = r.walk_vpls;
-  row.walk = r.seconds.walk + r.seconds.cluster;
-  row.readback = r.seconds.readback;
-  row.compensation = r.seconds.compensation;
-  row.total = r.seconds.total - r.seconds.load;
-  row.vpls_per_second = static_cast<double>(r.walk_vpls) / row.total;
-  score(row, r.image, g.ref);
-  log_row(row, log);
-  rows.push_back(row);
+// core/light_budget.h) through the library, with the raster and with rt-vpl, one row for each of
+// the sweep's rounds; `total` leaves out render()'s load (the BVH, in `bvh`), and includes the GL
+// context and shaders, as the CLI pays them.
+void bench_default(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
+  for (const Estimator estimator : {Estimator::Raster, Estimator::RtVpl})
+    for (const std::uint32_t rounds : sw.rounds) {
+      if (estimator == Estimator::RtVpl && rounds > sw.rt_rounds_max) continue;
+      RenderOptions o = with_light_budget();
+      o.size = std::pair{g.view.width, g.view.height};
+      o.estimator = estimator;
+      o.rounds = rounds;
+      const RenderResult r = render(g.b.scene, o, log);
+      BenchRow row = base_row(g.b, g.bvh,
+                              estimator == Estimator::Raster ? "raster-default" : "rt-vpl-default");
+      row.sequence = "halton";
+      row.rounds = r.rounds;
+      row.paths = r.vpls.paths;
+      row.vpls = r.walk_vpls;
+      row.walk = r.seconds.walk + r.seconds.cluster;
+      row.readback = r.seconds.readback;
+      row.trace = r.seconds.trace;
+      row.compensation = r.seconds.compensation;
+      row.total = r.seconds.total - r.seconds.load;
+      row.vpls_per_second = static_cast<double>(r.walk_vpls) * rounds / row.total;
+      score(row, r.image, g.ref);
+      log_row(row, log);
+      rows.push_back(row);
+    }
 }
 
 // The same Halton VPLs with ray-traced visibility.
@@ -365,7 +392,7 @@ void bench_scene(const BenchScene& b, const Sweep& sw, const BenchOptions& o,
   const Target g{b, rays, view, reference(b, rays, view, sw.reference_spp, o.out_dir, log), bvh};
   bench_raster(g, sw, rows, log);
   bench_clusters(g, sw, rows, log);
-  if (b.name == "cornell" || is_real_scene(b.name)) bench_default(g, rows, log);
+  if (b.name == "cornell" || is_real_scene(b.name)) bench_default(g, sw, rows, log);
   bench_rt_vpl(g, sw, rows, log);
   bench_pt(g, sw, rows, log);
 }
@@ -397,14 +424,14 @@ void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path)
   out << "scene,triangles,estimator,sequence,paths,spp,vpls,width,height,seconds_load,"
          "seconds_walk,seconds_shadow_gpu,seconds_shading_gpu,seconds_readback,seconds_trace,"
          "seconds_total,vpls_per_second,rmse,relmse,mean_ratio,seconds_bvh,peak_mib,"
-         "seconds_setup,relmse_block4,seconds_compensation\n";
+         "seconds_setup,relmse_block4,seconds_compensation,rounds\n";
   for (const BenchRow& r : rows)
     out << fmt::format("{},{},{},{},{},{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},"
-                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f},{:.1f},{:.4f},{:.6g},{:.4f}\n",
+                       "{:.6f},{:.2f},{:.6g},{:.6g},{:.6f},{:.6f},{:.1f},{:.4f},{:.6g},{:.4f},{}\n",
                        r.scene, r.triangles, r.estimator, r.sequence, r.paths, r.spp, r.vpls,
                        r.width, r.height, r.load, r.walk, r.shadow, r.shading, r.readback, r.trace,
                        r.total, r.vpls_per_second, r.rmse, r.relmse, r.mean_ratio, r.bvh,
-                       r.peak_mib, r.setup, r.relmse_block4, r.compensation);
+                       r.peak_mib, r.setup, r.relmse_block4, r.compensation, r.rounds);
   if (!out) throw Error(path, "", "cannot write");
 }
 

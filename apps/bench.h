@@ -20,7 +20,7 @@ struct BenchOptions {
   // Any of cornell, sphere, large, zdm2, godot (empty: cornell, sphere, large).
   std::vector<std::string> scenes;
   int size = 0;                    // image side; 0: 64 quick, 256 full (zdm2, godot: 128)
-  std::uint32_t reference_spp = 0; // 0: 256 quick, 4096 full (zdm2, godot: 1024)
+  std::uint32_t reference_spp = 0; // 0: 256 quick, 4096 full (sphere2m: 1024)
   bool plots = true;
   bool scale = true; // the triangle-count study: OUT/scale.csv (never when only zdm2, godot run)
   bool scale_only = false; // only the triangle-count study
@@ -34,10 +34,12 @@ struct BenchRow {
   // default before issue 14); raster-clusters: the default raster over the cluster
   // representatives of the walk's VPLs (walk/vpl_clustering.h; `vpls` the walk's, `walk` the walk
   // and the clustering, vpls_per_second the walk's VPLs per second of the whole image);
-  // raster-default: `irad render`'s default (the light budget) through lib/irad/render.h; pt
+  // raster-default and rt-vpl-default: `irad render`'s default (the light budget) through
+  // lib/irad/render.h, with --estimator raster and rt-vpl, `rounds` light sets; pt
   std::string estimator;
   std::string sequence; // halton, scrambled-halton, random ("" for pt)
   std::uint32_t paths = 0, spp = 0;
+  std::uint32_t rounds = 0; // raster-default, rt-vpl-default: --rounds (0: not such a row)
   std::size_t vpls = 0;
   int width = 0, height = 0;
   double load = 0, bvh = 0, walk = 0, shadow = -1, shading = -1, readback = 0, trace = 0, total = 0;
@@ -53,7 +55,8 @@ struct BenchRow {
 
 // Runs the sweep, writes OUT/bench.csv (and plots), returns the rows. zdm2, godot and sphere2m
 // run a smaller sweep (raster and rt-vpl with Halton only, N in {16, 64, 256}; pt up to 256
-// spp); zdm2 and godot leave their lit copy in OUT (lit_NAME.gltf).
+// spp, zdm2 and godot up to 1024); zdm2 and godot leave their lit copy in OUT (lit_NAME.gltf).
+// The Cornell box, zdm2 and godot add the default (raster-default, rt-vpl-default) over rounds.
 std::vector<BenchRow> run_bench(const BenchOptions& options, Log& log);
 
 void write_bench_csv(const std::vector<BenchRow>& rows, const std::string& path);

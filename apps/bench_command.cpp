@@ -36,7 +36,7 @@ void add_bench_command(CLI::App& app, Commands& commands) {
                   "Image side (default 64 quick, 256 full, 128 for sphere2m, zdm2 and godot)");
   cmd->add_option("--reference-spp", options->reference_spp,
                   "Path-traced reference samples per pixel (default 256 quick, 4096 full, 1024 for "
-                  "zdm2 and godot)");
+                  "sphere2m)");
   cmd->add_flag(
       "--no-plots", [options](std::int64_t) { options->plots = false; }, "Write the CSV only");
   cmd->add_flag(
