@@ -359,7 +359,9 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "about 32768 VPLs (256..65536 paths)")
       ->capture_default_str();
   cmd->add_option("--shadow-res", args->shadow_res,
-                  "Shadow cube face resolution (0: a quarter of the image side, 64..1024)")
+                  "Shadow cube face resolution (0: a quarter of the image side, 64..1024; "
+                  "cluster representatives with --rounds 4 or more: at least half the side up "
+                  "to 128)")
       ->capture_default_str();
   cmd->add_option("--clamp", args->clamp,
                   "Clamp distance d_min as a fraction of the scene's bounding diagonal (local: "
