@@ -12,6 +12,7 @@
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <set>
@@ -157,6 +158,26 @@ TEST_F(CornellClusters, CornellRepresentativesEstimateEveryVpl) {
   EXPECT_LT(single, 0.05);
   EXPECT_LT(averaged.relmse, 0.3 * single);
   EXPECT_NEAR(averaged.mean_ratio[1], 1.0, 0.01);
+}
+
+// The rows trace the VPLs in a spatial order of their own (walk/light_rows.cpp), but each VPL's
+// term lands in its own column: the VPLs reversed give the same columns reversed, bit for bit.
+TEST_F(CornellClusters, EachVplsTermLandsInItsOwnColumn) {
+  const VplSet vpls = quasi_random_walk(scene, rays, {256, 64}, log);
+  VplSet reversed = vpls;
+  std::reverse(reversed.vpls.begin(), reversed.vpls.end());
+  const LightRowsOptions o{64, traced.clamp, 0, 0, nullptr};
+  const ReducedMatrix a = light_rows(scene, rays, view, vpls, o);
+  const ReducedMatrix b = light_rows(scene, rays, view, reversed, o);
+  ASSERT_EQ(a.columns, vpls.vpls.size());
+  ASSERT_EQ(b.rows, a.rows);
+  std::size_t lit = 0;
+  for (std::size_t j = 0; j < a.columns; ++j)
+    for (std::size_t i = 0; i < a.rows; ++i) {
+      ASSERT_EQ(a.column(j)[i], b.column(a.columns - 1 - j)[i]) << j << ' ' << i;
+      lit += a.column(j)[i] > 0.0f;
+    }
+  EXPECT_GT(lit, a.rows * a.columns / 4); // most of the box sees most VPLs
 }
 
 // The representatives are ordinary VPLs: the raster draws them as rt-vpl sums them.

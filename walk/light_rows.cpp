@@ -34,9 +34,14 @@ std::vector<std::pair<int, int>> row_pixels(const View& view, std::size_t rows,
   return pixels;
 }
 
-// 30-bit Morton code of p's cell in a 1024^3 grid over the box [lo, lo + extent].
+// 30-bit Morton code of p's cell in a 1024^3 grid over the box [lo, lo + extent] (cell 0 along
+// an axis where p is not finite: the order only groups the rays, any order gives the same rows).
 std::uint32_t morton_code(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& extent) {
-  const glm::uvec3 q(glm::clamp((p - lo) / extent, 0.0f, 0.999999f) * 1024.0f);
+  glm::uvec3 q(0u);
+  for (int a = 0; a < 3; ++a) {
+    const float t = (p[a] - lo[a]) / extent[a];
+    if (std::isfinite(t)) q[a] = static_cast<unsigned>(std::clamp(t, 0.0f, 0.999999f) * 1024.0f);
+  }
   std::uint32_t code = 0;
   for (int b = 9; b >= 0; --b)
     code = (code << 3u) | (((q.x >> b) & 1u) << 2u) | (((q.y >> b) & 1u) << 1u) | ((q.z >> b) & 1u);
@@ -49,10 +54,12 @@ std::uint32_t morton_code(const glm::vec3& p, const glm::vec3& lo, const glm::ve
 // VPLs, 2 threads): the rows 0.19 s -> 0.13 s, the same matrix.
 std::vector<std::uint32_t> spatial_order(const std::vector<Vpl>& vpls) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-  for (const Vpl& v : vpls) {
-    lo = glm::min(lo, v.position);
-    hi = glm::max(hi, v.position);
-  }
+  for (const Vpl& v : vpls)
+    for (int a = 0; a < 3; ++a)
+      if (std::isfinite(v.position[a])) {
+        lo[a] = std::min(lo[a], v.position[a]);
+        hi[a] = std::max(hi[a], v.position[a]);
+      }
   const glm::vec3 extent = glm::max(hi - lo, glm::vec3(std::numeric_limits<float>::min()));
   std::vector<std::uint32_t> code(vpls.size());
   for (std::size_t j = 0; j < vpls.size(); ++j) code[j] = morton_code(vpls[j].position, lo, extent);
