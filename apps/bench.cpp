@@ -412,6 +412,7 @@ std::vector<BenchRow> run_bench(const BenchOptions& o, Log& log) {
     bench_scene(b, sw, o, rows, log);
     write_bench_csv(rows, o.out_dir + "/bench.csv"); // after every scene: a long run keeps its rows
   }
+  write_versus_pt(rows, o.out_dir + "/versus_pt.csv", log);
   if (o.plots) write_bench_plots(rows, o.out_dir, log);
   // The Cornell box's triangle-count study: not for a run of real scenes only.
   const bool only_real = !names.empty() && std::all_of(names.begin(), names.end(), is_real_scene);

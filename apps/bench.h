@@ -6,7 +6,9 @@
 #include "core/log.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace irad::apps {
@@ -74,5 +76,12 @@ void run_shadow_lod_error(const BenchOptions& options, Log& log);
 void write_bench_plots(const std::vector<BenchRow>& rows, const std::string& out_dir, Log& log);
 // Least-squares slope of log(y) against log(x).
 double loglog_slope(const std::vector<double>& x, const std::vector<double>& y);
+// y at x on the log-log line through the two points of `curve` (x ascending, x and y > 0) whose
+// x bracket it; nullopt outside the curve's x or with fewer than two points.
+std::optional<double> loglog_at(const std::vector<std::pair<double, double>>& curve, double x);
+// Every row against pt at its own time: pt's relMSE per pixel and per 4x4 block there (loglog_at
+// over the scene's pt rows; rows outside pt's times are left out) and the ratios, as CSV; a log
+// line for each row of the default over rounds (raster-default, rt-vpl-default).
+void write_versus_pt(const std::vector<BenchRow>& rows, const std::string& path, Log& log);
 
 } // namespace irad::apps
