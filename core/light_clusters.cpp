@@ -29,52 +29,6 @@ double dot(const A* a, const float* b, std::size_t n) {
   return (s0 + s1) + (s2 + s3);
 }
 
-// dot(a, c) and dot(b, c), summed as dot() sums them, in one pass over c.
-std::pair<double, double> dot2(const double* a, const double* b, const float* c, std::size_t n) {
-  double a0 = 0.0, a1 = 0.0, a2 = 0.0, a3 = 0.0, b0 = 0.0, b1 = 0.0, b2 = 0.0, b3 = 0.0;
-  std::size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    const double c0 = c[i], c1 = c[i + 1], c2 = c[i + 2], c3 = c[i + 3];
-    a0 += a[i] * c0;
-    a1 += a[i + 1] * c1;
-    a2 += a[i + 2] * c2;
-    a3 += a[i + 3] * c3;
-    b0 += b[i] * c0;
-    b1 += b[i + 1] * c1;
-    b2 += b[i + 2] * c2;
-    b3 += b[i + 3] * c3;
-  }
-  for (; i < n; ++i) {
-    a0 += a[i] * double(c[i]);
-    b0 += b[i] * double(c[i]);
-  }
-  return {(a0 + a1) + (a2 + a3), (b0 + b1) + (b2 + b3)};
-}
-
-// dot(p, c) (summed as dot() sums it), then p += c, in one pass.
-double dot_then_add(std::vector<double>& p, const float* c) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  const std::size_t n = p.size();
-  double* q = p.data();
-  std::size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    const double c0 = c[i], c1 = c[i + 1], c2 = c[i + 2], c3 = c[i + 3];
-    s0 += q[i] * c0;
-    s1 += q[i + 1] * c1;
-    s2 += q[i + 2] * c2;
-    s3 += q[i + 3] * c3;
-    q[i] += c0;
-    q[i + 1] += c1;
-    q[i + 2] += c2;
-    q[i + 3] += c3;
-  }
-  for (; i < n; ++i) {
-    s0 += q[i] * double(c[i]);
-    q[i] += c[i];
-  }
-  return (s0 + s1) + (s2 + s3);
-}
-
 // Asks for the n floats at c to be brought into the cache. The splits visit the columns in an
 // order no hardware prefetcher can guess (a cluster's columns lie anywhere in the matrix): with
 // the next column asked for while one is summed, Cornell 256x256's clustering (256 rows, 30570
@@ -152,8 +106,7 @@ public:
       const std::uint32_t j = order_[r.begin + k];
       if (k + 1 < n) prefetch(m_.column(order_[r.begin + k + 1]), m_.rows);
       const float* c = m_.column(j);
-      const auto [uc, sc] = dot2(u.data(), s.data(), c, m_.rows);
-      keyed[k] = {uc / norms_[j], j, sc};
+      keyed[k] = {dot(u.data(), c, m_.rows) / norms_[j], j, dot(s.data(), c, m_.rows)};
     }
     std::sort(keyed.begin(), keyed.end());
     // Sweep: prefix P with |P|^2 and S . P kept incrementally, |S - P|^2 = |S|^2 - 2 S.P + |P|^2.
@@ -169,7 +122,8 @@ public:
       if (k + 2 < n) prefetch(m_.column(keyed[k + 1].j), m_.rows);
       const float* c = m_.column(keyed[k].j);
       const double a = norms_[keyed[k].j];
-      p2 += 2.0 * dot_then_add(p, c) + a * a;
+      p2 += 2.0 * dot(p.data(), c, m_.rows) + a * a;
+      add(p, c);
       sp += keyed[k].sc;
       pa += a;
       const double ra = r.alpha - pa;
