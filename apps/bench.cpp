@@ -338,7 +338,7 @@ void bench_default(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows
       row.trace = r.seconds.trace;
       row.compensation = r.seconds.compensation;
       row.total = r.seconds.total - r.seconds.load;
-      row.vpls_per_second = static_cast<double>(r.walk_vpls) * rounds / row.total;
+      row.vpls_per_second = static_cast<double>(r.walk_vpls) * r.rounds / row.total;
       score(row, r.image, g.ref);
       log_row(row, log);
       rows.push_back(row);
