@@ -62,6 +62,7 @@ struct RenderArgs {
   std::string shadow_occlusion = "on";
   std::string shadow_planes = "auto";
   std::string jitter = "off";
+  std::string interleave_edges = "off";
   int gl_device = -1;
   bool partial = false;
   std::uint64_t max_triangles = LoadLimits{}.max_triangles;
@@ -153,6 +154,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"vpls_planned", r.vpls.planned},
           {"passes", r.passes},
           {"single_passes", r.single_passes},
+          {"edge_pixels", r.edge_pixels},
           {"paths", r.vpls.paths},
           {"sequence", args.sequence},
           {"light_allocation", args.light_allocation},
@@ -163,6 +165,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"triangles", scene.triangle_count()},
           {"shadow_res", r.shadow_resolution}, // as drawn: 0 for rt-vpl
           {"interleave", r.interleave},        // as drawn: auto resolved
+          {"interleave_edges", args.interleave_edges == "on"},
           {"batch", args.batch},
           {"shadow_lod", args.shadow_lod},
           {"shadow_occlusion", args.shadow_occlusion == "on"},
@@ -276,6 +279,7 @@ int run_render(const RenderArgs& args) {
   request.render.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
   request.render.raster.shadow_lod.planes = parse_shadow_planes(args.shadow_planes);
   request.render.raster.jitter = args.jitter == "on";
+  request.render.raster.interleave_edges = args.interleave_edges == "on";
   request.render.pt.pixel_footprint =
       args.jitter == "on"; // pt: each sample at a uniform pixel point
   request.render.estimator = parse_estimator(args.estimator);
@@ -440,6 +444,12 @@ void add_render_command(CLI::App& app, Commands& commands) {
          "Raster: k > 1 splits the VPLs into k x k sets, each pixel of a k x k tile lit by "
          "one set, then a geometry-aware filter (1: every VPL shades every pixel); auto: 2 for "
          "cluster representatives in images below 512 pixels, else 4")
+      ->capture_default_str();
+  cmd->add_option("--interleave-edges", args->interleave_edges,
+                  "Raster, interleaved, batched: the pixels where the filter's window is cut "
+                  "(creases, silhouettes) are shaded by every set and not filtered; off: the "
+                  "filter fills them in from one side")
+      ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--batch", args->batch,
                   "Raster: VPLs per instanced draw of shadow maps and shading, every kind of VPL "

@@ -66,7 +66,8 @@ void RasterRenderer::Impl::prepare(const View& view) {
     gbuffer = std::make_unique<gl::GBuffer>(api, view.width, view.height, target->depth());
   shadow_res = resolution;
   if (options.interleave > 1 && !interleaved)
-    interleaved = std::make_unique<gl::Interleaved>(api, options.interleave, *gbuffer);
+    interleaved = std::make_unique<gl::Interleaved>(api, options.interleave, *gbuffer,
+                                                    options.interleave_edges);
   const int ortho = gl::ortho_resolution_for(options.shadow_resolution, view.width, view.height);
   if (gl::has_directional_light(scene) && (!directional || directional->resolution() != ortho))
     directional = std::make_unique<gl::DirectionalPass>(api, scene, ortho);
@@ -183,6 +184,7 @@ void RasterRenderer::Impl::begin_image(const View& view) {
     gbuffer->bind();
     camera.gbuffer(vp, gpu);
     if (jitter) jitter->average_albedo(camera, view, gpu);
+    if (interleaved) interleaved->find_edges();
   }
   tile_depths = false;
   single_passes = 0;
@@ -209,7 +211,8 @@ void RasterRenderer::Impl::ensure_tile_depths(const View& view) {
 Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                                          gl::PassTimer* timer, RasterTimings* timings) {
   target->bind();
-  if (interleaved) interleaved->resolve(interleave_sets.scales());
+  // The edge pixels hold every VPL only when all went through the batched passes.
+  if (interleaved) interleaved->resolve(interleave_sets.scales(), single_passes == 0);
   if (jitter) {
     jitter->emitters(camera, view, scene, gpu, background.get());
   } else {
@@ -225,6 +228,8 @@ Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0,
     timings->readback = seconds(t1, Clock::now());
     timings->passes = passes;
     timings->single_passes = single_passes;
+    const gl::EdgePixels* edges = interleaved ? interleaved->edges() : nullptr;
+    timings->edge_pixels = edges && single_passes == 0 ? edges->count() : 0;
     if (timer) {
       const auto gpu_seconds = timer->seconds();
       timings->shadow_gpu = gpu_seconds[gl::PassTimer::Shadow];

@@ -27,6 +27,11 @@ struct RasterOptions {
   // geometry-aware k x k resolve. 4 is the default: at equal time it wins on error against the
   // path tracer (docs/performance.md).
   int interleave = 4;
+  // Interleaved, batched: the pixels where the resolve's window is cut (creases, silhouettes, the
+  // border) shaded by every set and kept unfiltered (raster/image/edge_pixels.h: less error per
+  // pixel, per 4x4 block it depends on the scene); false: the resolve fills them in from their
+  // window's side.
+  bool interleave_edges = false;
   // Jittered low-discrepancy sampling (raster/image/pixel_jitter.h): every VPL pass, and the
   // emitters, at a sub-pixel offset, so the accumulation antialiases geometric edges.
   bool jitter = false;
@@ -77,6 +82,8 @@ struct RasterTimings {
   // render(): triangles the batched cube faces drew from the shadow hierarchy, all VPLs together
   // (0 when the faces draw the whole scene: shadow-lod off, --batch 1, animated scenes).
   std::size_t shadow_triangles = 0;
+  // Interleaved with edge pixels (RasterOptions::interleave_edges): those shaded by every set.
+  std::size_t edge_pixels = 0;
   // GPU time of the shadow-map and shading passes (GL_TIME_ELAPSED), only with gpu_timers.
   double shadow_gpu = -1.0;
   double shading_gpu = -1.0;

@@ -112,6 +112,8 @@ struct RenderResult {
   std::size_t passes = 0; // VPL passes drawn (raster)
   // Of them, those drawn one VPL at a time (--batch 1, the reference; RasterTimings)
   std::size_t single_passes = 0;
+  // Interleaved with RasterOptions::interleave_edges: the pixels shaded by every set (per image)
+  std::size_t edge_pixels = 0;
   double clamped_fraction = -1.0; // when requested (not with mirrors)
   // screen compensation: the share of its gather samples in reach evaluated exactly (hidden)
   double compensation_fallback = -1.0;

@@ -57,7 +57,8 @@ void main() {
 )";
 
 // Tile pixel t of the bound viewport (origin u_tile_origin) stands for image pixel
-// k t + (dx, dy) (raster/image/interleaved.h; k = 1, d = 0 without interleaving), whose G-buffer
+// k t + (dx, dy) (raster/image/interleaved.h; k = 1, d = 0 without interleaving), or for the
+// pixel a list names (the edge pixels: raster/image/edge_pixels.h), whose G-buffer
 // texel holds the one surface it sees. The instance's VPL adds w * C(x) (core/vpl.h) with the
 // maths of raster/glsl/shaders.h vpl_fragment; its shadow cube is looked up in the batch's atlas
 // (raster/shadow/shadow_atlas.h): GL's cube-map face selection and (s, t) by hand, the texel
@@ -94,6 +95,8 @@ uniform float u_min_dist2;       // below this the receiver coincides with the V
 uniform float u_bias_constant;   // scale-relative
 uniform float u_bias_texel;      // angular size of a shadow texel
 uniform bool u_apply_albedo;     // false: irradiance / pi only (the resolve multiplies)
+uniform bool u_listed;           // the pixels from a list instead (TilePixels::list):
+uniform isampler2D u_pixel_list; // at texel t - u_tile_origin, none where x < 0
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
 
@@ -195,8 +198,9 @@ vec3 vpl_light(vec3 x, vec3 n) {
 }
 
 void main() {
-  ivec2 p = (ivec2(gl_FragCoord.xy) - u_tile_origin) * u_pixel.x + u_pixel.yz;
-  if (p.x >= u_size.x || p.y >= u_size.y) discard;
+  ivec2 t = ivec2(gl_FragCoord.xy) - u_tile_origin;
+  ivec2 p = u_listed ? texelFetch(u_pixel_list, t, 0).xy : t * u_pixel.x + u_pixel.yz;
+  if (p.x < 0 || p.x >= u_size.x || p.y >= u_size.y) discard;
   vec4 x = texelFetch(u_position, p, 0);
   if (x.w <= 0.0) discard;
   vec3 light = vpl_light(x.xyz, texelFetch(u_normal, p, 0).xyz);

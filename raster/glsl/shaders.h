@@ -190,23 +190,9 @@ void main() {
 }
 )";
 
-// Interleaved sampling's resolve (Keller & Heidrich 2001): pixel p of a k x k tile was lit by VPL
-// set (p.x mod k, p.y mod k) only, its value stored de-interleaved in the atlas. Each set, scaled
-// by k^2, estimates the whole sum; p averages the sets of the k x k window around it over the
-// pixels on its own surface: q counts when it lies on p's tangent plane (the segment p-q within ~3
-// degrees of it, whatever the viewing angle) and their normals agree within 18 degrees. At
-// discontinuities fewer sets are averaged: still an estimate of the whole sum, only noisier. Then
-// p's albedo.
-inline constexpr const char* resolve_fragment = R"(#version 330 core
-uniform sampler2D u_atlas;
-uniform sampler2D u_position;
-uniform sampler2D u_normal;
-uniform sampler2D u_albedo;
-uniform int u_k;
-uniform ivec2 u_tile;   // tile size in the atlas
-uniform ivec2 u_size;   // full image size
-uniform float u_scale[256]; // per set (core/interleave_sets.h), set = x + k y of its tile
-out vec4 o_color;
+// The resolve's window (raster/image/interleaved.h), shared by the resolve and the edge-pixel
+// pass (raster/image/edge_pixels.h). The including source declares u_position, u_normal, u_size.
+inline constexpr const char* resolve_window_glsl = R"(
 // Whether pixel q sees the surface that p does (x, n: p's point and normal): on the image, its
 // normal m within 18 degrees of n, and the chord d from x to q's point within 5 % of its length
 // of the plane normal to n + m. On a flat surface that is p's plane; on a sphere or a cylinder
@@ -222,10 +208,42 @@ bool same_surface(ivec2 q, vec3 x, vec3 n) {
   vec3 d = xq.xyz - x;
   return abs(dot(n + m, d)) <= 0.05 * length(d) * length(n + m);
 }
+)";
+
+// Interleaved sampling's resolve (Keller & Heidrich 2001): pixel p of a k x k tile was lit by VPL
+// set (p.x mod k, p.y mod k) only, its value stored de-interleaved in the atlas. Each set, scaled
+// by k^2, estimates the whole sum; p averages the sets of the k x k window around it (offsets
+// -h..h, h = k / 2) over the pixels on its own surface (resolve_window_glsl). Where the window is
+// cut (a crease, a silhouette, the border) fewer sets are averaged, with unequal weights: still
+// an estimate of the whole sum, but a one-sided blur of it, which brightened a crease's row of
+// pixels by 2-5 % in the mean of any number of rounds (Cornell box, k = 2). With u_edges those
+// pixels were shaded by every set instead (raster/image/edge_pixels.h), and their own sum is
+// taken. Then p's albedo.
+inline constexpr const char* resolve_fragment = R"(#version 330 core
+uniform sampler2D u_atlas;
+uniform sampler2D u_position;
+uniform sampler2D u_normal;
+uniform sampler2D u_albedo;
+uniform int u_k;
+uniform ivec2 u_tile;   // tile size in the atlas
+uniform ivec2 u_size;   // full image size
+uniform float u_scale[256]; // per set (core/interleave_sets.h), set = x + k y of its tile
+uniform bool u_edges;           // whether the edge pixels' own sums are given:
+uniform isampler2D u_edge_at;   // per pixel its texel in u_edge_light (x < 0: not an edge pixel)
+uniform sampler2D u_edge_light; // every set's light at the edge pixels (no albedo)
+out vec4 o_color;
+#pragma irad_resolve_window
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   vec4 xp = texelFetch(u_position, p, 0);
   if (xp.w <= 0.0) { o_color = vec4(0.0); return; }
+  if (u_edges) {
+    ivec2 at = texelFetch(u_edge_at, p, 0).xy;
+    if (at.x >= 0) {
+      o_color = vec4(texelFetch(u_albedo, p, 0).rgb * texelFetch(u_edge_light, at, 0).rgb, 0.0);
+      return;
+    }
+  }
   vec3 np = texelFetch(u_normal, p, 0).xyz;
   // A window centred on p in which every set has total weight 1: offsets -h..h with h = k/2, the
   // outer rows and columns at half weight when k is even (offsets -h and +h are the same set), so
@@ -236,10 +254,9 @@ void main() {
   // q's set and tile coordinates (q % k, q / k) from p's without a division per tap (an integer
   // division per tap and lane made this pass cost as much as 150 VPL passes on llvmpipe).
   ivec2 pm = p % u_k, pd = p / u_k;
-  bool even = (u_k % 2) == 0;
+  bool even = (u_k % 2) == 0; // odd k: h = (k - 1) / 2, every tap at full weight
   for (int dy = -h; dy <= h; ++dy)
     for (int dx = -h; dx <= h; ++dx) {
-      if (!even && (abs(dx) > (u_k - 1) / 2 || abs(dy) > (u_k - 1) / 2)) continue;
       ivec2 q = p + ivec2(dx, dy);
       if (!same_surface(q, xp.xyz, np)) continue;
       float w = (even && abs(dx) == h ? 0.5 : 1.0) * (even && abs(dy) == h ? 0.5 : 1.0);

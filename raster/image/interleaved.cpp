@@ -7,19 +7,22 @@ namespace irad::gl {
 
 namespace {
 
-// The G-buffer's position, normal and albedo at position_unit, + 1, + 2.
-constexpr GLint atlas_unit = 2, position_unit = 3;
+// The G-buffer's position, normal and albedo at position_unit, + 1, + 2; the edge pixels'
+// texels and light after them.
+constexpr GLint atlas_unit = 2, position_unit = 3, edge_at_unit = 6, edge_light_unit = 7;
 
 } // namespace
 
-Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer)
+Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer, bool edges)
     : api_(&api), width_(gbuffer.width()), height_(gbuffer.height()), k_(k),
       tile_w_((width_ + k - 1) / k), tile_h_((height_ + k - 1) / k), gbuffer_(&gbuffer),
       atlas_(make_float_texture(api, k * tile_w_, k * tile_h_)),
       atlas_depth_(make_renderbuffer(api)), atlas_fbo_(make_framebuffer(api)),
       empty_vao_(make_vertex_array(api)),
-      resolve_(api, "resolve", shaders::fullscreen_vertex, shaders::resolve_fragment),
-      scale_location_(resolve_.uniform("u_scale")) {
+      edges_(edges && k > 1 ? std::make_unique<EdgePixels>(api, k, gbuffer) : nullptr),
+      resolve_(api, "resolve", shaders::fullscreen_vertex,
+               with_resolve_window(shaders::resolve_fragment)),
+      scale_location_(resolve_.uniform("u_scale")), edges_location_(resolve_.uniform("u_edges")) {
   if (k < 1) throw Error("", "--interleave", "must be at least 1");
   api.BindRenderbuffer(GL_RENDERBUFFER, atlas_depth_.get());
   api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, k * tile_w_, k * tile_h_);
@@ -37,6 +40,8 @@ Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer
   api.Uniform1i(resolve_.uniform("u_k"), k);
   api.Uniform2i(resolve_.uniform("u_tile"), tile_w_, tile_h_);
   api.Uniform2i(resolve_.uniform("u_size"), width_, height_);
+  api.Uniform1i(resolve_.uniform("u_edge_at"), edge_at_unit);
+  api.Uniform1i(resolve_.uniform("u_edge_light"), edge_light_unit);
 }
 
 void Interleaved::bind_tile(int set) const {
@@ -66,7 +71,7 @@ glm::mat4 Interleaved::tile_projection(int set, const glm::mat4& projection) con
   return shift * projection;
 }
 
-void Interleaved::resolve(const std::vector<float>& scales) const {
+void Interleaved::resolve(const std::vector<float>& scales, bool use_edges) const {
   if (scales.size() != static_cast<std::size_t>(sets()))
     throw Error("interleaved resolve: " + std::to_string(scales.size()) + " scales for " +
                 std::to_string(sets()) + " sets");
@@ -74,6 +79,14 @@ void Interleaved::resolve(const std::vector<float>& scales) const {
   api_->Disable(GL_BLEND);
   resolve_.use();
   api_->Uniform1fv(scale_location_, sets(), scales.data());
+  const EdgePixels* e = use_edges ? edges() : nullptr;
+  api_->Uniform1i(edges_location_, e ? 1 : 0);
+  if (e) {
+    api_->ActiveTexture(GL_TEXTURE0 + edge_at_unit);
+    api_->BindTexture(GL_TEXTURE_2D, e->texel_of());
+    api_->ActiveTexture(GL_TEXTURE0 + edge_light_unit);
+    api_->BindTexture(GL_TEXTURE_2D, e->light());
+  }
   api_->ActiveTexture(GL_TEXTURE0 + atlas_unit);
   api_->BindTexture(GL_TEXTURE_2D, atlas_.get());
   gbuffer_->bind_textures(position_unit);

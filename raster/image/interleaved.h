@@ -4,12 +4,16 @@
 // pixels form a (W/k) x (H/k) sub-image, rendered as one tile of a de-interleaved atlas with a
 // projection shifted by the set's sub-pixel offset, so a VPL pass shades 1/k^2 of the pixels.
 // A resolve pass re-interleaves the atlas and averages the k^2 sets over each k x k window with a
-// geometry-aware filter (raster/glsl/shaders.h resolve_fragment).
+// geometry-aware filter (raster/glsl/shaders.h resolve_fragment). With edge pixels
+// (raster/image/edge_pixels.h) the pixels where that window is cut are shaded by every set and
+// keep their own sum.
 #include "raster/context/gl_objects.h"
 #include "raster/context/shader_program.h"
+#include "raster/image/edge_pixels.h"
 #include "raster/image/gbuffer.h"
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 
 namespace irad::gl {
@@ -17,7 +21,8 @@ namespace irad::gl {
 class Interleaved {
 public:
   // gbuffer: the image's (its size is the image's), read by the resolve; kept by reference.
-  Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer);
+  // edges: whether the edge pixels are shaded by every set (EdgePixels).
+  Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer, bool edges);
 
   int k() const { return k_; }
   int sets() const { return k_ * k_; }
@@ -31,9 +36,16 @@ public:
   glm::ivec4 tile(int set) const {
     return {(set % k_) * tile_w_, (set / k_) * tile_h_, tile_w_, tile_h_};
   }
+  // With edge pixels: finds this image's from the G-buffer as it is now (after its pass).
+  void find_edges() {
+    if (edges_) edges_->find();
+  }
+  // The edge pixels the deferred passes shade with every set; nullptr without, or with none.
+  const EdgePixels* edges() const { return edges_ && edges_->count() > 0 ? edges_.get() : nullptr; }
   // Writes the resolved VPL light into the bound framebuffer (full resolution, no blending), set s
-  // scaled by scales[s] (core/interleave_sets.h; sets() of them).
-  void resolve(const std::vector<float>& scales) const;
+  // scaled by scales[s] (core/interleave_sets.h; sets() of them). use_edges: the edge pixels
+  // take their own sums (every VPL of the image was shaded into them).
+  void resolve(const std::vector<float>& scales, bool use_edges) const;
 
 private:
   const GladGLContext* api_;
@@ -43,8 +55,9 @@ private:
   Renderbuffer atlas_depth_;
   Framebuffer atlas_fbo_;
   VertexArray empty_vao_;
+  std::unique_ptr<EdgePixels> edges_;
   ShaderProgram resolve_;
-  GLint scale_location_; // u_scale, the sets' scales (resolve)
+  GLint scale_location_, edges_location_; // u_scale (the sets' scales), u_edges
 };
 
 } // namespace irad::gl

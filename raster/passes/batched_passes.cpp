@@ -110,6 +110,14 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
     shader_.draw(first, end - first, pixels, *into.gbuffer, shadow, !into.interleaved);
     first = end;
   }
+  // The edge pixels: every set's VPLs, unscaled (the sets' sum is the whole estimate whatever
+  // their sizes: core/interleave_sets.h).
+  const EdgePixels* edges = into.interleaved ? into.interleaved->edges() : nullptr;
+  if (edges == nullptr) return;
+  edges->bind_light();
+  TilePixels listed;
+  listed.list = edges->list();
+  shader_.draw(0, n, listed, *into.gbuffer, shadow, false);
 }
 
 std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,

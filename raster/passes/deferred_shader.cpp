@@ -25,6 +25,7 @@ constexpr GLint gbuffer_unit = 3;
 constexpr GLint ortho_unit = 6;
 constexpr GLint gradient_unit = 7; // ShadowLookup::gradient
 constexpr GLint mirror_unit = 8;   // the mirror polygons' corners
+constexpr GLint list_unit = 9;     // TilePixels::list
 
 // The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 160 bytes). `triangles`: the
 // triangles of the VPL's mirror polygon (0: its light reaches nothing, as VplShader's).
@@ -115,8 +116,8 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
       shadow_res_(program_.uniform("u_shadow_res")),
       shadow_half_(program_.uniform("u_shadow_half")),
       bias_texel_(program_.uniform("u_bias_texel")), ortho_res_(program_.uniform("u_ortho_res")),
-      apply_albedo_(program_.uniform("u_apply_albedo")), vpl_block_(make_buffer(api)),
-      empty_vao_(make_vertex_array(api)),
+      apply_albedo_(program_.uniform("u_apply_albedo")), listed_(program_.uniform("u_listed")),
+      vpl_block_(make_buffer(api)), empty_vao_(make_vertex_array(api)),
       vpl_data_(static_cast<std::size_t>(batch) * kFloatsPerVpl, 0.0f) {
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "VplBatch");
   if (index == GL_INVALID_INDEX) throw Error("", "shader deferred vpl", "no block VplBatch");
@@ -128,6 +129,7 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   api.Uniform1i(program_.uniform("u_position"), gbuffer_unit);
   api.Uniform1i(program_.uniform("u_normal"), gbuffer_unit + 1);
   api.Uniform1i(program_.uniform("u_albedo"), gbuffer_unit + 2);
+  api.Uniform1i(program_.uniform("u_pixel_list"), list_unit);
   // Scale-relative constants, as VplShader: the coincidence guard and the shadow bias.
   api.Uniform1f(program_.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
   api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * diagonal_);
@@ -176,6 +178,11 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
   // Angular size of one texel at the centre of a face, as ShadowCube::texel_angle.
   api.Uniform1f(bias_texel_, 2.0f / static_cast<float>(shadow.resolution));
   api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
+  api.Uniform1i(listed_, pixels.list != 0 ? 1 : 0);
+  if (pixels.list != 0) {
+    api.ActiveTexture(GL_TEXTURE0 + list_unit);
+    api.BindTexture(GL_TEXTURE_2D, pixels.list);
+  }
   api.Uniform1i(ortho_res_, shadow.ortho_resolution);
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
   api.BindTexture(GL_TEXTURE_2D, shadow.texture);

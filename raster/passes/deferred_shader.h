@@ -18,11 +18,13 @@
 namespace irad::gl {
 
 // Where a draw's fragments read the G-buffer: tile pixel t of a viewport with lower-left corner
-// `origin` stands for image pixel k t + offset.
+// `origin` stands for image pixel k t + offset; with a `list` (an RG32I texture,
+// raster/image/edge_pixels.h) for the pixel its texel t - origin holds (none where x < 0).
 struct TilePixels {
   glm::ivec2 origin{0};
   int k = 1;
   glm::ivec2 offset{0};
+  GLuint list = 0;
 };
 
 // The atlases a draw's VPLs look their shadow maps up in: cubes in raster/shadow/shadow_atlas.h's
@@ -84,7 +86,7 @@ private:
   std::vector<int> mirror_triangles_;
   ShaderProgram program_;
   GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
-      apply_albedo_;
+      apply_albedo_, listed_;
   Texture mirror_corners_; // with mirrors: their corners (raster/glsl/deferred_shaders.h)
   Buffer vpl_block_;
   VertexArray empty_vao_;

@@ -1,0 +1,133 @@
+#include "raster/image/edge_pixels.h"
+
+#include "raster/glsl/shaders.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace irad::gl {
+
+namespace {
+
+constexpr GLint gbuffer_unit = 3; // position, normal (and albedo) at 3, 4, 5
+
+// 1 where some pixel of the window -h..h around p does not show p's surface
+// (shaders::resolve_window_glsl), 0 elsewhere and on the background.
+constexpr const char* mark_fragment = R"(#version 330 core
+uniform sampler2D u_position;
+uniform sampler2D u_normal;
+uniform ivec2 u_size;
+uniform int u_h;
+out vec4 o_mask;
+#pragma irad_resolve_window
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec4 xp = texelFetch(u_position, p, 0);
+  float edge = 0.0;
+  if (xp.w > 0.0) {
+    vec3 np = texelFetch(u_normal, p, 0).xyz;
+    for (int dy = -u_h; dy <= u_h; ++dy)
+      for (int dx = -u_h; dx <= u_h; ++dx)
+        if (!same_surface(p + ivec2(dx, dy), xp.xyz, np)) edge = 1.0;
+  }
+  o_mask = vec4(edge);
+}
+)";
+
+// (Re)defines `texture` as width x height texels of `internal` (its format and type; `data` may
+// be null), nearest filtering, no mipmaps (integer textures need that to be complete).
+void storage(const GladGLContext& api, GLuint texture, GLint internal, int width, int height,
+             GLenum format, GLenum type, const void* data) {
+  api.BindTexture(GL_TEXTURE_2D, texture);
+  api.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  api.TexImage2D(GL_TEXTURE_2D, 0, internal, width, height, 0, format, type, data);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  api.BindTexture(GL_TEXTURE_2D, 0);
+}
+
+// An RG32I texture of width x height holding `texels` (2 per texel).
+void upload_pairs(const GladGLContext& api, GLuint texture, int width, int height,
+                  const std::vector<GLint>& texels) {
+  storage(api, texture, GL_RG32I, width, height, GL_RG_INTEGER, GL_INT, texels.data());
+}
+
+} // namespace
+
+std::string with_resolve_window(const char* source) {
+  std::string s = source;
+  insert_glsl(s, "#pragma irad_resolve_window\n", shaders::resolve_window_glsl);
+  return s;
+}
+
+EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer)
+    : api_(&api), k_(k), width_(gbuffer.width()), height_(gbuffer.height()), gbuffer_(&gbuffer),
+      mask_(make_texture(api)), mask_fbo_(make_framebuffer(api)), list_(make_texture(api)),
+      texel_of_(make_texture(api)), light_(make_texture(api)), light_fbo_(make_framebuffer(api)),
+      empty_vao_(make_vertex_array(api)),
+      mark_(api, "edge pixels", shaders::fullscreen_vertex, with_resolve_window(mark_fragment)) {
+  storage(api, mask_.get(), GL_R8, width_, height_, GL_RED, GL_UNSIGNED_BYTE, nullptr);
+  api.BindFramebuffer(GL_FRAMEBUFFER, mask_fbo_.get());
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, mask_.get(), 0);
+  check_framebuffer(api, "edge mask framebuffer");
+  api.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  mark_.use();
+  api.Uniform1i(mark_.uniform("u_position"), gbuffer_unit);
+  api.Uniform1i(mark_.uniform("u_normal"), gbuffer_unit + 1);
+  api.Uniform2i(mark_.uniform("u_size"), width_, height_);
+  api.Uniform1i(mark_.uniform("u_h"), k / 2);
+
+  api.Uniform1f(mark_.uniform("u_depth"), 0.0f);
+}
+
+void EdgePixels::find() {
+  const GladGLContext& api = *api_;
+  api.BindFramebuffer(GL_FRAMEBUFFER, mask_fbo_.get());
+  api.Viewport(0, 0, width_, height_);
+  api.Disable(GL_DEPTH_TEST);
+  api.Disable(GL_BLEND);
+  mark_.use();
+  gbuffer_->bind_textures(gbuffer_unit);
+  api.BindVertexArray(empty_vao_.get());
+  api.DrawArrays(GL_TRIANGLES, 0, 3);
+  std::vector<unsigned char> mask(static_cast<std::size_t>(width_) * height_);
+  api.BindFramebuffer(GL_READ_FRAMEBUFFER, mask_fbo_.get());
+  api.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  api.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  api.ReadPixels(0, 0, width_, height_, GL_RED, GL_UNSIGNED_BYTE, mask.data());
+
+  // The list, row-major over the image; each pixel's texel in it.
+  count_ = static_cast<std::size_t>(
+      std::count_if(mask.begin(), mask.end(), [](unsigned char m) { return m != 0; }));
+  rows_ = std::max(1, static_cast<int>((count_ + width_ - 1) / width_));
+  std::vector<GLint> list(static_cast<std::size_t>(width_) * rows_ * 2, -1);
+  std::vector<GLint> texel_of(mask.size() * 2, -1);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    if (mask[i] == 0) continue;
+    list[2 * n] = static_cast<GLint>(i % width_);
+    list[2 * n + 1] = static_cast<GLint>(i / width_);
+    texel_of[2 * i] = static_cast<GLint>(n % width_);
+    texel_of[2 * i + 1] = static_cast<GLint>(n / width_);
+    ++n;
+  }
+  upload_pairs(api, list_.get(), width_, rows_, list);
+  upload_pairs(api, texel_of_.get(), width_, height_, texel_of);
+
+  storage(api, light_.get(), GL_RGBA32F, width_, rows_, GL_RGBA, GL_FLOAT, nullptr);
+  api.BindFramebuffer(GL_FRAMEBUFFER, light_fbo_.get());
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, light_.get(), 0);
+  check_framebuffer(api, "edge light framebuffer");
+  api.Viewport(0, 0, width_, rows_);
+  api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  api.Clear(GL_COLOR_BUFFER_BIT);
+  api.BindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void EdgePixels::bind_light() const {
+  api_->BindFramebuffer(GL_FRAMEBUFFER, light_fbo_.get());
+  api_->Viewport(0, 0, width_, rows_);
+}
+
+} // namespace irad::gl

@@ -1,0 +1,65 @@
+#pragma once
+// The pixels whose interleaved resolve window is cut (raster/image/interleaved.h): some pixel of
+// the k x k window around them shows another surface (a crease, a step, a silhouette) or lies
+// off the image. There the resolve can only fill the missing sets in from one side, a blur that
+// does not average away over rounds: on the Cornell box (256x256, k = 2, 4 rounds) the crease
+// rows came out 2-5 % brighter than with every VPL shading every pixel. With edge pixels the
+// deferred passes shade these pixels with every set (k^2 times a tile pixel's work) and the
+// resolve keeps their own sum, k = 1's value.
+//
+// What it buys depends on the scene (docs/accuracy.md, session 16): per pixel it always helps
+// (zdm2 at 128x128: relMSE 7.45e-3 -> 4.88e-3 for 3-5 % more time; the Cornell box 4.36e-4 ->
+// 4.02e-4 for 30 % more); per 4x4 block it gains on zdm2 (1.65e-3 -> 1.34e-3), little on the
+// Cornell box, and loses on godot (1.40e-3 -> 1.59e-3), whose contact shadows the shadow maps
+// darken: the one-sided blur had lifted them. Hence an option (--interleave-edges), off.
+//
+// Per image: one pass over the G-buffer marks them, the mask is read back, and their coordinates
+// are packed into a list texture (W texels wide, row-major, (-1, -1) past the last), which the
+// deferred passes draw over (TilePixels::list). A full-resolution texture maps each pixel to its
+// texel in the list (the resolve's lookup).
+#include "raster/context/gl_objects.h"
+#include "raster/context/shader_program.h"
+#include "raster/image/gbuffer.h"
+
+#include <cstddef>
+#include <string>
+
+namespace irad::gl {
+
+// `source` with its "#pragma irad_resolve_window" line replaced by shaders::resolve_window_glsl
+// (the resolve's and the edge pass's window).
+std::string with_resolve_window(const char* source);
+
+class EdgePixels {
+public:
+  // For the resolve window of `k` (> 1) over `gbuffer`'s image (kept by reference).
+  EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer);
+
+  // Marks the edge pixels of the G-buffer as it is now, uploads their list and clears their
+  // light. Leaves the draw framebuffer unbound.
+  void find();
+  // Edge pixels found by the last find().
+  std::size_t count() const { return count_; }
+  // The list's light as the draw framebuffer, the viewport on the list's rows.
+  void bind_light() const;
+  // The list's (RG32I) texel p holds the image pixel it stands for.
+  GLuint list() const { return list_.get(); }
+  // Full resolution, RG32I: each pixel's texel in the light texture, (-1, -1) off the list.
+  GLuint texel_of() const { return texel_of_.get(); }
+  GLuint light() const { return light_.get(); }
+
+private:
+  const GladGLContext* api_;
+  int k_, width_, height_;
+  const GBuffer* gbuffer_;
+  std::size_t count_ = 0;
+  int rows_ = 0; // of the list in use
+  Texture mask_;
+  Framebuffer mask_fbo_;
+  Texture list_, texel_of_, light_;
+  Framebuffer light_fbo_;
+  VertexArray empty_vao_;
+  ShaderProgram mark_;
+};
+
+} // namespace irad::gl
