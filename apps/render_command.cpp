@@ -62,7 +62,7 @@ struct RenderArgs {
   std::string shadow_occlusion = "on";
   std::string shadow_planes = "auto";
   std::string jitter = "off";
-  std::string interleave_edges = "off";
+  std::string interleave_edges = "auto";
   int gl_device = -1;
   bool partial = false;
   std::uint64_t max_triangles = LoadLimits{}.max_triangles;
@@ -165,7 +165,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"triangles", scene.triangle_count()},
           {"shadow_res", r.shadow_resolution}, // as drawn: 0 for rt-vpl
           {"interleave", r.interleave},        // as drawn: auto resolved
-          {"interleave_edges", args.interleave_edges == "on"},
+          {"interleave_edges", r.edge_mode},   // as drawn: auto resolved
           {"batch", args.batch},
           {"shadow_lod", args.shadow_lod},
           {"shadow_occlusion", args.shadow_occlusion == "on"},
@@ -279,7 +279,10 @@ int run_render(const RenderArgs& args) {
   request.render.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
   request.render.raster.shadow_lod.planes = parse_shadow_planes(args.shadow_planes);
   request.render.raster.jitter = args.jitter == "on";
-  request.render.raster.interleave_edges = args.interleave_edges == "on";
+  request.render.auto_edges = args.interleave_edges == "auto";
+  request.render.raster.edge_pixels = args.interleave_edges == "shaded"   ? EdgePixelMode::Shaded
+                                      : args.interleave_edges == "traced" ? EdgePixelMode::Listed
+                                                                          : EdgePixelMode::Off;
   request.render.pt.pixel_footprint =
       args.jitter == "on"; // pt: each sample at a uniform pixel point
   request.render.estimator = parse_estimator(args.estimator);
@@ -446,10 +449,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
          "cluster representatives in images below 512 pixels, else 4")
       ->capture_default_str();
   cmd->add_option("--interleave-edges", args->interleave_edges,
-                  "Raster, interleaved, batched: the pixels where the filter's window is cut "
-                  "(creases, silhouettes) are shaded by every set and not filtered; off: the "
-                  "filter fills them in from one side")
-      ->check(CLI::IsMember({"on", "off"}))
+                  "Raster, interleaved: the pixels where the filter's window is cut (creases, "
+                  "contacts, silhouettes): traced (rt-vpl's value over the same VPLs: exact "
+                  "visibility there; not with --jitter), shaded (every set's light, shadow maps), "
+                  "off (filled in from the window's side); auto: traced from --rounds 4 on")
+      ->check(CLI::IsMember({"auto", "off", "shaded", "traced"}))
       ->capture_default_str();
   cmd->add_option("--batch", args->batch,
                   "Raster: VPLs per instanced draw of shadow maps and shading, every kind of VPL "

@@ -45,4 +45,15 @@ int representative_shadow_resolution(int rule, int width, int height, unsigned r
   return std::max(rule, std::min(128, std::max(width, height) / 2));
 }
 
+// Tracing the edge pixels (6.6 % of the Cornell box at 256x256, 12-22 % of godot and zdm2 at
+// 128x128) costs 6-15 % more per round. Measured against pt references (4x4-block relMSE, time,
+// docs/accuracy.md session 16): one round, Cornell 1.89e-4 in 1.06 s -> 1.82e-4 in 1.24 s,
+// godot 1.40e-3 -> 1.34e-3 for 11 % more, zdm2 1.65e-3 -> 1.16e-3 for 6 % more (a loss at equal
+// time on the first two); 4 rounds, Cornell 5.13e-5 in 4.8 s -> 4.69e-5 in 5.5 s, godot 8.07e-4
+// -> 7.07e-4 for 5 % more, zdm2 9.83e-4 -> 8.15e-4 in the same time; 16 rounds, Cornell
+// 2.04e-5 in 18.8 s -> 1.56e-5 in 21.5 s (pt: about 1.9e-5 at that time).
+bool trace_edge_pixels(unsigned rounds) {
+  return rounds >= 4;
+}
+
 } // namespace irad

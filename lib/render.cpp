@@ -56,6 +56,7 @@ struct Stages {
   StopFlag& stop; // render()'s, shared by the rounds
   RenderResult& r;
   std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
+  bool traced_edges = false; // the raster lists its edge pixels and the tracer computes them
 
   bool cancelled() {
     r.cancelled = r.cancelled || stop.poll();
@@ -129,6 +130,22 @@ int interleave(const RenderOptions& o, const RenderResult& r) {
   return r.clusters > 0 && std::max(r.view.width, r.view.height) < 512 ? 2 : 4;
 }
 
+// The raster's edge pixels: as asked, or with auto_edges by the rounds (core/light_budget.h).
+// Traced at the pixel centre, they would lose the jitter's antialiasing where it matters: none
+// with jitter.
+EdgePixelMode edge_pixel_mode(const RenderOptions& o) {
+  EdgePixelMode mode = o.raster.edge_pixels;
+  if (o.auto_edges) mode = trace_edge_pixels(o.rounds) ? EdgePixelMode::Listed : EdgePixelMode::Off;
+  if (o.raster.jitter && mode == EdgePixelMode::Listed) mode = EdgePixelMode::Off;
+  return mode;
+}
+
+const char* edge_mode_name(EdgePixelMode mode) {
+  return mode == EdgePixelMode::Listed   ? "traced"
+         : mode == EdgePixelMode::Shaded ? "shaded"
+                                         : "off";
+}
+
 // The raster renderer, made by the first raster stage: its shadow resolution, interleaving and
 // occluder planes for this view and these options, in the result. Later rounds reuse it.
 RasterRenderer& renderer(Stages& s, const RayScene& rays) {
@@ -141,16 +158,28 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
       choose_shadow_planes(s.scene, rays, options.shadow_lod.planes, options.shadow_resolution);
   const double scan = since(t0);
   options.shadow_lod.planes = planes.planes;
+  options.edge_pixels = edge_pixel_mode(s.options);
+  s.traced_edges = options.edge_pixels == EdgePixelMode::Listed;
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
   s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options
   log_planes(s.log, planes, options.shadow_resolution, scan);
   s.r.shadow_resolution = options.shadow_resolution;
   s.r.interleave = options.interleave;
+  s.r.edge_mode = options.interleave > 1 ? edge_mode_name(options.edge_pixels) : "off";
   s.r.shadow_planes = planes.planes == ShadowPlanes::On;
   s.r.thinnest_wall = planes.thinnest_wall;
   s.r.gl = s.raster->description();
   return *s.raster;
+}
+
+// The raster's edge pixels (EdgePixelMode::Listed) traced over the same VPLs: rt-vpl's values
+// where the interleaved filter and the shadow maps are least sure (creases, contacts,
+// silhouettes; walk/vpl_tracer.h trace_vpl_pixels). Timed as the raster's.
+void trace_edges(Stages& s, const RayScene& rays, const RasterRenderer& raster) {
+  if (!s.traced_edges || s.cancelled()) return;
+  const VplTracerOptions options{s.options.raster.clamp, s.options.pt.threads, s.stop.flag()};
+  trace_vpl_pixels(s.scene, rays, s.r.view, s.r.vpls, options, raster.edge_pixels(), s.r.image);
 }
 
 void run_raster(Stages& s, const RayScene& rays) {
@@ -159,6 +188,7 @@ void run_raster(Stages& s, const RayScene& rays) {
   RasterTimings timings;
   s.r.image = raster.render(s.r.view, s.r.vpls, &timings,
                             [&s](std::size_t done, std::size_t total) { s.progress(done, total); });
+  trace_edges(s, rays, raster); // part of the raster's time
   if (without_direct(s.options) && !s.cancelled())
     subtract(s.r.image, raster.render(s.r.view, no_vpls(s.r.vpls)));
   s.r.seconds.raster = since(t0);
@@ -170,7 +200,7 @@ void run_raster(Stages& s, const RayScene& rays) {
     const auto t1 = Clock::now();
     add_mirror_pass(s.scene, rays, s.r.view, s.r.vpls,
                     {s.options.raster.clamp, s.options.pt.threads, s.stop.flag()}, s.r.image);
-    s.r.seconds.trace = since(t1);
+    s.r.seconds.trace += since(t1);
   }
 }
 
@@ -383,7 +413,7 @@ void run_rounds(Stages& s, const RayScene& rays) {
     RenderResult rm;
     rm.camera = s.r.camera;
     rm.view = s.r.view;
-    Stages sm{s.scene, o, s.log, s.stop, rm, std::move(s.raster)};
+    Stages sm{s.scene, o, s.log, s.stop, rm, std::move(s.raster), s.traced_edges};
     run_vpl_estimator(sm, rays);
     s.raster = std::move(sm.raster);
     if (sm.cancelled()) break; // s.cancelled() says so too: the flag is shared
@@ -407,7 +437,7 @@ void run_rounds(Stages& s, const RayScene& rays) {
 }
 
 RenderOptions with_light_budget(RenderOptions o) {
-  o.auto_paths = o.auto_clusters = true;
+  o.auto_paths = o.auto_clusters = o.auto_edges = true;
   o.raster.interleave = 0;
   return o;
 }

@@ -57,6 +57,7 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.pt.pixel_footprint = k.jitter;
   o.bias_compensation = k.bias_compensation;
   o.auto_clusters = !k.clusters;
+  o.auto_edges = true; // as irad render's --interleave-edges auto
   o.clusters = k.clusters.value_or(0);
   require_at_least_one(k.rounds, "rounds");
   o.rounds = k.rounds;
@@ -79,6 +80,8 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   s["walk_vpls"] = r.walk_vpls;
   s["clusters"] = r.clusters; // as drawn: auto resolved
   s["interleave"] = r.interleave;
+  s["interleave_edges"] = r.edge_mode;
+  s["edge_pixels"] = r.edge_pixels;
   s["rounds"] = r.rounds;
   s["paths"] = r.vpls.paths;
   s["rho_bar"] = r.vpls.rho_bar;

@@ -67,7 +67,8 @@ void RasterRenderer::Impl::prepare(const View& view) {
   shadow_res = resolution;
   if (options.interleave > 1 && !interleaved)
     interleaved = std::make_unique<gl::Interleaved>(api, options.interleave, *gbuffer,
-                                                    options.interleave_edges);
+                                                    options.edge_pixels == EdgePixelMode::Listed,
+                                                    options.edge_pixels == EdgePixelMode::Shaded);
   const int ortho = gl::ortho_resolution_for(options.shadow_resolution, view.width, view.height);
   if (gl::has_directional_light(scene) && (!directional || directional->resolution() != ortho))
     directional = std::make_unique<gl::DirectionalPass>(api, scene, ortho);
@@ -229,7 +230,8 @@ Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0,
     timings->passes = passes;
     timings->single_passes = single_passes;
     const gl::EdgePixels* edges = interleaved ? interleaved->edges() : nullptr;
-    timings->edge_pixels = edges && single_passes == 0 ? edges->count() : 0;
+    const bool kept = options.edge_pixels == EdgePixelMode::Listed || single_passes == 0;
+    timings->edge_pixels = edges && kept ? edges->count() : 0;
     if (timer) {
       const auto gpu_seconds = timer->seconds();
       timings->shadow_gpu = gpu_seconds[gl::PassTimer::Shadow];
@@ -265,6 +267,15 @@ RasterRenderer::~RasterRenderer() {
 void RasterRenderer::scene_changed() {
   const gl::CurrentScope current(*impl_->context);
   impl_->gpu.update_vertices();
+}
+
+std::vector<glm::ivec2> RasterRenderer::edge_pixels() const {
+  const gl::EdgePixels* edges = impl_->interleaved ? impl_->interleaved->edges() : nullptr;
+  if (!edges) return {};
+  std::vector<glm::ivec2> pixels = edges->pixels();
+  const int height = impl_->target->height(); // GL's row 0 is the image's bottom
+  for (glm::ivec2& p : pixels) p.y = height - 1 - p.y;
+  return pixels;
 }
 
 std::string RasterRenderer::description() const {

@@ -13,8 +13,17 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace irad {
+
+// The pixels where the interleaved resolve's window is cut (creases, silhouettes, the border;
+// raster/image/edge_pixels.h). Off: the resolve fills them in from their window's side. Shaded:
+// the deferred passes (batched) shade them with every set and the resolve keeps their own sum
+// (less error per pixel, per 4x4 block it depends on the scene). Listed: only listed
+// (RasterRenderer::edge_pixels), for a caller that computes them otherwise (lib/render.cpp
+// traces them).
+enum class EdgePixelMode { Off, Shaded, Listed };
 
 struct RasterOptions {
   int shadow_resolution = 0; // texels per cube face edge; 0: from the image size (see below)
@@ -27,11 +36,8 @@ struct RasterOptions {
   // geometry-aware k x k resolve. 4 is the default: at equal time it wins on error against the
   // path tracer (docs/performance.md).
   int interleave = 4;
-  // Interleaved, batched: the pixels where the resolve's window is cut (creases, silhouettes, the
-  // border) shaded by every set and kept unfiltered (raster/image/edge_pixels.h: less error per
-  // pixel, per 4x4 block it depends on the scene); false: the resolve fills them in from their
-  // window's side.
-  bool interleave_edges = false;
+  // Interleaved: the edge pixels (EdgePixelMode).
+  EdgePixelMode edge_pixels = EdgePixelMode::Off;
   // Jittered low-discrepancy sampling (raster/image/pixel_jitter.h): every VPL pass, and the
   // emitters, at a sub-pixel offset, so the accumulation antialiases geometric edges.
   bool jitter = false;
@@ -82,7 +88,8 @@ struct RasterTimings {
   // render(): triangles the batched cube faces drew from the shadow hierarchy, all VPLs together
   // (0 when the faces draw the whole scene: shadow-lod off, --batch 1, animated scenes).
   std::size_t shadow_triangles = 0;
-  // Interleaved with edge pixels (RasterOptions::interleave_edges): those shaded by every set.
+  // Interleaved with edge pixels (RasterOptions::edge_pixels): how many the image has (Shaded:
+  // 0 when some VPL took the per-VPL passes, whose light they lack, so the filter kept them).
   std::size_t edge_pixels = 0;
   // GPU time of the shadow-map and shading passes (GL_TIME_ELAPSED), only with gpu_timers.
   double shadow_gpu = -1.0;
@@ -117,6 +124,10 @@ public:
   void scene_changed();
 
   std::string description() const; // backend and GL renderer
+
+  // The last image's edge pixels (RasterOptions::edge_pixels; none when Off, without
+  // interleaving, or before a render) as Image coordinates (y down).
+  std::vector<glm::ivec2> edge_pixels() const;
 
 private:
   struct Impl;

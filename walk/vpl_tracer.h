@@ -11,6 +11,8 @@
 #include "walk/ray_scene.h"
 
 #include <atomic>
+#include <glm/glm.hpp>
+#include <vector>
 
 namespace irad {
 
@@ -24,5 +26,13 @@ struct VplTracerOptions {
 
 Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, const VplSet& vpls,
                  const VplTracerOptions& options);
+
+// Overwrites `pixels` (Image coordinates) of `image` with rt-vpl's values, alpha kept: the
+// raster's edge pixels (raster/raster_renderer.h EdgePixelMode::Listed), where its interleaved
+// filter and its shadow maps are least sure (docs/accuracy.md, session 16). Pixels that see a
+// mirror get its L_e alone, as the raster's (walk/mirror_pass.h adds what it reflects).
+void trace_vpl_pixels(const Scene& scene, const RayScene& rays, const View& view,
+                      const VplSet& vpls, const VplTracerOptions& options,
+                      const std::vector<glm::ivec2>& pixels, Image& image);
 
 } // namespace irad

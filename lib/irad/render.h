@@ -66,6 +66,9 @@ struct RenderOptions {
   // the clustering is not a sum over paths). Both resolved values are in the RenderResult.
   bool auto_paths = false;
   bool auto_clusters = false;
+  // auto_edges: raster.edge_pixels chosen by the rounds (core/light_budget.h trace_edge_pixels:
+  // traced, EdgePixelMode::Listed, from 4 rounds on; never with jitter), in the RenderResult.
+  bool auto_edges = false;
   LightBudget budget;
   // Raster and rt-vpl: the mean of `rounds` renders of independent light sets (round m > 0: the
   // scrambled Halton walk of seed walk.seed + m, N of the first round, clustering and compensation
@@ -112,8 +115,10 @@ struct RenderResult {
   std::size_t passes = 0; // VPL passes drawn (raster)
   // Of them, those drawn one VPL at a time (--batch 1, the reference; RasterTimings)
   std::size_t single_passes = 0;
-  // Interleaved with RasterOptions::interleave_edges: the pixels shaded by every set (per image)
+  // Interleaved with RasterOptions::edge_pixels: the edge pixels shaded or traced (per image),
+  // and how ("off", "shaded", "traced": auto resolved, jitter's veto included)
   std::size_t edge_pixels = 0;
+  std::string edge_mode = "off";
   double clamped_fraction = -1.0; // when requested (not with mirrors)
   // screen compensation: the share of its gather samples in reach evaluated exactly (hidden)
   double compensation_fallback = -1.0;

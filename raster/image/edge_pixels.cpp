@@ -81,7 +81,7 @@ EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer)
   api.Uniform1f(mark_.uniform("u_depth"), 0.0f);
 }
 
-void EdgePixels::find() {
+void EdgePixels::find(bool shaded) {
   const GladGLContext& api = *api_;
   api.BindFramebuffer(GL_FRAMEBUFFER, mask_fbo_.get());
   api.Viewport(0, 0, width_, height_);
@@ -96,25 +96,30 @@ void EdgePixels::find() {
   api.ReadBuffer(GL_COLOR_ATTACHMENT0);
   api.PixelStorei(GL_PACK_ALIGNMENT, 1);
   api.ReadPixels(0, 0, width_, height_, GL_RED, GL_UNSIGNED_BYTE, mask.data());
+  api.BindFramebuffer(GL_FRAMEBUFFER, 0);
+  pixels_.clear();
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    if (mask[i] != 0)
+      pixels_.emplace_back(static_cast<int>(i % width_), static_cast<int>(i / width_));
+  if (shaded) upload();
+}
 
+void EdgePixels::upload() {
+  const GladGLContext& api = *api_;
   // The list, row-major over the image; each pixel's texel in it.
-  count_ = static_cast<std::size_t>(
-      std::count_if(mask.begin(), mask.end(), [](unsigned char m) { return m != 0; }));
-  rows_ = std::max(1, static_cast<int>((count_ + width_ - 1) / width_));
+  rows_ = std::max(1, static_cast<int>((pixels_.size() + width_ - 1) / width_));
   std::vector<GLint> list(static_cast<std::size_t>(width_) * rows_ * 2, -1);
-  std::vector<GLint> texel_of(mask.size() * 2, -1);
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < mask.size(); ++i) {
-    if (mask[i] == 0) continue;
-    list[2 * n] = static_cast<GLint>(i % width_);
-    list[2 * n + 1] = static_cast<GLint>(i / width_);
+  std::vector<GLint> texel_of(static_cast<std::size_t>(width_) * height_ * 2, -1);
+  for (std::size_t n = 0; n < pixels_.size(); ++n) {
+    const glm::ivec2 p = pixels_[n];
+    list[2 * n] = p.x;
+    list[2 * n + 1] = p.y;
+    const std::size_t i = static_cast<std::size_t>(p.y) * width_ + p.x;
     texel_of[2 * i] = static_cast<GLint>(n % width_);
     texel_of[2 * i + 1] = static_cast<GLint>(n / width_);
-    ++n;
   }
   upload_pairs(api, list_.get(), width_, rows_, list);
   upload_pairs(api, texel_of_.get(), width_, height_, texel_of);
-
   storage(api, light_.get(), GL_RGBA32F, width_, rows_, GL_RGBA, GL_FLOAT, nullptr);
   api.BindFramebuffer(GL_FRAMEBUFFER, light_fbo_.get());
   api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, light_.get(), 0);

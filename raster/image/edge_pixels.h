@@ -22,7 +22,9 @@
 #include "raster/image/gbuffer.h"
 
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <string>
+#include <vector>
 
 namespace irad::gl {
 
@@ -35,11 +37,12 @@ public:
   // For the resolve window of `k` (> 1) over `gbuffer`'s image (kept by reference).
   EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer);
 
-  // Marks the edge pixels of the G-buffer as it is now, uploads their list and clears their
-  // light. Leaves the draw framebuffer unbound.
-  void find();
-  // Edge pixels found by the last find().
-  std::size_t count() const { return count_; }
+  // Marks the edge pixels of the G-buffer as it is now and lists them; for shading (`shaded`)
+  // uploads the list and clears their light. Leaves the draw framebuffer unbound.
+  void find(bool shaded);
+  // The edge pixels the last find() listed, row by row.
+  const std::vector<glm::ivec2>& pixels() const { return pixels_; }
+  std::size_t count() const { return pixels_.size(); }
   // The list's light as the draw framebuffer, the viewport on the list's rows.
   void bind_light() const;
   // The list's (RG32I) texel p holds the image pixel it stands for.
@@ -49,10 +52,13 @@ public:
   GLuint light() const { return light_.get(); }
 
 private:
+  // The list, the pixels' texels in it, and their light cleared (shading).
+  void upload();
+
   const GladGLContext* api_;
   int k_, width_, height_;
   const GBuffer* gbuffer_;
-  std::size_t count_ = 0;
+  std::vector<glm::ivec2> pixels_;
   int rows_ = 0; // of the list in use
   Texture mask_;
   Framebuffer mask_fbo_;

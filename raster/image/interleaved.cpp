@@ -13,15 +13,17 @@ constexpr GLint atlas_unit = 2, position_unit = 3, edge_at_unit = 6, edge_light_
 
 } // namespace
 
-Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer, bool edges)
+Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer, bool find_edges,
+                         bool shade_edges)
     : api_(&api), width_(gbuffer.width()), height_(gbuffer.height()), k_(k),
       tile_w_((width_ + k - 1) / k), tile_h_((height_ + k - 1) / k), gbuffer_(&gbuffer),
       atlas_(make_float_texture(api, k * tile_w_, k * tile_h_)),
       atlas_depth_(make_renderbuffer(api)), atlas_fbo_(make_framebuffer(api)),
       empty_vao_(make_vertex_array(api)),
-      edges_(edges && k > 1 ? std::make_unique<EdgePixels>(api, k, gbuffer) : nullptr),
-      resolve_(api, "resolve", shaders::fullscreen_vertex,
-               with_resolve_window(shaders::resolve_fragment)),
+      edges_((find_edges || shade_edges) && k > 1 ? std::make_unique<EdgePixels>(api, k, gbuffer)
+                                                  : nullptr),
+      shade_edges_(shade_edges), resolve_(api, "resolve", shaders::fullscreen_vertex,
+                                          with_resolve_window(shaders::resolve_fragment)),
       scale_location_(resolve_.uniform("u_scale")), edges_location_(resolve_.uniform("u_edges")) {
   if (k < 1) throw Error("", "--interleave", "must be at least 1");
   api.BindRenderbuffer(GL_RENDERBUFFER, atlas_depth_.get());
@@ -79,7 +81,7 @@ void Interleaved::resolve(const std::vector<float>& scales, bool use_edges) cons
   api_->Disable(GL_BLEND);
   resolve_.use();
   api_->Uniform1fv(scale_location_, sets(), scales.data());
-  const EdgePixels* e = use_edges ? edges() : nullptr;
+  const EdgePixels* e = use_edges ? shaded_edges() : nullptr;
   api_->Uniform1i(edges_location_, e ? 1 : 0);
   if (e) {
     api_->ActiveTexture(GL_TEXTURE0 + edge_at_unit);

@@ -21,8 +21,10 @@ namespace irad::gl {
 class Interleaved {
 public:
   // gbuffer: the image's (its size is the image's), read by the resolve; kept by reference.
-  // edges: whether the edge pixels are shaded by every set (EdgePixels).
-  Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer, bool edges);
+  // find_edges: whether each image lists its edge pixels (EdgePixels); shade_edges: whether the
+  // deferred passes shade them with every set and the resolve keeps their sums.
+  Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer, bool find_edges,
+              bool shade_edges);
 
   int k() const { return k_; }
   int sets() const { return k_ * k_; }
@@ -38,10 +40,14 @@ public:
   }
   // With edge pixels: finds this image's from the G-buffer as it is now (after its pass).
   void find_edges() {
-    if (edges_) edges_->find();
+    if (edges_) edges_->find(shade_edges_);
   }
+  // This image's edge pixels (nullptr without).
+  const EdgePixels* edges() const { return edges_.get(); }
   // The edge pixels the deferred passes shade with every set; nullptr without, or with none.
-  const EdgePixels* edges() const { return edges_ && edges_->count() > 0 ? edges_.get() : nullptr; }
+  const EdgePixels* shaded_edges() const {
+    return shade_edges_ && edges_ && edges_->count() > 0 ? edges_.get() : nullptr;
+  }
   // Writes the resolved VPL light into the bound framebuffer (full resolution, no blending), set s
   // scaled by scales[s] (core/interleave_sets.h; sets() of them). use_edges: the edge pixels
   // take their own sums (every VPL of the image was shaded into them).
@@ -56,6 +62,7 @@ private:
   Framebuffer atlas_fbo_;
   VertexArray empty_vao_;
   std::unique_ptr<EdgePixels> edges_;
+  bool shade_edges_;
   ShaderProgram resolve_;
   GLint scale_location_, edges_location_; // u_scale (the sets' scales), u_edges
 };
