@@ -39,9 +39,9 @@ std::size_t budget_clusters(std::size_t vpls, const LightBudget& budget);
 int representative_shadow_resolution(int rule, int width, int height, unsigned rounds);
 
 // Whether the raster's edge pixels (raster/raster_renderer.h EdgePixelMode) are traced over the
-// same VPLs when `rounds` light sets are averaged: from 4 rounds on, where the representatives'
-// noise has fallen below what the shadow maps and the interleaved filter get wrong at creases
-// and contacts (the .cpp has the measurements).
+// same cluster representatives when `rounds` light sets are averaged: from 4 rounds on, where
+// the representatives' noise has fallen below what the shadow maps and the interleaved filter get
+// wrong at creases and contacts (the .cpp has the measurements).
 bool trace_edge_pixels(unsigned rounds);
 
 } // namespace irad

@@ -130,12 +130,15 @@ int interleave(const RenderOptions& o, const RenderResult& r) {
   return r.clusters > 0 && std::max(r.view.width, r.view.height) < 512 ? 2 : 4;
 }
 
-// The raster's edge pixels: as asked, or with auto_edges by the rounds (core/light_budget.h).
-// Traced at the pixel centre, they would lose the jitter's antialiasing where it matters: none
-// with jitter.
-EdgePixelMode edge_pixel_mode(const RenderOptions& o) {
+// The raster's edge pixels: as asked, or with auto_edges for cluster representatives by the
+// rounds (core/light_budget.h; every VPL of a walk per traced pixel would cost what the whole
+// image's passes do). Traced at the pixel centre, they would lose the jitter's antialiasing where
+// it matters: none with jitter.
+EdgePixelMode edge_pixel_mode(const RenderOptions& o, const RenderResult& r) {
   EdgePixelMode mode = o.raster.edge_pixels;
-  if (o.auto_edges) mode = trace_edge_pixels(o.rounds) ? EdgePixelMode::Listed : EdgePixelMode::Off;
+  if (o.auto_edges)
+    mode =
+        r.clusters > 0 && trace_edge_pixels(o.rounds) ? EdgePixelMode::Listed : EdgePixelMode::Off;
   if (o.raster.jitter && mode == EdgePixelMode::Listed) mode = EdgePixelMode::Off;
   return mode;
 }
@@ -158,7 +161,7 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
       choose_shadow_planes(s.scene, rays, options.shadow_lod.planes, options.shadow_resolution);
   const double scan = since(t0);
   options.shadow_lod.planes = planes.planes;
-  options.edge_pixels = edge_pixel_mode(s.options);
+  options.edge_pixels = edge_pixel_mode(s.options, s.r);
   s.traced_edges = options.edge_pixels == EdgePixelMode::Listed;
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };

@@ -175,7 +175,8 @@ TEST(EdgePixels, TracedPixelsAreRtVplsAndOnlyThose) {
   EXPECT_EQ(written, 4u); // the two pixels off the image are skipped
 }
 
-// The default from 4 rounds on; never with jitter.
+// The default for cluster representatives from 4 rounds on; never with jitter, nor with every VPL
+// drawn.
 TEST(EdgePixels, TracedFromFourRounds) {
   EXPECT_FALSE(trace_edge_pixels(1));
   EXPECT_FALSE(trace_edge_pixels(3));
@@ -185,17 +186,21 @@ TEST(EdgePixels, TracedFromFourRounds) {
   const Scene scene = load_gltf(cornell, log);
   RenderOptions o = with_light_budget();
   o.size = std::pair{24, 24};
-  o.walk.paths = 64;
   o.auto_paths = false;
   o.screen_compensation = false;
-  for (const unsigned rounds : {1u, 4u}) {
-    o.rounds = rounds;
-    for (const bool jitter : {false, true}) {
-      o.raster.jitter = jitter;
-      const RenderResult r = render(scene, o, log);
-      const bool traced = rounds == 4 && !jitter;
-      EXPECT_EQ(r.edge_mode, traced ? "traced" : "off") << rounds << " " << jitter;
-      EXPECT_EQ(r.edge_pixels > 0, traced) << rounds << " " << jitter;
+  for (const std::uint32_t paths : {4096u, 64u}) { // 478 representatives; every VPL
+    o.walk.paths = paths;
+    for (const unsigned rounds : {1u, 4u}) {
+      o.rounds = rounds;
+      for (const bool jitter : {false, true}) {
+        o.raster.jitter = jitter;
+        const RenderResult r = render(scene, o, log);
+        const bool traced = rounds == 4 && !jitter && paths == 4096;
+        EXPECT_EQ(r.clusters > 0, paths == 4096);
+        EXPECT_EQ(r.edge_mode, traced ? "traced" : "off")
+            << paths << " " << rounds << " " << jitter;
+        EXPECT_EQ(r.edge_pixels > 0, traced) << paths << " " << rounds << " " << jitter;
+      }
     }
   }
 }

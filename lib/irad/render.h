@@ -67,7 +67,8 @@ struct RenderOptions {
   bool auto_paths = false;
   bool auto_clusters = false;
   // auto_edges: raster.edge_pixels chosen by the rounds (core/light_budget.h trace_edge_pixels:
-  // traced, EdgePixelMode::Listed, from 4 rounds on; never with jitter), in the RenderResult.
+  // traced, EdgePixelMode::Listed, from 4 rounds on for cluster representatives; never with
+  // jitter), in the RenderResult.
   bool auto_edges = false;
   LightBudget budget;
   // Raster and rt-vpl: the mean of `rounds` renders of independent light sets (round m > 0: the
