@@ -11,7 +11,9 @@
 // (zdm2 at 128x128: relMSE 7.45e-3 -> 4.88e-3 for 3-5 % more time; the Cornell box 4.36e-4 ->
 // 4.02e-4 for 30 % more); per 4x4 block it gains on zdm2 (1.65e-3 -> 1.34e-3), little on the
 // Cornell box, and loses on godot (1.40e-3 -> 1.59e-3), whose contact shadows the shadow maps
-// darken: the one-sided blur had lifted them. Hence an option (--interleave-edges), off.
+// darken: the one-sided blur had lifted them. So shading them is an option (--interleave-edges
+// shaded). The default from 4 rounds on only lists them (RasterOptions::edge_pixels Listed) and
+// lib/render.cpp traces them over the same VPLs, which also removes the shadow maps' error there.
 //
 // Per image: one pass over the G-buffer marks them, the mask is read back, and their coordinates
 // are packed into a list texture (W texels wide, row-major, (-1, -1) past the last), which the

@@ -4,8 +4,8 @@
 // pixels form a (W/k) x (H/k) sub-image, rendered as one tile of a de-interleaved atlas with a
 // projection shifted by the set's sub-pixel offset, so a VPL pass shades 1/k^2 of the pixels.
 // A resolve pass re-interleaves the atlas and averages the k^2 sets over each k x k window with a
-// geometry-aware filter (raster/glsl/shaders.h resolve_fragment). With edge pixels
-// (raster/image/edge_pixels.h) the pixels where that window is cut are shaded by every set and
+// geometry-aware filter (raster/glsl/shaders.h resolve_fragment). The pixels where that window
+// is cut (raster/image/edge_pixels.h) may be listed for the caller, or shaded by every set and
 // keep their own sum.
 #include "raster/context/gl_objects.h"
 #include "raster/context/shader_program.h"
