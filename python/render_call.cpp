@@ -30,6 +30,18 @@ std::pair<int, int> checked_size(std::pair<int, int> size) {
   return size;
 }
 
+// interleave_edges: auto (RenderOptions::auto_edges), traced, shaded or off.
+void set_edges(const std::string& name, RenderOptions& o) {
+  o.auto_edges = name == "auto";
+  if (name == "auto" || name == "off") return;
+  if (name == "traced")
+    o.raster.edge_pixels = EdgePixelMode::Listed;
+  else if (name == "shaded")
+    o.raster.edge_pixels = EdgePixelMode::Shaded;
+  else
+    throw Error("", "interleave_edges", "'" + name + "' is not auto, traced, shaded or off");
+}
+
 void require_at_least_one(std::uint32_t value, const char* what) {
   if (value == 0) throw Error("", what, "must be at least 1");
 }
@@ -57,7 +69,7 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.pt.pixel_footprint = k.jitter;
   o.bias_compensation = k.bias_compensation;
   o.auto_clusters = !k.clusters;
-  o.auto_edges = true; // as irad render's --interleave-edges auto
+  set_edges(k.interleave_edges, o);
   o.clusters = k.clusters.value_or(0);
   require_at_least_one(k.rounds, "rounds");
   o.rounds = k.rounds;

@@ -32,8 +32,9 @@ struct RenderKeywords {
   unsigned threads = 0;
   bool bias_compensation = false;
   std::string gl = "auto";
-  std::optional<std::size_t> clusters; // RenderOptions::clusters (0: every VPL); None: auto
-  std::uint32_t rounds = 1;            // RenderOptions::rounds
+  std::optional<std::size_t> clusters;   // RenderOptions::clusters (0: every VPL); None: auto
+  std::uint32_t rounds = 1;              // RenderOptions::rounds
+  std::string interleave_edges = "auto"; // auto, traced, shaded, off (irad render's option)
 };
 
 // (image float32 (h, w, 3), stats dict). The GIL is released while rendering; Ctrl-C (SIGINT

@@ -67,6 +67,19 @@ def test_rounds_equal_the_cli_rounds(cornell, tmp_path):
     assert np.array_equal(image, exr[..., :3])  # bit-identical
 
 
+@pytest.mark.parametrize("edges", ["traced", "shaded"])
+def test_edge_pixels_equal_the_cli(cornell, tmp_path, edges):
+    # Traced from 4 rounds on by default (clustered); asked for here at one round.
+    image, stats = irad.render(cornell, size=(32, 24), paths=4096, interleave=2,
+                               interleave_edges=edges)
+    assert stats["interleave_edges"] == edges and stats["edge_pixels"] > 0
+    exr = cli_render(tmp_path, "raster", ["--interleave", "2", "--interleave-edges", edges],
+                     paths=4096)
+    assert np.array_equal(image, exr[..., :3])  # bit-identical
+    with pytest.raises(irad.Error, match="interleave_edges"):
+        irad.render(cornell, size=(8, 8), paths=4, interleave_edges="sometimes")
+
+
 def test_scene_summary(cornell):
     assert cornell.triangles > 0
     lo, hi = cornell.bounds
