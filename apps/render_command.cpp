@@ -279,10 +279,7 @@ int run_render(const RenderArgs& args) {
   request.render.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
   request.render.raster.shadow_lod.planes = parse_shadow_planes(args.shadow_planes);
   request.render.raster.jitter = args.jitter == "on";
-  request.render.auto_edges = args.interleave_edges == "auto";
-  request.render.raster.edge_pixels = args.interleave_edges == "shaded"   ? EdgePixelMode::Shaded
-                                      : args.interleave_edges == "traced" ? EdgePixelMode::Listed
-                                                                          : EdgePixelMode::Off;
+  set_edge_pixels(args.interleave_edges, request.render); // checked by CLI11
   request.render.pt.pixel_footprint =
       args.jitter == "on"; // pt: each sample at a uniform pixel point
   request.render.estimator = parse_estimator(args.estimator);

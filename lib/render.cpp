@@ -56,7 +56,6 @@ struct Stages {
   StopFlag& stop; // render()'s, shared by the rounds
   RenderResult& r;
   std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
-  bool traced_edges = false; // the raster lists its edge pixels and the tracer computes them
 
   bool cancelled() {
     r.cancelled = r.cancelled || stop.poll();
@@ -143,12 +142,6 @@ EdgePixelMode edge_pixel_mode(const RenderOptions& o, const RenderResult& r) {
   return mode;
 }
 
-const char* edge_mode_name(EdgePixelMode mode) {
-  return mode == EdgePixelMode::Listed   ? "traced"
-         : mode == EdgePixelMode::Shaded ? "shaded"
-                                         : "off";
-}
-
 // The raster renderer, made by the first raster stage: its shadow resolution, interleaving and
 // occluder planes for this view and these options, in the result. Later rounds reuse it.
 RasterRenderer& renderer(Stages& s, const RayScene& rays) {
@@ -162,7 +155,6 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   const double scan = since(t0);
   options.shadow_lod.planes = planes.planes;
   options.edge_pixels = edge_pixel_mode(s.options, s.r);
-  s.traced_edges = options.edge_pixels == EdgePixelMode::Listed;
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
   s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options
@@ -180,7 +172,7 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
 // where the interleaved filter and the shadow maps are least sure (creases, contacts,
 // silhouettes; walk/vpl_tracer.h trace_vpl_pixels). Timed as the raster's.
 void trace_edges(Stages& s, const RayScene& rays, const RasterRenderer& raster) {
-  if (!s.traced_edges || s.cancelled()) return;
+  if (!raster.lists_edge_pixels() || s.cancelled()) return;
   const VplTracerOptions options{s.options.raster.clamp, s.options.pt.threads, s.stop.flag()};
   trace_vpl_pixels(s.scene, rays, s.r.view, s.r.vpls, options, raster.edge_pixels(), s.r.image);
 }
@@ -382,6 +374,21 @@ const char* estimator_name(Estimator estimator) {
   return "pt";
 }
 
+bool set_edge_pixels(const std::string& name, RenderOptions& o) {
+  if (name != "auto" && name != "traced" && name != "shaded" && name != "off") return false;
+  o.auto_edges = name == "auto";
+  o.raster.edge_pixels = name == "traced"   ? EdgePixelMode::Listed
+                         : name == "shaded" ? EdgePixelMode::Shaded
+                                            : EdgePixelMode::Off;
+  return true;
+}
+
+const char* edge_mode_name(EdgePixelMode mode) {
+  return mode == EdgePixelMode::Listed   ? "traced"
+         : mode == EdgePixelMode::Shaded ? "shaded"
+                                         : "off";
+}
+
 PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, ShadowPlanes requested,
                                  int resolution) {
   if (requested != ShadowPlanes::Auto) return {requested, -1.0f};
@@ -416,7 +423,7 @@ void run_rounds(Stages& s, const RayScene& rays) {
     RenderResult rm;
     rm.camera = s.r.camera;
     rm.view = s.r.view;
-    Stages sm{s.scene, o, s.log, s.stop, rm, std::move(s.raster), s.traced_edges};
+    Stages sm{s.scene, o, s.log, s.stop, rm, std::move(s.raster)};
     run_vpl_estimator(sm, rays);
     s.raster = std::move(sm.raster);
     if (sm.cancelled()) break; // s.cancelled() says so too: the flag is shared

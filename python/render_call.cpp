@@ -30,15 +30,9 @@ std::pair<int, int> checked_size(std::pair<int, int> size) {
   return size;
 }
 
-// interleave_edges: auto (RenderOptions::auto_edges), traced, shaded or off.
+// interleave_edges: auto, traced, shaded or off (lib/irad/render.h set_edge_pixels).
 void set_edges(const std::string& name, RenderOptions& o) {
-  o.auto_edges = name == "auto";
-  if (name == "auto" || name == "off") return;
-  if (name == "traced")
-    o.raster.edge_pixels = EdgePixelMode::Listed;
-  else if (name == "shaded")
-    o.raster.edge_pixels = EdgePixelMode::Shaded;
-  else
+  if (!set_edge_pixels(name, o))
     throw Error("", "interleave_edges", "'" + name + "' is not auto, traced, shaded or off");
 }
 

@@ -278,6 +278,10 @@ std::vector<glm::ivec2> RasterRenderer::edge_pixels() const {
   return pixels;
 }
 
+bool RasterRenderer::lists_edge_pixels() const {
+  return impl_->options.edge_pixels == EdgePixelMode::Listed;
+}
+
 std::string RasterRenderer::description() const {
   const gl::CurrentScope current(*impl_->context);
   return impl_->context->backend() + ": " + impl_->context->renderer();

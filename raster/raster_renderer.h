@@ -128,6 +128,8 @@ public:
   // The last image's edge pixels (RasterOptions::edge_pixels; none when Off, without
   // interleaving, or before a render) as Image coordinates (y down).
   std::vector<glm::ivec2> edge_pixels() const;
+  // Whether the images list their edge pixels for the caller (RasterOptions::edge_pixels Listed).
+  bool lists_edge_pixels() const;
 
 private:
   struct Impl;

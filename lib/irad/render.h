@@ -92,6 +92,13 @@ struct RenderOptions {
   std::function<bool()> cancel_requested;
 };
 
+// The raster's edge pixels by name into `o`: "auto" (RenderOptions::auto_edges), "traced"
+// (EdgePixelMode::Listed), "shaded" or "off", as irad render's --interleave-edges and Python's
+// interleave_edges take them; false (and `o` untouched) for any other name.
+bool set_edge_pixels(const std::string& name, RenderOptions& o);
+// The name RenderResult::edge_mode gives a mode ("traced", "shaded", "off").
+const char* edge_mode_name(EdgePixelMode mode);
+
 struct StageSeconds {
   // trace: pt and rt-vpl, or the raster's ray-traced pass over visible mirrors
   // cluster: the rows and the clustering of the VPLs (RenderOptions::clusters)

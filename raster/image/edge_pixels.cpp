@@ -35,22 +35,17 @@ void main() {
 }
 )";
 
-// (Re)defines `texture` as width x height texels of `internal` (its format and type; `data` may
-// be null), nearest filtering, no mipmaps (integer textures need that to be complete).
-void storage(const GladGLContext& api, GLuint texture, GLint internal, int width, int height,
-             GLenum format, GLenum type, const void* data) {
+// Defines `texture` as an RG32I texture of width x height holding `texels` (2 per texel),
+// nearest filtering, no mipmaps (an integer texture needs that to be complete).
+void upload_pairs(const GladGLContext& api, GLuint texture, int width, int height,
+                  const std::vector<GLint>& texels) {
   api.BindTexture(GL_TEXTURE_2D, texture);
   api.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  api.TexImage2D(GL_TEXTURE_2D, 0, internal, width, height, 0, format, type, data);
+  api.TexImage2D(GL_TEXTURE_2D, 0, GL_RG32I, width, height, 0, GL_RG_INTEGER, GL_INT,
+                 texels.data());
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   api.BindTexture(GL_TEXTURE_2D, 0);
-}
-
-// An RG32I texture of width x height holding `texels` (2 per texel).
-void upload_pairs(const GladGLContext& api, GLuint texture, int width, int height,
-                  const std::vector<GLint>& texels) {
-  storage(api, texture, GL_RG32I, width, height, GL_RG_INTEGER, GL_INT, texels.data());
 }
 
 } // namespace
@@ -62,12 +57,11 @@ std::string with_resolve_window(const char* source) {
 }
 
 EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer)
-    : api_(&api), k_(k), width_(gbuffer.width()), height_(gbuffer.height()), gbuffer_(&gbuffer),
-      mask_(make_texture(api)), mask_fbo_(make_framebuffer(api)), list_(make_texture(api)),
-      texel_of_(make_texture(api)), light_(make_texture(api)), light_fbo_(make_framebuffer(api)),
-      empty_vao_(make_vertex_array(api)),
+    : api_(&api), width_(gbuffer.width()), height_(gbuffer.height()), gbuffer_(&gbuffer),
+      mask_(make_float_texture(api, width_, height_, GL_R8, GL_RED)),
+      mask_fbo_(make_framebuffer(api)), list_(make_texture(api)), texel_of_(make_texture(api)),
+      light_fbo_(make_framebuffer(api)), empty_vao_(make_vertex_array(api)),
       mark_(api, "edge pixels", shaders::fullscreen_vertex, with_resolve_window(mark_fragment)) {
-  storage(api, mask_.get(), GL_R8, width_, height_, GL_RED, GL_UNSIGNED_BYTE, nullptr);
   api.BindFramebuffer(GL_FRAMEBUFFER, mask_fbo_.get());
   api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, mask_.get(), 0);
   check_framebuffer(api, "edge mask framebuffer");
@@ -77,7 +71,6 @@ EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer)
   api.Uniform1i(mark_.uniform("u_normal"), gbuffer_unit + 1);
   api.Uniform2i(mark_.uniform("u_size"), width_, height_);
   api.Uniform1i(mark_.uniform("u_h"), k / 2);
-
   api.Uniform1f(mark_.uniform("u_depth"), 0.0f);
 }
 
@@ -120,7 +113,7 @@ void EdgePixels::upload() {
   }
   upload_pairs(api, list_.get(), width_, rows_, list);
   upload_pairs(api, texel_of_.get(), width_, height_, texel_of);
-  storage(api, light_.get(), GL_RGBA32F, width_, rows_, GL_RGBA, GL_FLOAT, nullptr);
+  light_ = make_float_texture(api, width_, rows_);
   api.BindFramebuffer(GL_FRAMEBUFFER, light_fbo_.get());
   api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, light_.get(), 0);
   check_framebuffer(api, "edge light framebuffer");

@@ -58,7 +58,7 @@ private:
   void upload();
 
   const GladGLContext* api_;
-  int k_, width_, height_;
+  int width_, height_;
   const GBuffer* gbuffer_;
   std::vector<glm::ivec2> pixels_;
   int rows_ = 0; // of the list in use
