@@ -155,6 +155,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"passes", r.passes},
           {"single_passes", r.single_passes},
           {"edge_pixels", r.edge_pixels},
+          {"unsure_pixels", r.unsure_pixels},
           {"paths", r.vpls.paths},
           {"sequence", args.sequence},
           {"light_allocation", args.light_allocation},
@@ -448,8 +449,9 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--interleave-edges", args->interleave_edges,
                   "Raster, interleaved: the pixels where the filter's window is cut (creases, "
                   "contacts, silhouettes): traced (rt-vpl's value over the same VPLs: exact "
-                  "visibility there; not with --jitter), shaded (every set's light, shadow maps), "
-                  "off (filled in from the window's side); auto: traced from --rounds 4 on")
+                  "visibility there, and also where the shadow maps could not decide a tenth of "
+                  "a pixel's light; not with --jitter), shaded (every set's light, shadow maps), "
+                  "off (filled in from the window's side); auto: traced from --rounds 2 on")
       ->check(CLI::IsMember({"auto", "off", "shaded", "traced"}))
       ->capture_default_str();
   cmd->add_option("--batch", args->batch,

@@ -51,9 +51,19 @@ int representative_shadow_resolution(int rule, int width, int height, unsigned r
 // godot 1.40e-3 -> 1.34e-3 for 11 % more, zdm2 1.65e-3 -> 1.16e-3 for 6 % more (a loss at equal
 // time on the first two); 4 rounds, Cornell 5.13e-5 in 4.8 s -> 4.69e-5 in 5.5 s, godot 8.07e-4
 // -> 7.07e-4 for 5 % more, zdm2 9.83e-4 -> 8.15e-4 in the same time; 16 rounds, Cornell
-// 2.04e-5 in 18.8 s -> 1.56e-5 in 21.5 s (pt: about 1.9e-5 at that time).
+// 2.04e-5 in 18.8 s -> 1.56e-5 in 21.5 s (pt: about 1.9e-5 at that time). So until session 17
+// they were traced from 4 rounds on.
+// Since session 17 the unsure pixels are traced too (raster/image/edge_pixels.h: where the shadow
+// maps could not decide a tenth of a pixel's light; 3.6 % of the Cornell box at 256x256, 4-11 %
+// of godot and zdm2 at 128x128), and the shading finds them (a tenth more shading without occluder
+// planes, nothing with them). Measured the same way (one batch, off -> traced): one round,
+// Cornell 1.89e-4 in 1.31 s -> 1.75e-4 in 1.49 s (a loss at equal time), godot 1.40e-3 in 2.48 s
+// -> 1.03e-3 in 2.94 s, zdm2 1.65e-3 in 5.7 s -> 1.14e-3 in 6.1 s; two rounds, Cornell 1.00e-4
+// in 2.49 s -> 8.8e-5 in 2.84 s (level), godot 1.08e-3 in 4.66 s -> 7.2e-4 in 4.82 s; 4 rounds,
+// godot 7.07e-4 -> 5.10e-4 in the same time (rt-vpl 4.73e-4); 16 rounds, Cornell 1.56e-5 in
+// 20.9 s -> 1.39e-5 in 24.9 s.
 bool trace_edge_pixels(unsigned rounds) {
-  return rounds >= 4;
+  return rounds >= 2;
 }
 
 } // namespace irad

@@ -38,10 +38,11 @@ std::size_t budget_clusters(std::size_t vpls, const LightBudget& budget);
 // least half the image's larger side up to 128 texels (the .cpp has the measurements).
 int representative_shadow_resolution(int rule, int width, int height, unsigned rounds);
 
-// Whether the raster's edge pixels (raster/raster_renderer.h EdgePixelMode) are traced over the
-// same cluster representatives when `rounds` light sets are averaged: from 4 rounds on, where
-// the representatives' noise has fallen below what the shadow maps and the interleaved filter get
-// wrong at creases and contacts (the .cpp has the measurements).
+// Whether the raster's edge and unsure pixels (raster/raster_renderer.h EdgePixelMode Listed) are
+// traced over the same cluster representatives when `rounds` light sets are averaged: from 2
+// rounds on, where the representatives' noise no longer hides what the shadow maps and the
+// interleaved filter get wrong at creases, contacts and silhouettes (the .cpp has the
+// measurements). One round, the quick look, keeps the raster's speed.
 bool trace_edge_pixels(unsigned rounds);
 
 } // namespace irad

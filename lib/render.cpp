@@ -191,6 +191,7 @@ void run_raster(Stages& s, const RayScene& rays) {
   s.r.passes = timings.passes;
   s.r.single_passes = timings.single_passes;
   s.r.edge_pixels = timings.edge_pixels;
+  s.r.unsure_pixels = timings.unsure_pixels;
   if (s.scene.has_specular() && !s.cancelled()) { // visible mirrors: walk/mirror_pass.h
     const auto t1 = Clock::now();
     add_mirror_pass(s.scene, rays, s.r.view, s.r.vpls,
@@ -439,6 +440,7 @@ void run_rounds(Stages& s, const RayScene& rays) {
     s.r.passes += rm.passes;
     s.r.single_passes += rm.single_passes;
     s.r.edge_pixels = std::max(s.r.edge_pixels, rm.edge_pixels);
+    s.r.unsure_pixels = std::max(s.r.unsure_pixels, rm.unsure_pixels);
   }
   s.cancelled(); // a round cancelled: the mean of those done, marked cancelled
   for (std::size_t i = 0; i < sum.size(); ++i)

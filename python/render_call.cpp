@@ -88,6 +88,7 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   s["interleave"] = r.interleave;
   s["interleave_edges"] = r.edge_mode;
   s["edge_pixels"] = r.edge_pixels;
+  s["unsure_pixels"] = r.unsure_pixels;
   s["rounds"] = r.rounds;
   s["paths"] = r.vpls.paths;
   s["rho_bar"] = r.vpls.rho_bar;

@@ -50,8 +50,9 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
                         ? gl::ortho_resolution_for(options.shadow_resolution, width, height)
                         : 0;
   if (!batched || !batched->matches(options.batch, resolution, ortho))
-    batched = gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
-                                      options.shadow_lod);
+    batched =
+        gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
+                                options.shadow_lod, options.edge_pixels == EdgePixelMode::Listed);
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {
@@ -211,6 +212,9 @@ void RasterRenderer::Impl::ensure_tile_depths(const View& view) {
 
 Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                                          gl::PassTimer* timer, RasterTimings* timings) {
+  // The unsure light is the batched passes' alone: listed only when every VPL went through them.
+  const bool listed = interleaved && options.edge_pixels == EdgePixelMode::Listed;
+  if (listed && single_passes == 0) interleaved->find_unsure();
   target->bind();
   // The edge pixels hold every VPL only when all went through the batched passes.
   if (interleaved) interleaved->resolve(interleave_sets.scales(), single_passes == 0);
@@ -231,7 +235,8 @@ Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0,
     timings->single_passes = single_passes;
     const gl::EdgePixels* edges = interleaved ? interleaved->edges() : nullptr;
     const bool kept = options.edge_pixels == EdgePixelMode::Listed || single_passes == 0;
-    timings->edge_pixels = edges && kept ? edges->count() : 0;
+    timings->edge_pixels = edges && kept ? edges->edge_count() : 0;
+    timings->unsure_pixels = edges && listed ? edges->count() - edges->edge_count() : 0;
     if (timer) {
       const auto gpu_seconds = timer->seconds();
       timings->shadow_gpu = gpu_seconds[gl::PassTimer::Shadow];

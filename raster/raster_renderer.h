@@ -22,7 +22,8 @@ namespace irad {
 // the deferred passes (batched) shade them with every set and the resolve keeps their own sum
 // (less error per pixel, per 4x4 block it depends on the scene). Listed: only listed
 // (RasterRenderer::edge_pixels), for a caller that computes them otherwise (lib/render.cpp
-// traces them).
+// traces them), and with them the pixels whose shadow lookups were unsure (the batched passes
+// then report it: a tenth more shading where the scene has no occluder planes).
 enum class EdgePixelMode { Off, Shaded, Listed };
 
 struct RasterOptions {
@@ -91,6 +92,8 @@ struct RasterTimings {
   // Interleaved with edge pixels (RasterOptions::edge_pixels): how many the image has (Shaded:
   // 0 when some VPL took the per-VPL passes, whose light they lack, so the filter kept them).
   std::size_t edge_pixels = 0;
+  // Listed: the unsure pixels listed besides them (raster/image/edge_pixels.h).
+  std::size_t unsure_pixels = 0;
   // GPU time of the shadow-map and shading passes (GL_TIME_ELAPSED), only with gpu_timers.
   double shadow_gpu = -1.0;
   double shading_gpu = -1.0;
@@ -126,7 +129,8 @@ public:
   std::string description() const; // backend and GL renderer
 
   // The last image's edge pixels (RasterOptions::edge_pixels; none when Off, without
-  // interleaving, or before a render) as Image coordinates (y down).
+  // interleaving, or before a render) as Image coordinates (y down), row by row; Listed: with
+  // the unsure pixels.
   std::vector<glm::ivec2> edge_pixels() const;
   // Whether the images list their edge pixels for the caller (RasterOptions::edge_pixels Listed).
   bool lists_edge_pixels() const;

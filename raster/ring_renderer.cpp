@@ -90,7 +90,7 @@ struct RingRenderer::Impl {
     batched = gl::BatchedPasses::make(
         api, s, o.raster.clamp, o.raster.batch,
         shadow_resolution_for(o.raster.shadow_resolution, o.width, o.height),
-        directional ? ortho : 0, o.raster.shadow_lod);
+        directional ? ortho : 0, o.raster.shadow_lod, false);
     if (batched) gbuffer = std::make_unique<gl::GBuffer>(api, o.width, o.height, target.depth());
     context->check("ring set-up");
   }

@@ -67,7 +67,7 @@ struct RenderOptions {
   bool auto_paths = false;
   bool auto_clusters = false;
   // auto_edges: raster.edge_pixels chosen by the rounds (core/light_budget.h trace_edge_pixels:
-  // traced, EdgePixelMode::Listed, from 4 rounds on for cluster representatives; never with
+  // traced, EdgePixelMode::Listed, from 2 rounds on for cluster representatives; never with
   // jitter), in the RenderResult.
   bool auto_edges = false;
   LightBudget budget;
@@ -127,6 +127,8 @@ struct RenderResult {
   // and how ("off", "shaded", "traced": auto resolved, jitter's veto included)
   std::size_t edge_pixels = 0;
   std::string edge_mode = "off";
+  // Traced: the unsure pixels traced besides them (raster/image/edge_pixels.h; per image).
+  std::size_t unsure_pixels = 0;
   double clamped_fraction = -1.0; // when requested (not with mirrors)
   // screen compensation: the share of its gather samples in reach evaluated exactly (hidden)
   double compensation_fallback = -1.0;

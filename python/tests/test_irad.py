@@ -69,7 +69,7 @@ def test_rounds_equal_the_cli_rounds(cornell, tmp_path):
 
 @pytest.mark.parametrize("edges", ["traced", "shaded"])
 def test_edge_pixels_equal_the_cli(cornell, tmp_path, edges):
-    # Traced from 4 rounds on by default (clustered); asked for here at one round.
+    # Traced from 2 rounds on by default (clustered); asked for here at one round.
     image, stats = irad.render(cornell, size=(32, 24), paths=4096, interleave=2,
                                interleave_edges=edges)
     assert stats["interleave_edges"] == edges and stats["edge_pixels"] > 0

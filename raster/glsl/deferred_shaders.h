@@ -81,6 +81,9 @@ uniform sampler2D u_shadow_gradient; // its gradient per texel (cube_glsl.h)
 // const bool u_planes: false without gradients, the centre's distance alone (a constant, so that
 // a program without them compiles their fetches away: raster/passes/deferred_shader.h)
 #pragma irad_planes
+// const bool u_unsure: whether alpha adds the unsure light (vpl_light; a constant, as u_planes;
+// its neighbour fetches cost llvmpipe's Cornell box about 10 % of the shading without planes)
+#pragma irad_unsure
 uniform sampler2D u_ortho_atlas;   // orthographic maps (raster/shadow/ortho_atlas.h)
 uniform int u_ortho_res;           // M, texels per tile edge
 uniform sampler2D u_position;    // G-buffer: xyz, w = 1 on a surface
@@ -99,6 +102,7 @@ uniform bool u_listed;           // the pixels from a list instead (TilePixels::
 uniform isampler2D u_pixel_list; // at texel t - u_tile_origin, none where x < 0
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
+const vec3 LUMINANCE = vec3(0.2126, 0.7152, 0.0722); // Rec. 709
 
 // Atlas texel minus face texel of face f (+x, -x, +y, -y, +z, -z).
 ivec2 face_offset(int f) {
@@ -120,22 +124,29 @@ ivec2 face_offset(int f) {
 // frame; raster/glsl/cube_glsl.h), nq the receiver's normal in that frame: the atlas holds
 // distances / far, the gradients beside it. Without them the centre's distance and the receiver's
 // plane; with them the occluder's plane and the neighbours' (their distances and gradients:
-// cube_glsl.h occluder_distance).
-bool shadowed(vec3 q, float r, vec3 nq) {
+// cube_glsl.h occluder_distance). With u_unsure, `unsure` tells whether the answer is
+// (cube_glsl.h lookup_unsure; false without).
+bool shadowed(vec3 q, float r, vec3 nq, out bool unsure) {
   vec2 st;
   int face = cube_face(q, st);
   vec2 at = (st * 0.5 + 0.5) * float(u_shadow_res);
   ivec2 texel = clamp(ivec2(floor(at)), ivec2(0), ivec2(u_shadow_res - 1));
   ivec2 origin = face_offset(face);
   float centre = texelFetch(u_shadow_atlas, texel + origin, 0).r * v_cone.w;
-  if (!u_planes)
+  unsure = false;
+  if (!u_planes && !u_unsure)
     return r > centre &&
            in_front_of_receiver(q, nq, face, texel, float(u_shadow_res), centre, u_bias_constant);
-  vec2 gradient = texelFetch(u_shadow_gradient, texel + origin, 0).rg * v_cone.w;
   ivec2 step = toward(at), nx = texel + ivec2(step.x, 0), ny = texel + ivec2(0, step.y);
   bool has_x = nx.x >= 0 && nx.x < u_shadow_res, has_y = ny.y >= 0 && ny.y < u_shadow_res;
   float next_x = has_x ? texelFetch(u_shadow_atlas, nx + origin, 0).r * v_cone.w : -1.0;
   float next_y = has_y ? texelFetch(u_shadow_atlas, ny + origin, 0).r * v_cone.w : -1.0;
+  if (u_unsure)
+    unsure = lookup_unsure(q, nq, r, float(u_shadow_res), centre, next_x, next_y);
+  if (!u_planes)
+    return r > centre &&
+           in_front_of_receiver(q, nq, face, texel, float(u_shadow_res), centre, u_bias_constant);
+  vec2 gradient = texelFetch(u_shadow_gradient, texel + origin, 0).rg * v_cone.w;
   vec2 grad_x = has_x ? texelFetch(u_shadow_gradient, nx + origin, 0).rg * v_cone.w : vec2(0.0);
   vec2 grad_y = has_y ? texelFetch(u_shadow_gradient, ny + origin, 0).rg * v_cone.w : vec2(0.0);
   return r > occluder_distance(centre, gradient, at, next_x, grad_x, next_y, grad_y);
@@ -167,8 +178,10 @@ vec3 directional_light(vec3 x, vec3 n) {
   return v_vpl_intensity * (cos_x * INV_PI);
 }
 
-// w * C(x) / rho(x) of the VPL at the surface point x with normal n (0 where it does not reach).
-vec3 vpl_light(vec3 x, vec3 n) {
+// w * C(x) / rho(x) of the VPL at the surface point x with normal n (0 where it does not reach);
+// `unsure` its luminance unshadowed where the shadow lookup was unsure (shadowed()), else 0.
+vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
+  unsure = 0.0;
   if (v_kind == 4) return directional_light(x, n);
 #ifdef IRAD_MIRRORS
   if (v_mirror.x >= 0 && !through_mirror(x)) return vec3(0.0);
@@ -192,9 +205,12 @@ vec3 vpl_light(vec3 x, vec3 n) {
   // Normal-offset lookup (raster/glsl/cube_glsl.h).
   vec3 dp = lookup_offset(x, n, dist, cos_x, u_bias_texel, v_vpl_position);
   mat3 frame = mat3(v_frame[0].xyz, v_frame[1].xyz, v_frame[2].xyz);
-  if (shadowed(frame * dp, length(dp) - u_bias_constant, frame * n)) return vec3(0.0);
+  bool lookup_unsure;
+  bool hidden = shadowed(frame * dp, length(dp) - u_bias_constant, frame * n, lookup_unsure);
   float g = e * cos_x / max(dist2, v_cone.z);
-  return v_vpl_intensity * (g * INV_PI);
+  vec3 light = v_vpl_intensity * (g * INV_PI);
+  if (lookup_unsure) unsure = dot(light, LUMINANCE);
+  return hidden ? vec3(0.0) : light;
 }
 
 void main() {
@@ -203,10 +219,11 @@ void main() {
   if (p.x < 0 || p.x >= u_size.x || p.y >= u_size.y) discard;
   vec4 x = texelFetch(u_position, p, 0);
   if (x.w <= 0.0) discard;
-  vec3 light = vpl_light(x.xyz, texelFetch(u_normal, p, 0).xyz);
-  if (light == vec3(0.0)) discard;
+  float unsure;
+  vec3 light = vpl_light(x.xyz, texelFetch(u_normal, p, 0).xyz, unsure);
+  if (light == vec3(0.0) && unsure == 0.0) discard;
   if (u_apply_albedo) light *= texelFetch(u_albedo, p, 0).rgb;
-  o_color = vec4(light, 0.0);
+  o_color = vec4(light, unsure);
 }
 )";
 

@@ -3,6 +3,8 @@
 #include "raster/glsl/shaders.h"
 
 #include <algorithm>
+#include <iterator>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,7 @@ namespace irad::gl {
 namespace {
 
 constexpr GLint gbuffer_unit = 3; // position, normal (and albedo) at 3, 4, 5
+constexpr GLint atlas_unit = 2;   // the interleaved atlas (unsure pixels)
 
 // 1 where some pixel of the window -h..h around p does not show p's surface
 // (shaders::resolve_window_glsl), 0 elsewhere and on the background.
@@ -35,6 +38,27 @@ void main() {
 }
 )";
 
+// 1 where the light of the VPLs whose shadow lookup was unsure (the interleaved atlas's alpha,
+// raster/glsl/cube_glsl.h lookup_unsure) is at least u_share of the light the pixel's own set
+// gave it (the atlas's rgb, de-interleaved as the resolve does), 0 elsewhere and on the background.
+constexpr const char* unsure_fragment = R"(#version 330 core
+uniform sampler2D u_position;
+uniform sampler2D u_atlas;
+uniform int u_k;
+uniform ivec2 u_tile;
+uniform float u_share;
+out vec4 o_mask;
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  float unsure = 0.0;
+  if (texelFetch(u_position, p, 0).w > 0.0) {
+    vec4 a = texelFetch(u_atlas, (p % u_k) * u_tile + p / u_k, 0);
+    if (a.a > 0.0 && a.a >= u_share * dot(a.rgb, vec3(0.2126, 0.7152, 0.0722))) unsure = 1.0;
+  }
+  o_mask = vec4(unsure);
+}
+)";
+
 // Defines `texture` as an RG32I texture of width x height holding `texels` (2 per texel),
 // nearest filtering, no mipmaps (an integer texture needs that to be complete).
 void upload_pairs(const GladGLContext& api, GLuint texture, int width, int height,
@@ -56,12 +80,15 @@ std::string with_resolve_window(const char* source) {
   return s;
 }
 
-EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer)
+EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer, bool unsure)
     : api_(&api), width_(gbuffer.width()), height_(gbuffer.height()), gbuffer_(&gbuffer),
       mask_(make_float_texture(api, width_, height_, GL_R8, GL_RED)),
       mask_fbo_(make_framebuffer(api)), list_(make_texture(api)), texel_of_(make_texture(api)),
       light_fbo_(make_framebuffer(api)), empty_vao_(make_vertex_array(api)),
-      mark_(api, "edge pixels", shaders::fullscreen_vertex, with_resolve_window(mark_fragment)) {
+      mark_(api, "edge pixels", shaders::fullscreen_vertex, with_resolve_window(mark_fragment)),
+      unsure_(unsure ? std::make_unique<ShaderProgram>(api, "unsure pixels",
+                                                       shaders::fullscreen_vertex, unsure_fragment)
+                     : nullptr) {
   api.BindFramebuffer(GL_FRAMEBUFFER, mask_fbo_.get());
   api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, mask_.get(), 0);
   check_framebuffer(api, "edge mask framebuffer");
@@ -72,15 +99,22 @@ EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer)
   api.Uniform2i(mark_.uniform("u_size"), width_, height_);
   api.Uniform1i(mark_.uniform("u_h"), k / 2);
   api.Uniform1f(mark_.uniform("u_depth"), 0.0f);
+  if (!unsure_) return;
+  unsure_->use();
+  api.Uniform1i(unsure_->uniform("u_position"), gbuffer_unit);
+  api.Uniform1i(unsure_->uniform("u_atlas"), atlas_unit);
+  api.Uniform1i(unsure_->uniform("u_k"), k);
+  api.Uniform1f(unsure_->uniform("u_share"), kUnsureShare);
+  api.Uniform1f(unsure_->uniform("u_depth"), 0.0f);
 }
 
-void EdgePixels::find(bool shaded) {
+std::vector<glm::ivec2> EdgePixels::marked(const ShaderProgram& mark) {
   const GladGLContext& api = *api_;
   api.BindFramebuffer(GL_FRAMEBUFFER, mask_fbo_.get());
   api.Viewport(0, 0, width_, height_);
   api.Disable(GL_DEPTH_TEST);
   api.Disable(GL_BLEND);
-  mark_.use();
+  mark.use();
   gbuffer_->bind_textures(gbuffer_unit);
   api.BindVertexArray(empty_vao_.get());
   api.DrawArrays(GL_TRIANGLES, 0, 3);
@@ -90,11 +124,35 @@ void EdgePixels::find(bool shaded) {
   api.PixelStorei(GL_PACK_ALIGNMENT, 1);
   api.ReadPixels(0, 0, width_, height_, GL_RED, GL_UNSIGNED_BYTE, mask.data());
   api.BindFramebuffer(GL_FRAMEBUFFER, 0);
-  pixels_.clear();
+  std::vector<glm::ivec2> pixels;
   for (std::size_t i = 0; i < mask.size(); ++i)
     if (mask[i] != 0)
-      pixels_.emplace_back(static_cast<int>(i % width_), static_cast<int>(i / width_));
+      pixels.emplace_back(static_cast<int>(i % width_), static_cast<int>(i / width_));
+  return pixels;
+}
+
+void EdgePixels::find(bool shaded) {
+  pixels_ = marked(mark_);
+  edges_ = pixels_.size();
   if (shaded) upload();
+}
+
+void EdgePixels::add_unsure(GLuint atlas, glm::ivec2 tile) {
+  if (!unsure_) return;
+  unsure_->use();
+  api_->Uniform2i(unsure_->uniform("u_tile"), tile.x, tile.y);
+  api_->ActiveTexture(GL_TEXTURE0 + atlas_unit);
+  api_->BindTexture(GL_TEXTURE_2D, atlas);
+  const std::vector<glm::ivec2> unsure = marked(*unsure_);
+  // Both lists are row-major: their union, in that order.
+  const auto row_major = [](glm::ivec2 a, glm::ivec2 b) {
+    return a.y != b.y ? a.y < b.y : a.x < b.x;
+  };
+  std::vector<glm::ivec2> all;
+  all.reserve(pixels_.size() + unsure.size());
+  std::set_union(pixels_.begin(), pixels_.end(), unsure.begin(), unsure.end(),
+                 std::back_inserter(all), row_major);
+  pixels_ = std::move(all);
 }
 
 void EdgePixels::upload() {

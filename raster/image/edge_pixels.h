@@ -12,8 +12,12 @@
 // 4.02e-4 for 30 % more); per 4x4 block it gains on zdm2 (1.65e-3 -> 1.34e-3), little on the
 // Cornell box, and loses on godot (1.40e-3 -> 1.59e-3), whose contact shadows the shadow maps
 // darken: the one-sided blur had lifted them. So shading them is an option (--interleave-edges
-// shaded). The default from 4 rounds on only lists them (RasterOptions::edge_pixels Listed) and
+// shaded). The default from 2 rounds on only lists them (RasterOptions::edge_pixels Listed) and
 // lib/render.cpp traces them over the same VPLs, which also removes the shadow maps' error there.
+//
+// With the listing, the pixels whose shadow lookups could not decide a tenth of their light or
+// more (the unsure pixels: a silhouette's penumbra or a contact within a texel, as the VPL's map
+// sees it) are listed too, after the shading, so that lib/render.cpp traces them as well.
 //
 // Per image: one pass over the G-buffer marks them, the mask is read back, and their coordinates
 // are packed into a list texture (W texels wide, row-major, (-1, -1) past the last), which the
@@ -25,6 +29,7 @@
 
 #include <cstddef>
 #include <glm/glm.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,17 +39,32 @@ namespace irad::gl {
 // (the resolve's and the edge pass's window).
 std::string with_resolve_window(const char* source);
 
+// A listed pixel is unsure when the VPLs whose shadow lookups could not decide it (the shading's
+// alpha: raster/glsl/cube_glsl.h lookup_unsure) carry at least this share of the light its set
+// gave it. Measured (one round, k = 2, 4x4-block relMSE against rt-vpl over the same VPLs, the
+// unsure pixels given rt-vpl's values): godot 128x128, share 0.05 / 0.1 / 0.2: 21 / 12 / 6 % of
+// the pixels beyond the edge pixels, 2.07e-4 -> 2.4e-5 / 4.2e-5 / 6.7e-5; the Cornell box
+// 256x256: 10 / 7.4 / 4.1 %, 1.26e-5 -> 2.7e-6 / 3.1e-6 / 4.1e-6.
+inline constexpr float kUnsureShare = 0.1f;
+
 class EdgePixels {
 public:
-  // For the resolve window of `k` (> 1) over `gbuffer`'s image (kept by reference).
-  EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer);
+  // For the resolve window of `k` (> 1) over `gbuffer`'s image (kept by reference); unsure:
+  // add_unsure() can list the unsure pixels too.
+  EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer, bool unsure = false);
 
   // Marks the edge pixels of the G-buffer as it is now and lists them; for shading (`shaded`)
   // uploads the list and clears their light. Leaves the draw framebuffer unbound.
   void find(bool shaded);
-  // The edge pixels the last find() listed, row by row.
+  // After the shading into the interleaved `atlas` (tiles of `tile` texels; its alpha the unsure
+  // light, raster/passes/deferred_shader.h): adds the unsure pixels (kUnsureShare) to the list
+  // (only for listing: the list is not uploaded again). Nothing without `unsure`.
+  void add_unsure(GLuint atlas, glm::ivec2 tile);
+  // The pixels the last find() and add_unsure() listed, row by row.
   const std::vector<glm::ivec2>& pixels() const { return pixels_; }
   std::size_t count() const { return pixels_.size(); }
+  // Of them, the edge pixels; the rest are unsure.
+  std::size_t edge_count() const { return edges_; }
   // The list's light as the draw framebuffer, the viewport on the list's rows.
   void bind_light() const;
   // The list's (RG32I) texel p holds the image pixel it stands for.
@@ -56,11 +76,14 @@ public:
 private:
   // The list, the pixels' texels in it, and their light cleared (shading).
   void upload();
+  // Draws `mark` into the mask and lists the pixels it marked, row by row.
+  std::vector<glm::ivec2> marked(const ShaderProgram& mark);
 
   const GladGLContext* api_;
   int width_, height_;
   const GBuffer* gbuffer_;
   std::vector<glm::ivec2> pixels_;
+  std::size_t edges_ = 0;
   int rows_ = 0; // of the list in use
   Texture mask_;
   Framebuffer mask_fbo_;
@@ -68,6 +91,7 @@ private:
   Framebuffer light_fbo_;
   VertexArray empty_vao_;
   ShaderProgram mark_;
+  std::unique_ptr<ShaderProgram> unsure_;
 };
 
 } // namespace irad::gl

@@ -20,8 +20,9 @@ Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer
       atlas_(make_float_texture(api, k * tile_w_, k * tile_h_)),
       atlas_depth_(make_renderbuffer(api)), atlas_fbo_(make_framebuffer(api)),
       empty_vao_(make_vertex_array(api)),
-      edges_((find_edges || shade_edges) && k > 1 ? std::make_unique<EdgePixels>(api, k, gbuffer)
-                                                  : nullptr),
+      edges_((find_edges || shade_edges) && k > 1
+                 ? std::make_unique<EdgePixels>(api, k, gbuffer, find_edges && !shade_edges)
+                 : nullptr),
       shade_edges_(shade_edges), resolve_(api, "resolve", shaders::fullscreen_vertex,
                                           with_resolve_window(shaders::resolve_fragment)),
       scale_location_(resolve_.uniform("u_scale")), edges_location_(resolve_.uniform("u_edges")) {

@@ -42,6 +42,11 @@ public:
   void find_edges() {
     if (edges_) edges_->find(shade_edges_);
   }
+  // With find_edges (and not shade_edges), after the shading: adds the unsure pixels to the
+  // list (EdgePixels::add_unsure; the deferred passes must have written the unsure light).
+  void find_unsure() {
+    if (edges_) edges_->add_unsure(atlas_.get(), {tile_w_, tile_h_});
+  }
   // This image's edge pixels (nullptr without).
   const EdgePixels* edges() const { return edges_.get(); }
   // The edge pixels the deferred passes shade with every set; nullptr without, or with none.

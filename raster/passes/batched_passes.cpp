@@ -7,18 +7,18 @@ namespace irad::gl {
 std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, const Scene& scene,
                                                    float clamp, int batch, int resolution,
                                                    int ortho_resolution,
-                                                   const ShadowLodOptions& lod) {
+                                                   const ShadowLodOptions& lod, bool unsure) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
   if (b < 2 || DeferredShader::capacity(api, b) < b) return nullptr;
   const int tiles = ortho_resolution > 0 ? OrthoAtlas::capacity(api, ortho_resolution, b) : 0;
   return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution, tiles,
-                                         tiles > 0 ? ortho_resolution : 0, lod);
+                                         tiles > 0 ? ortho_resolution : 0, lod, unsure);
 }
 
 BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp,
                              int requested, int batch, int resolution, int ortho_tiles,
-                             int ortho_resolution, const ShadowLodOptions& lod)
+                             int ortho_resolution, const ShadowLodOptions& lod, bool unsure)
     : requested_(requested),
       atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene), lod),
       ortho_(ortho_tiles > 0
@@ -26,7 +26,7 @@ BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float
                                                 MaterialFeatures::of(scene))
                  : nullptr),
       shader_(api, scene, clamp, DeferredShader::capacity(api, std::max(batch, kShadingBatch)),
-              lod.planes != ShadowPlanes::Off) {}
+              lod.planes != ShadowPlanes::Off, unsure) {}
 
 void BatchedPasses::draw_ortho(const std::vector<std::size_t>& directional, const GpuScene& gpu) {
   // One map per direction: a directional light's VPLs (or a sun's) share theirs.

@@ -63,13 +63,15 @@ std::string mirror_define(bool mirrors) {
   return mirrors ? "#define IRAD_MIRRORS 1\n" : "";
 }
 
-// The fragment shader for `batch` VPLs, with the occluder planes' fetches or without them, with
-// the mirrored VPLs' pyramid test or without it.
-std::string fragment_source(int batch, bool planes, bool mirrors) {
+// The fragment shader for `batch` VPLs, with the occluder planes' fetches or without them, the
+// unsure light or without it, the mirrored VPLs' pyramid test or without it.
+std::string fragment_source(int batch, bool planes, bool unsure, bool mirrors) {
   std::string source = shaders::with_cube_lookup(
       shaders::batched_source(shaders::deferred_vpl_fragment, batch, mirror_define(mirrors)));
   insert_glsl(source, "#pragma irad_planes\n",
               planes ? "const bool u_planes = true;\n" : "const bool u_planes = false;\n");
+  insert_glsl(source, "#pragma irad_unsure\n",
+              unsure ? "const bool u_unsure = true;\n" : "const bool u_unsure = false;\n");
   insert_glsl(source, "#pragma irad_mirror_pyramid\n", shaders::mirror_pyramid_glsl);
   return source;
 }
@@ -105,12 +107,12 @@ int DeferredShader::capacity(const GladGLContext& api, int wanted) {
 }
 
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch,
-                               bool planes, const std::vector<MirrorPolygon>& mirrors)
+                               bool planes, bool unsure, const std::vector<MirrorPolygon>& mirrors)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch), planes_(planes),
       program_(api, "deferred vpl",
                shaders::batched_source(shaders::deferred_vpl_vertex, batch,
                                        mirror_define(!mirrors.empty())),
-               fragment_source(batch, planes, !mirrors.empty())),
+               fragment_source(batch, planes, unsure, !mirrors.empty())),
       first_(program_.uniform("u_first")), tile_origin_(program_.uniform("u_tile_origin")),
       pixel_(program_.uniform("u_pixel")), size_(program_.uniform("u_size")),
       shadow_res_(program_.uniform("u_shadow_res")),

@@ -57,9 +57,12 @@ class DeferredShader {
 public:
   // Up to `batch` VPLs per upload.
   // planes: the occluder planes' lookup (raster/glsl/cube_glsl.h) compiled in; every draw's
-  // ShadowLookup must then carry gradients. Without, gradients are not read.
-  DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch, bool planes)
-      : DeferredShader(api, scene, clamp, batch, planes,
+  // ShadowLookup must then carry gradients. Without, gradients are not read. unsure: alpha adds
+  // the light of the VPLs whose shadow lookup was unsure, unshadowed (cube_glsl.h
+  // lookup_unsure; its luminance, without rho(x)); without, alpha adds 0.
+  DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch, bool planes,
+                 bool unsure)
+      : DeferredShader(api, scene, clamp, batch, planes, unsure,
                        scene.has_specular() ? find_mirrors(scene) : std::vector<MirrorPolygon>{}) {}
 
   // The largest batch (<= wanted) this GL's uniform blocks hold.
@@ -76,7 +79,7 @@ public:
 private:
   // `mirrors`: the scene's mirror polygons (find_mirrors), their corners uploaded to a texture.
   DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch, bool planes,
-                 const std::vector<MirrorPolygon>& mirrors);
+                 bool unsure, const std::vector<MirrorPolygon>& mirrors);
 
   const GladGLContext* api_;
   float diagonal_, clamp_;
