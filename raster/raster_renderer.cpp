@@ -23,6 +23,16 @@ bool planes_needed(float thinnest_wall, int resolution) {
   return thinnest_wall < planes_reach(resolution);
 }
 
+namespace {
+
+// Whether the shading reports its unsure light (raster/passes/deferred_shader.h): only where the
+// interleaved edge pixels are listed, which the unsure pixels join.
+bool lists_unsure(const RasterOptions& options) {
+  return options.edge_pixels == EdgePixelMode::Listed && options.interleave > 1;
+}
+
+} // namespace
+
 glm::mat4 RasterRenderer::Impl::bind_pass(const View& view, const Vpl& vpl,
                                           std::vector<glm::vec2>& last_offsets) {
   const int set = interleave_sets.set_of(vpl.path);
@@ -50,9 +60,8 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
                         ? gl::ortho_resolution_for(options.shadow_resolution, width, height)
                         : 0;
   if (!batched || !batched->matches(options.batch, resolution, ortho))
-    batched =
-        gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
-                                options.shadow_lod, options.edge_pixels == EdgePixelMode::Listed);
+    batched = gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
+                                      options.shadow_lod, lists_unsure(options));
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {
