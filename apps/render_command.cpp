@@ -365,8 +365,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
       ->capture_default_str();
   cmd->add_option("--shadow-res", args->shadow_res,
                   "Shadow cube face resolution (0: a quarter of the image side, 64..1024; "
-                  "cluster representatives with --rounds 4 or more: at least half the side up "
-                  "to 128)")
+                  "cluster representatives with --rounds 4 or more and the unsure pixels not "
+                  "traced: at least half the side up to 128)")
       ->capture_default_str();
   cmd->add_option("--clamp", args->clamp,
                   "Clamp distance d_min as a fraction of the scene's bounding diagonal (local: "

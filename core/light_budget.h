@@ -34,9 +34,10 @@ std::size_t budget_clusters(std::size_t vpls, const LightBudget& budget);
 
 // The shadow faces' resolution for cluster representatives in a width x height image rendered as
 // the mean of `rounds` light sets, given the raster's rule for every VPL (`rule`,
-// raster/raster_renderer.h shadow_resolution_for): the rule below 4 rounds, from 4 rounds on at
-// least half the image's larger side up to 128 texels (the .cpp has the measurements).
-int representative_shadow_resolution(int rule, int width, int height, unsigned rounds);
+// raster/raster_renderer.h shadow_resolution_for): the rule below 4 rounds or where the unsure
+// pixels are traced (`traced`: trace_edge_pixels below, with interleaving), else at least half
+// the image's larger side up to 128 texels (the .cpp has the measurements).
+int representative_shadow_resolution(int rule, int width, int height, unsigned rounds, bool traced);
 
 // Whether the raster's edge and unsure pixels (raster/raster_renderer.h EdgePixelMode Listed) are
 // traced over the same cluster representatives when `rounds` light sets are averaged: from 2

@@ -106,15 +106,6 @@ void log_planes(Log& log, const PlaneChoice& planes, int resolution, double seco
                          planes_reach(resolution), resolution, seconds));
 }
 
-// The shadow faces' resolution: as asked, else raster_renderer.h's rule, for cluster
-// representatives core/light_budget.h's.
-int shadow_resolution(const RenderOptions& o, const RenderResult& r) {
-  if (o.raster.shadow_resolution != 0) return o.raster.shadow_resolution; // checked by the raster
-  const int rule = shadow_resolution_for(0, r.view.width, r.view.height);
-  if (r.clusters == 0) return rule;
-  return representative_shadow_resolution(rule, r.view.width, r.view.height, o.rounds);
-}
-
 // The raster's k: as asked, or automatically 2 for cluster representatives in images below 512
 // pixels on their larger side, else 4. A representative carries a cluster's light, and at k = 4
 // a pixel sees a sixteenth of at most 2048 of them, through a filter whose 4x4 tile is a large
@@ -140,6 +131,16 @@ EdgePixelMode edge_pixel_mode(const RenderOptions& o, const RenderResult& r) {
         r.clusters > 0 && trace_edge_pixels(o.rounds) ? EdgePixelMode::Listed : EdgePixelMode::Off;
   if (o.raster.jitter && mode == EdgePixelMode::Listed) mode = EdgePixelMode::Off;
   return mode;
+}
+
+// The shadow faces' resolution: as asked, else raster_renderer.h's rule, for cluster
+// representatives core/light_budget.h's (which asks whether the unsure pixels are traced).
+int shadow_resolution(const RenderOptions& o, const RenderResult& r) {
+  if (o.raster.shadow_resolution != 0) return o.raster.shadow_resolution; // checked by the raster
+  const int rule = shadow_resolution_for(0, r.view.width, r.view.height);
+  if (r.clusters == 0) return rule;
+  const bool traced = edge_pixel_mode(o, r) == EdgePixelMode::Listed && interleave(o, r) > 1;
+  return representative_shadow_resolution(rule, r.view.width, r.view.height, o.rounds, traced);
 }
 
 // The raster renderer, made by the first raster stage: its shadow resolution, interleaving and

@@ -109,24 +109,28 @@ TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(ea.mean_ratio[c], 1.0, 0.01) << c;
 }
 
-// The representatives' faces: the rule's below 4 rounds; from 4 rounds on half the image's larger
-// side, at least the rule's, up to 128.
+// The representatives' faces: the rule's below 4 rounds or with the unsure pixels traced; else
+// half the image's larger side, at least the rule's, up to 128.
 TEST(LightBudget, RepresentativeShadowsFollowTheImageAndTheRounds) {
-  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 1), 64);
-  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 3), 64);
-  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 4), 128);
-  EXPECT_EQ(representative_shadow_resolution(64, 128, 96, 8), 64);
-  EXPECT_EQ(representative_shadow_resolution(64, 48, 48, 16), 64);
-  EXPECT_EQ(representative_shadow_resolution(256, 1024, 768, 1), 256);
-  EXPECT_EQ(representative_shadow_resolution(256, 1024, 768, 4), 256);
-  EXPECT_EQ(representative_shadow_resolution(64, 4096, 256, 4), 128);
-  EXPECT_EQ(representative_shadow_resolution(1024, 8192, 4096, 4), 1024);
+  for (const bool traced : {false, true}) {
+    EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 1, traced), 64);
+    EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 3, traced), 64);
+    EXPECT_EQ(representative_shadow_resolution(64, 128, 96, 8, traced), 64);
+    EXPECT_EQ(representative_shadow_resolution(64, 48, 48, 16, traced), 64);
+    EXPECT_EQ(representative_shadow_resolution(256, 1024, 768, 1, traced), 256);
+    EXPECT_EQ(representative_shadow_resolution(256, 1024, 768, 4, traced), 256);
+    EXPECT_EQ(representative_shadow_resolution(1024, 8192, 4096, 4, traced), 1024);
+  }
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 4, false), 128);
+  EXPECT_EQ(representative_shadow_resolution(64, 4096, 256, 4, false), 128);
+  EXPECT_EQ(representative_shadow_resolution(64, 256, 256, 4, true), 64);
+  EXPECT_EQ(representative_shadow_resolution(64, 4096, 256, 4, true), 64);
 }
 
 // Representatives cast shadow faces of raster_renderer.h's rule (a quarter of the image's larger
-// side, at least 64) below 4 rounds and of at least half the side up to 128 from 4 rounds on, and
-// are interleaved 2x2 below 512 pixels; every VPL drawn one by one keeps the rule and k = 4; an
-// explicit resolution stays.
+// side, at least 64) below 4 rounds or with the unsure pixels traced (the default from 2 rounds
+// on), else of at least half the side up to 128 from 4 rounds on, and are interleaved 2x2 below
+// 512 pixels; every VPL drawn one by one keeps the rule and k = 4; an explicit resolution stays.
 TEST(LightBudget, ShadowsOfRepresentatives) {
   Log log = quiet();
   const Scene scene = cornell(log);
@@ -138,7 +142,13 @@ TEST(LightBudget, ShadowsOfRepresentatives) {
   EXPECT_EQ(clustered.shadow_resolution, 64);
   EXPECT_EQ(clustered.interleave, 2);
   o.rounds = 4;
+  EXPECT_EQ(render(scene, o, log).shadow_resolution, 128); // edge pixels off (auto_edges false)
+  o.auto_edges = true;
+  EXPECT_EQ(render(scene, o, log).shadow_resolution, 64); // the unsure pixels traced
+  o.raster.jitter = true;                                 // which jitter turns off
   EXPECT_EQ(render(scene, o, log).shadow_resolution, 128);
+  o.raster.jitter = false;
+  o.auto_edges = false;
   o.rounds = 1;
   o.raster.shadow_resolution = 32;
   EXPECT_EQ(render(scene, o, log).shadow_resolution, 32);
