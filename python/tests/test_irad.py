@@ -73,6 +73,8 @@ def test_edge_pixels_equal_the_cli(cornell, tmp_path, edges):
     image, stats = irad.render(cornell, size=(32, 24), paths=4096, interleave=2,
                                interleave_edges=edges)
     assert stats["interleave_edges"] == edges and stats["edge_pixels"] > 0
+    # The unsure pixels are traced with them, never shaded (4 here, measured).
+    assert (stats["unsure_pixels"] > 0) == (edges == "traced")
     exr = cli_render(tmp_path, "raster", ["--interleave", "2", "--interleave-edges", edges],
                      paths=4096)
     assert np.array_equal(image, exr[..., :3])  # bit-identical
