@@ -134,13 +134,14 @@ EdgePixelMode edge_pixel_mode(const RenderOptions& o, const RenderResult& r) {
 }
 
 // The shadow faces' resolution: as asked, else raster_renderer.h's rule, for cluster
-// representatives core/light_budget.h's (which asks whether the unsure pixels are traced).
-int shadow_resolution(const RenderOptions& o, const RenderResult& r) {
+// representatives core/light_budget.h's, which asks whether the raster made with `raster`
+// (its interleaving and edge pixels resolved) lists the unsure pixels for tracing.
+int shadow_resolution(const RenderOptions& o, const RenderResult& r, const RasterOptions& raster) {
   if (o.raster.shadow_resolution != 0) return o.raster.shadow_resolution; // checked by the raster
   const int rule = shadow_resolution_for(0, r.view.width, r.view.height);
   if (r.clusters == 0) return rule;
-  const bool traced = edge_pixel_mode(o, r) == EdgePixelMode::Listed && interleave(o, r) > 1;
-  return representative_shadow_resolution(rule, r.view.width, r.view.height, o.rounds, traced);
+  return representative_shadow_resolution(rule, r.view.width, r.view.height, o.rounds,
+                                          lists_unsure_pixels(raster));
 }
 
 // The raster renderer, made by the first raster stage: its shadow resolution, interleaving and
@@ -149,13 +150,13 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   if (s.raster) return *s.raster;
   const auto t0 = Clock::now();
   RasterOptions options = s.options.raster;
-  options.shadow_resolution = shadow_resolution(s.options, s.r);
   options.interleave = interleave(s.options, s.r);
+  options.edge_pixels = edge_pixel_mode(s.options, s.r);
+  options.shadow_resolution = shadow_resolution(s.options, s.r, options);
   const PlaneChoice planes =
       choose_shadow_planes(s.scene, rays, options.shadow_lod.planes, options.shadow_resolution);
   const double scan = since(t0);
   options.shadow_lod.planes = planes.planes;
-  options.edge_pixels = edge_pixel_mode(s.options, s.r);
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
   s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options

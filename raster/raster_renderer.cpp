@@ -19,19 +19,13 @@ float planes_reach(int resolution) {
   return 4.0f / static_cast<float>(std::max(resolution, 1)) + 2e-4f;
 }
 
-bool planes_needed(float thinnest_wall, int resolution) {
-  return thinnest_wall < planes_reach(resolution);
-}
-
-namespace {
-
-// Whether the shading reports its unsure light (raster/passes/deferred_shader.h): only where the
-// interleaved edge pixels are listed, which the unsure pixels join.
-bool lists_unsure(const RasterOptions& options) {
+bool lists_unsure_pixels(const RasterOptions& options) {
   return options.edge_pixels == EdgePixelMode::Listed && options.interleave > 1;
 }
 
-} // namespace
+bool planes_needed(float thinnest_wall, int resolution) {
+  return thinnest_wall < planes_reach(resolution);
+}
 
 glm::mat4 RasterRenderer::Impl::bind_pass(const View& view, const Vpl& vpl,
                                           std::vector<glm::vec2>& last_offsets) {
@@ -61,7 +55,7 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
                         : 0;
   if (!batched || !batched->matches(options.batch, resolution, ortho))
     batched = gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
-                                      options.shadow_lod, lists_unsure(options));
+                                      options.shadow_lod, lists_unsure_pixels(options));
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {
@@ -222,7 +216,7 @@ void RasterRenderer::Impl::ensure_tile_depths(const View& view) {
 Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0, std::size_t passes,
                                          gl::PassTimer* timer, RasterTimings* timings) {
   // The unsure light is the batched passes' alone: listed only when every VPL went through them.
-  const bool listed = interleaved && options.edge_pixels == EdgePixelMode::Listed;
+  const bool listed = lists_unsure_pixels(options);
   if (listed && single_passes == 0) interleaved->find_unsure();
   target->bind();
   // The edge pixels hold every VPL only when all went through the batched passes.

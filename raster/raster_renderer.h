@@ -63,6 +63,11 @@ struct RasterOptions {
 // `options` are impossible; the constructor checks them too, a caller may check before its work.
 void check_raster_options(const RasterOptions& options);
 
+// Whether a renderer with `options` lists the unsure pixels beside the edge pixels (the shading
+// then reports its unsure light: raster/passes/deferred_shader.h): edge pixels Listed, with
+// interleaving.
+bool lists_unsure_pixels(const RasterOptions& options);
+
 // The shadow cube resolution used for an image: `requested` if positive, else a quarter of the
 // image's larger side rounded up to a power of two, between 64 and 1024.
 int shadow_resolution_for(int requested, int width, int height);

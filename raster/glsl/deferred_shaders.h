@@ -102,7 +102,7 @@ uniform bool u_listed;           // the pixels from a list instead (TilePixels::
 uniform isampler2D u_pixel_list; // at texel t - u_tile_origin, none where x < 0
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
-const vec3 LUMINANCE = vec3(0.2126, 0.7152, 0.0722); // Rec. 709
+#pragma irad_luminance
 
 // Atlas texel minus face texel of face f (+x, -x, +y, -y, +z, -z).
 ivec2 face_offset(int f) {
@@ -133,16 +133,15 @@ bool shadowed(vec3 q, float r, vec3 nq, out bool unsure) {
   ivec2 texel = clamp(ivec2(floor(at)), ivec2(0), ivec2(u_shadow_res - 1));
   ivec2 origin = face_offset(face);
   float centre = texelFetch(u_shadow_atlas, texel + origin, 0).r * v_cone.w;
-  unsure = false;
-  if (!u_planes && !u_unsure)
-    return r > centre &&
-           in_front_of_receiver(q, nq, face, texel, float(u_shadow_res), centre, u_bias_constant);
+  // The neighbours toward `at`: read by the planes and by the unsure test, else compiled away.
   ivec2 step = toward(at), nx = texel + ivec2(step.x, 0), ny = texel + ivec2(0, step.y);
   bool has_x = nx.x >= 0 && nx.x < u_shadow_res, has_y = ny.y >= 0 && ny.y < u_shadow_res;
-  float next_x = has_x ? texelFetch(u_shadow_atlas, nx + origin, 0).r * v_cone.w : -1.0;
-  float next_y = has_y ? texelFetch(u_shadow_atlas, ny + origin, 0).r * v_cone.w : -1.0;
-  if (u_unsure)
-    unsure = lookup_unsure(q, nq, r, float(u_shadow_res), centre, next_x, next_y);
+  float next_x = -1.0, next_y = -1.0;
+  if (u_planes || u_unsure) {
+    if (has_x) next_x = texelFetch(u_shadow_atlas, nx + origin, 0).r * v_cone.w;
+    if (has_y) next_y = texelFetch(u_shadow_atlas, ny + origin, 0).r * v_cone.w;
+  }
+  unsure = u_unsure && lookup_unsure(q, nq, r, float(u_shadow_res), centre, next_x, next_y);
   if (!u_planes)
     return r > centre &&
            in_front_of_receiver(q, nq, face, texel, float(u_shadow_res), centre, u_bias_constant);

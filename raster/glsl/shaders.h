@@ -190,6 +190,12 @@ void main() {
 }
 )";
 
+// Rec. 709 luminance weights (core/environment/environment.h luminance), shared by the deferred
+// shading's unsure light (raster/glsl/deferred_shaders.h) and the pass that compares it with the
+// pixel's light (raster/image/edge_pixels.h); inserted at "#pragma irad_luminance".
+inline constexpr const char* luminance_glsl =
+    "const vec3 LUMINANCE = vec3(0.2126, 0.7152, 0.0722);\n";
+
 // The resolve's window (raster/image/interleaved.h), shared by the resolve and the edge-pixel
 // pass (raster/image/edge_pixels.h). The including source declares u_position, u_normal, u_size.
 inline constexpr const char* resolve_window_glsl = R"(

@@ -48,16 +48,24 @@ uniform int u_k;
 uniform ivec2 u_tile;
 uniform float u_share;
 out vec4 o_mask;
+#pragma irad_luminance
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
   float unsure = 0.0;
   if (texelFetch(u_position, p, 0).w > 0.0) {
     vec4 a = texelFetch(u_atlas, (p % u_k) * u_tile + p / u_k, 0);
-    if (a.a > 0.0 && a.a >= u_share * dot(a.rgb, vec3(0.2126, 0.7152, 0.0722))) unsure = 1.0;
+    if (a.a > 0.0 && a.a >= u_share * dot(a.rgb, LUMINANCE)) unsure = 1.0;
   }
   o_mask = vec4(unsure);
 }
 )";
+
+// The unsure pass's source, the luminance weights inserted.
+std::string unsure_source() {
+  std::string s = unsure_fragment;
+  insert_glsl(s, "#pragma irad_luminance\n", shaders::luminance_glsl);
+  return s;
+}
 
 // Defines `texture` as an RG32I texture of width x height holding `texels` (2 per texel),
 // nearest filtering, no mipmaps (an integer texture needs that to be complete).
@@ -87,7 +95,7 @@ EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer, 
       light_fbo_(make_framebuffer(api)), empty_vao_(make_vertex_array(api)),
       mark_(api, "edge pixels", shaders::fullscreen_vertex, with_resolve_window(mark_fragment)),
       unsure_(unsure ? std::make_unique<ShaderProgram>(api, "unsure pixels",
-                                                       shaders::fullscreen_vertex, unsure_fragment)
+                                                       shaders::fullscreen_vertex, unsure_source())
                      : nullptr) {
   api.BindFramebuffer(GL_FRAMEBUFFER, mask_fbo_.get());
   api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, mask_.get(), 0);

@@ -6,6 +6,7 @@
 #include "raster/glsl/cube_glsl.h"
 #include "raster/glsl/deferred_shaders.h"
 #include "raster/glsl/mirror_shaders.h"
+#include "raster/glsl/shaders.h"
 #include "raster/passes/vpl_shader.h"
 
 #include <algorithm>
@@ -72,6 +73,7 @@ std::string fragment_source(int batch, bool planes, bool unsure, bool mirrors) {
               planes ? "const bool u_planes = true;\n" : "const bool u_planes = false;\n");
   insert_glsl(source, "#pragma irad_unsure\n",
               unsure ? "const bool u_unsure = true;\n" : "const bool u_unsure = false;\n");
+  insert_glsl(source, "#pragma irad_luminance\n", shaders::luminance_glsl);
   insert_glsl(source, "#pragma irad_mirror_pyramid\n", shaders::mirror_pyramid_glsl);
   return source;
 }
