@@ -1,7 +1,7 @@
 // irad: instant radiosity from the command line. Each subcommand lives in its own file; errors
 // from anywhere arrive here as exceptions, are printed on one line, and exit with code 1.
 #include "apps/commands.h"
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>

@@ -1,6 +1,6 @@
 #include "raster/raster_renderer.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "raster/raster_renderer_impl.h"
 
 namespace irad {

@@ -1,11 +1,11 @@
 // Batched VPL passes (RasterOptions::batch > 1, raster/passes/batched_passes.h) against the per-VPL
 // passes (batch = 1, the reference) with the same VPLs, and against Lambert's formula.
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
+#include "core/camera/view.h"
 #include "core/environment/environment.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
 #include "tests/square_light_error.h"

@@ -1,8 +1,8 @@
 // The clamp's bias and its compensation (Kollig & Keller 2004) on scenes with closed-form answers:
 // the clamp removes light near seams and corners; adding the gathered residual brings it back.
-#include "core/analytic_scenes.h"
-#include "core/clamp_field.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/lights/clamp_field.h"
+#include "core/scene/analytic_scenes.h"
 #include "raster/raster_renderer.h"
 #include "walk/bias_compensation.h"
 #include "walk/quasi_random_walk.h"
@@ -28,7 +28,7 @@ double mean_green(const Image& image, const Image* residual = nullptr) {
 }
 
 // The clamped raster image and its screen-space compensation; `local`: the VPLs' clamp follows
-// the local field (core/clamp_field.h) with `clamp` as its cap.
+// the local field (core/lights/clamp_field.h) with `clamp` as its cap.
 Means measure_screen(const AnalyticScene& a, float clamp, std::uint32_t paths, int size,
                      bool local) {
   Log log([](const std::string&) {});

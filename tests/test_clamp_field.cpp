@@ -1,10 +1,10 @@
-// The local clamp (core/clamp_field.h): the field on hand-placed VPLs with known spacing, its
-// scale invariance, and the estimators with per-VPL clamp distances: the batched and the per-VPL
-// raster passes and rt-vpl evaluate the same clamped sum.
-#include "core/clamp_field.h"
+// The local clamp (core/lights/clamp_field.h): the field on hand-placed VPLs with known spacing,
+// its scale invariance, and the estimators with per-VPL clamp distances: the batched and the
+// per-VPL raster passes and rt-vpl evaluate the same clamped sum.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/clamp_field.h"
 #include "raster/raster_renderer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"

@@ -6,9 +6,9 @@
 // add light wherever a fragment passes the depth test and light each coincident face once more.
 //
 // With IRAD_TEST_IMAGES=DIR the test writes its images to DIR.
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
 #include "walk/quasi_random_walk.h"

@@ -4,10 +4,10 @@
 // (lib/render.cpp): rt-vpl's value over the same VPLs there, which the rt-vpl estimator gives.
 // Everywhere else the filter's result stays as it was.
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/light_budget.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/light_budget.h"
 #include "irad/render.h"
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"

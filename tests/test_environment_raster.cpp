@@ -5,12 +5,12 @@
 // (raster/passes/directional_pass.h).
 //
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
+#include "core/camera/view.h"
 #include "core/environment/environment.h"
-#include "core/error.h"
-#include "core/image_io.h"
-#include "core/log.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_io.h"
+#include "core/scene/scene_builder.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "walk/quasi_random_walk.h"

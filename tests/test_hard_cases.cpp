@@ -2,13 +2,13 @@
 // scene's scale, VPLs in corners, and the float accumulation of many passes (a thin wall between
 // a lit and a dark room: tests/test_two_rooms.cpp). Every bound below is a measured value with a
 // stated margin.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/light_sampler.h"
-#include "core/particle_counts.h"
-#include "core/radical_inverse.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/light_sampler.h"
+#include "core/sampling/particle_counts.h"
+#include "core/sampling/radical_inverse.h"
+#include "core/scene/scene_builder.h"
 #include "raster/context/gl_context.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/target.h"

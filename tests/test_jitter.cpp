@@ -1,9 +1,9 @@
 // Jittered low-discrepancy sampling (raster/image/pixel_jitter.h, seed section 5.1.1): the offsets,
 // and the raster's error along geometric edges against a 16x supersampled reference, with and
 // without the jitter, in the reference mode (k = 1) and with interleaved sampling (k = 4).
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
 #include "raster/image/pixel_jitter.h"
 #include "raster/raster_renderer.h"
 #include "tests/doc_images.h"

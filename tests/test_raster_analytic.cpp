@@ -1,8 +1,8 @@
 // The raster against answers no estimator of ours defines (design.md section 3).
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/sphere_mesh.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/image/image_metrics.h"
+#include "core/mesh/sphere_mesh.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/square_light_error.h"
 #include "tests/test_rooms.h"
@@ -30,7 +30,7 @@ TEST(RasterAnalytic, SquareLightOverPlaneMatchesLambert) {
 }
 
 // Interleaved sampling: each pixel sees 1/16 of the light's VPLs (a share of the paths dealt out in
-// blocks of 16, core/interleave_sets.h),
+// blocks of 16, core/lights/interleave_sets.h),
 // and the resolve averages the 16 sets over a 5x5 window centred on it (outer rows and
 // columns at half weight) on the same surface: a blur of about two pixels, which this small
 // image (a pixel covers up to 8 cm of the plane) makes visible.

@@ -1,9 +1,9 @@
 // The CPU estimators against answers they do not define (design.md section 3), and the raster
 // against the exact-visibility estimator on the same VPLs.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"

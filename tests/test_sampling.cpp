@@ -1,8 +1,8 @@
 // Radical inverses and the particle counts of the quasi-random walk (design.md section 1).
-#include "core/error.h"
-#include "core/particle_counts.h"
-#include "core/radical_inverse.h"
-#include "core/sequence.h"
+#include "core/sampling/particle_counts.h"
+#include "core/sampling/radical_inverse.h"
+#include "core/sampling/sequence.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,8 +2,8 @@
 // nothing through, the raster's shadow maps only at the seams, in every mode and at any scale;
 // walls just thick enough to go without the occluder planes let nothing through either. Moved
 // from tests/test_hard_cases.cpp, its section 5. Every bound is a measured value with a margin.
-#include "core/image_metrics.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/image/image_metrics.h"
 #include "raster/raster_renderer.h"
 #include "tests/raster_test_options.h"
 #include "tests/test_rooms.h"
@@ -207,7 +207,7 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
   // texel's normal offset: 5.73e-5 and 6.86e-5.)
   // With k = 2 each pixel sees a quarter of the VPLs, 4x as bright: which of the few leaking
   // VPLs reach which pixels is the draw of the sets, and the expected leak is k = 1's (the sets
-  // by a hash of the path, before core/interleave_sets.h, drew 2.76e-5 in 44 pixels).
+  // by a hash of the path, before core/lights/interleave_sets.h, drew 2.76e-5 in 44 pixels).
   // Before the occluder planes (raster/glsl/cube_glsl.h) 2.70e-4 and 3.39e-4: one distance per
   // texel, at its centre, while across the texel the distance of a wall seen at theta varies by
   // dist * (2 / R) * tan(theta), far more than 2 mm. `--shadow-planes off` gives 5.1e-3 (the

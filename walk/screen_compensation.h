@@ -24,10 +24,10 @@
 // 4x4-block relMSE on the Cornell box at 128x128 with 8 rounds 7.8e-5 (32 rounds: 7.4e-5),
 // 1.4e-5 with the test (docs/accuracy.md). The image is the estimator's own (interleaved,
 // resolved) answer, so the residual inherits its light-set error, not more.
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <cstdint>

@@ -4,10 +4,10 @@
 // from a primary ray through the pixel centre. Raster and rt-vpl may differ only by shadow-map
 // error (and the raster's interpolation of positions). Where the primary ray meets a mirror, the
 // surface seen in it is shaded (walk/mirror_pass.h), as the raster's second pass does.
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <atomic>

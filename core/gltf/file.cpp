@@ -1,6 +1,6 @@
 #include "core/gltf/file.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <array>

@@ -50,8 +50,8 @@ vec3 environment_radiance(vec3 w) {
 }
 )";
 
-// The visible suns (core/scene.h PunctualLight::angular_radius): IRAD_SUNS > 0 disks, sun k seen
-// where dot(w, toward_k) >= cos r_k with uniform radiance E_k / (pi sin^2 r_k); disks that
+// The visible suns (core/scene/scene.h PunctualLight::angular_radius): IRAD_SUNS > 0 disks, sun k
+// seen where dot(w, toward_k) >= cos r_k with uniform radiance E_k / (pi sin^2 r_k); disks that
 // overlap add.
 inline constexpr const char* sun_disks = R"(
 uniform vec3 u_sun_toward[IRAD_SUNS];   // unit, from the scene toward the sun: -direction
@@ -66,9 +66,9 @@ vec3 sun_radiance(vec3 w) {
 )";
 
 // What the camera ray through the pixel centre sees past the scene: L_env(w) (IRAD_ENVIRONMENT)
-// plus the sun disks (IRAD_SUNS > 0). The ray is core/view.cpp's image_point_ray at the pixel
-// centre, (x, y) in image pixels with y down, through u_inverse_view_projection (jittered: the
-// jittered projection's inverse, so the ray passes through the jittered point). Appended to the
+// plus the sun disks (IRAD_SUNS > 0). The ray is core/camera/view.cpp's image_point_ray at the
+// pixel centre, (x, y) in image pixels with y down, through u_inverse_view_projection (jittered:
+// the jittered projection's inverse, so the ray passes through the jittered point). Appended to the
 // #version line, the defines and the functions above (raster/passes/background.cpp).
 inline constexpr const char* background_fragment = R"(
 uniform mat4 u_inverse_view_projection;

@@ -1,6 +1,6 @@
 #pragma once
-// GLSL for mirrored VPLs (core/mirrors.h), kept apart from raster/glsl/shaders.h so that scenes
-// without mirrors run the very same programs as before.
+// GLSL for mirrored VPLs (core/scene/mirrors.h), kept apart from raster/glsl/shaders.h so that
+// scenes without mirrors run the very same programs as before.
 #include <string>
 
 namespace irad::gl::shaders {

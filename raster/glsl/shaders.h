@@ -49,7 +49,7 @@ void main() {
 }
 )";
 
-// One VPL's contribution w * C(x) (core/vpl.h), added by blending.
+// One VPL's contribution w * C(x) (core/lights/vpl.h), added by blending.
 inline constexpr const char* vpl_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;
@@ -233,7 +233,7 @@ uniform sampler2D u_albedo;
 uniform int u_k;
 uniform ivec2 u_tile;   // tile size in the atlas
 uniform ivec2 u_size;   // full image size
-uniform float u_scale[256]; // per set (core/interleave_sets.h), set = x + k y of its tile
+uniform float u_scale[256]; // per set (core/lights/interleave_sets.h), set = x + k y of its tile
 uniform bool u_edges;           // whether the edge pixels' own sums are given:
 uniform isampler2D u_edge_at;   // per pixel its texel in u_edge_light (x < 0: not an edge pixel)
 uniform sampler2D u_edge_light; // every set's light at the edge pixels (no albedo)

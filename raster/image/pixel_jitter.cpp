@@ -1,6 +1,6 @@
 #include "raster/image/pixel_jitter.h"
 
-#include "core/radical_inverse.h"
+#include "core/sampling/radical_inverse.h"
 
 #include <algorithm>
 #include <cmath>

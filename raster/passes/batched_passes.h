@@ -10,8 +10,8 @@
 // not depend on the triangles, against 6 binds, 5 clears and 6 draws of the whole scene per VPL.
 // Every kind of VPL takes these passes: surface, point and spot VPLs' cubes and mirrored VPLs'
 // unfolded cubes in the atlas, directional VPLs' orthographic maps in their own atlas.
-#include "core/scene.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "raster/context/pass_timer.h"
 #include "raster/image/gbuffer.h"
 #include "raster/image/interleaved.h"

@@ -1,10 +1,10 @@
 #pragma once
-// The shading pass of one VPL: draws the scene with w * C(x) (core/vpl.h) into whatever
+// The shading pass of one VPL: draws the scene with w * C(x) (core/lights/vpl.h) into whatever
 // framebuffer and viewport are bound, added by blending over a depth buffer that already holds
 // the visible surface (GL_LEQUAL, no depth writes).
-#include "core/mirrors.h"
-#include "core/scene.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/scene/mirrors.h"
+#include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
@@ -47,9 +47,9 @@ public:
   VplShader(const GladGLContext& api, const Scene& scene, float clamp, bool planes);
   ~VplShader();
   // apply_albedo false: irradiance / pi without rho(x) (interleaved mode applies rho later).
-  // Mirrors receive no light (their rho is 0 here). A mirrored VPL (core/mirrors.h) is drawn by a
-  // second program that lights only its pyramid (raster/glsl/mirror_shaders.h); that program exists
-  // only for scenes with mirrors.
+  // Mirrors receive no light (their rho is 0 here). A mirrored VPL (core/scene/mirrors.h) is drawn
+  // by a second program that lights only its pyramid (raster/glsl/mirror_shaders.h); that program
+  // exists only for scenes with mirrors.
   void draw(const Vpl& vpl, const ShadowCube& shadow, const glm::mat3& frame,
             const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const {
     draw(vpl, shadow.texture(), shadow.texel_angle(), frame, view_projection, apply_albedo, gpu);
