@@ -8,7 +8,7 @@
 // r_k(y) the distance from y to its k-th nearest clamped VPL (a VPL leaves itself out), the clamp
 // follows the spacing: it shrinks as 1/sqrt(N) where the light paths are dense, so the estimator
 // converges to the unclamped transport as N grows, and it stays small in a small room of a large
-// level. cap is today's global clamp (a fraction of the bounding diagonal): the field never
+// level. cap is the global clamp (a fraction of the bounding diagonal): the field never
 // clamps more than it.
 //
 // d is a deterministic function of the point once the VPL set is fixed, so the clamp's residual
@@ -41,8 +41,8 @@ public:
 
   // The field of a VPL: at its position, leaving the VPL itself out (so that d of a VPL is
   // distributed as d of any point: for a Poisson process of VPLs, Slivnyak's theorem; counting
-  // itself, the VPLs' clamps were smaller than the field the residual integrates, and the
-  // compensation overshot); a mirrored VPL's at the position it is the image of.
+  // itself, the VPLs' clamps would be smaller than the field the residual integrates, and the
+  // compensation would overshoot); a mirrored VPL's at the position it is the image of.
   float at(const Vpl& v) const;
 
 private:

@@ -3,10 +3,10 @@
 // by how much the resolve scales each set. The resolve averages the sets over a k x k window; a
 // window cut by geometry (a crease, a silhouette) holds the sets with unequal weights, so each
 // set must be an unbiased estimate of 1/k^2 of the light by itself, not only all of them
-// together: E[set s] = (n_s / N) L for n_s of the N paths. A hash of the path index (the first
-// rounds' rule) gave sets of 0.978..1.017 of N/k^2 at N = 16384, k = 2 (0.90..1.08 at N = 4096,
-// k = 4), and since it does not change between renders, the creases of the mean of many rounds
-// came out 1-2 % too bright (one-sided windows) or too dark (symmetric ones).
+// together: E[set s] = (n_s / N) L for n_s of the N paths. A hash of the path index gives sets
+// of 0.978..1.017 of N/k^2 at N = 16384, k = 2 (0.90..1.08 at N = 4096, k = 4), and since it
+// does not change between renders, the creases of the mean of many rounds come out 1-2 % too
+// bright (one-sided windows) or too dark (symmetric ones).
 //
 // Here the paths are taken in blocks of k^2 consecutive indices and each block is dealt out to
 // the sets by its own random permutation: every set holds exactly one path of each whole block

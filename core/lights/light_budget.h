@@ -10,7 +10,7 @@
 //          as every VPL (0: no clustering). The ratio 16 and the cap 2048 are measured on the
 //          Cornell box at 256x256 (docs/performance.md "Error against time with cluster
 //          representatives": one cluster per 16 VPLs holds the error of all 30570 VPLs at N =
-//          16384; past 2048 clusters the 4x4-block error no longer falls).
+//          16384; past 2048 clusters the 4x4-block error stops falling).
 #include <cstddef>
 #include <cstdint>
 
@@ -41,7 +41,7 @@ int representative_shadow_resolution(int rule, int width, int height, unsigned r
 
 // Whether the raster's edge and unsure pixels (raster/raster_renderer.h EdgePixelMode Listed) are
 // traced over the same cluster representatives when `rounds` light sets are averaged: from 2
-// rounds on, where the representatives' noise no longer hides what the shadow maps and the
+// rounds on, where the representatives' noise is low enough to show what the shadow maps and the
 // interleaved filter get wrong at creases, contacts and silhouettes (the .cpp has the
 // measurements). One round, the quick look, keeps the raster's speed.
 bool trace_edge_pixels(unsigned rounds);

@@ -32,7 +32,7 @@ double dot(const A* a, const float* b, std::size_t n) {
 // Asks for the n floats at c to be brought into the cache. The splits visit the columns in an
 // order no hardware prefetcher can guess (a cluster's columns lie anywhere in the matrix): with
 // the next column asked for while one is summed, Cornell 256x256's clustering (256 rows, 30570
-// columns) went from 0.18 s to 0.10 s, the same clusters.
+// columns) takes 0.10 s against 0.18 s without, the same clusters.
 void prefetch(const float* c, std::size_t n) {
   for (std::size_t i = 0; i < n; i += 16) __builtin_prefetch(c + i);
 }

@@ -6,7 +6,7 @@
 // The base: with ClusterOptions::simplify, the triangles after the exact planar reduction
 // (core/mesh/planar_reduction.h: flat parts down to what their outlines need, within 2e-6 of the
 // scene's diagonal, which is the leaves' error); without, the scene's own triangles (error 0).
-// Without it, a region cut through a finely tessellated wall kept its border at the full
+// Without it, a region cut through a finely tessellated wall keeps its border at the full
 // resolution in every level above: thousands of triangles per face on the 2.1M-triangle flat
 // scale scene (docs/performance.md).
 //
@@ -128,8 +128,8 @@ struct ClusterOptions {
 };
 
 // About 512 leaves, 128 to 1024 triangles each (a power of two). On zdm2 (58k triangles,
-// 256x256, 64^2 faces) leaves of 128 left 16k triangles per VPL against 33k with 1024; on the
-// 2.1M-triangle scale scenes 1024 drew their shadows in half the time of 128 (the borders).
+// 256x256, 64^2 faces) leaves of 128 leave 16k triangles per VPL against 33k with 1024; on the
+// 2.1M-triangle scale scenes 1024 draw their shadows in half the time of 128 (the borders).
 std::uint32_t automatic_leaf_triangles(std::size_t triangles);
 
 // The hierarchy over the triangles of Opaque materials (Mask and Blend ones keep their alpha

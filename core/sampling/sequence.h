@@ -5,9 +5,9 @@
 //                     permutation of {0..b-1} (seeded; random digit scrambling): still
 //                     stratified and low-discrepancy, and every point uniform on [0, 1) up to
 //                     2^-32, so each seed's estimate is unbiased and seeds are independent (the
-//                     rounds of `--rounds`). One permutation for all digits (before session 13)
-//                     left a point only b! values (2 in base 2), so the rounds' light sets were
-//                     correlated and their mean converged to the mean over those few sets.
+//                     rounds of `--rounds`). One permutation for all digits would leave a
+//                     point only b! values (2 in base 2): the rounds' light sets would be
+//                     correlated and their mean converge to the mean over those few sets.
 //   random:           independent uniform numbers from a hash of (seed, dimension, index)
 // Every value lies in [0, 1).
 #include "core/sampling/radical_inverse.h"
