@@ -44,7 +44,7 @@ struct RasterOptions {
   bool jitter = false;
   // VPLs per batch (raster/passes/batched_passes.h): their shadow cubes in one atlas by one
   // instanced draw, their shading by one instanced draw per interleaved set. 1: one shadow cube and
-  // one shading pass per VPL (the reference, the same image). 16 was the fastest of 8..64 at
+  // one shading pass per VPL (the reference, the same image). 16 is the fastest of 8..64 at
   // 512x512 (docs/performance.md). Every kind of VPL and every mode takes them.
   int batch = 16;
   // How the batched shadow atlas draws the opaque triangles (core/mesh/mesh_clusters.h): mode Off

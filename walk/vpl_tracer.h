@@ -29,7 +29,7 @@ Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, con
 
 // Overwrites `pixels` (Image coordinates) of `image` with rt-vpl's values, alpha kept: the
 // raster's edge pixels (raster/raster_renderer.h EdgePixelMode::Listed), where its interleaved
-// filter and its shadow maps are least sure (docs/accuracy.md, session 16). Pixels that see a
+// filter and its shadow maps are least sure (docs/accuracy.md). Pixels that see a
 // mirror get its L_e alone, as the raster's (walk/mirror_pass.h adds what it reflects).
 void trace_vpl_pixels(const Scene& scene, const RayScene& rays, const View& view,
                       const VplSet& vpls, const VplTracerOptions& options,

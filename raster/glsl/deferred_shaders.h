@@ -3,7 +3,7 @@
 // VPLs shades the camera's G-buffer (raster/image/gbuffer.h) screen-space, one instanced draw of
 // a full-screen triangle per interleaved set, instance i the draw's VPL u_first + i. The VPL's
 // record is read per vertex and handed on flat (a record read per fragment is a gather per lane
-// on llvmpipe: a loop over the batch's VPLs in one fragment ran at a quarter of the per-VPL
+// on llvmpipe: a loop over the batch's VPLs in one fragment runs at a quarter of the per-VPL
 // passes' speed on the Cornell box). The bodies get the version line and the array size from
 // batched_source (raster/glsl/batched_shaders.h).
 namespace irad::gl::shaders {

@@ -25,7 +25,7 @@ ivec2 environment_texel(vec3 d) {
   ivec2 size = u_environment_size;
   float u = 0.5 + atan(d.z, d.x) / (2.0 * ENVIRONMENT_PI);
   // acos(d.y) as atan(|d.xz|, d.y), equal for unit d: GLSL's acos is far less precise (on
-  // llvmpipe rows came out one off 1.2e-4 rad from their border), atan's error is the same as u's.
+  // llvmpipe rows come out one off 1.2e-4 rad from their border), atan's error is the same as u's.
   float v = atan(length(d.xz), d.y) / ENVIRONMENT_PI;
   ivec2 t = ivec2(floor(vec2(u, v) * vec2(size)));
   return clamp(t, ivec2(0), size - 1);

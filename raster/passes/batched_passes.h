@@ -80,7 +80,7 @@ private:
   };
   // The shading's batch at most: more VPLs per full-screen draw than the shadow atlas holds,
   // for the kept shadow maps (GL guarantees 16 KB uniform blocks: 113 VPLs of 144 bytes). 256
-  // gave the cached walkthrough no measurable gain over 64 (Cornell box, 256x256, N = 64).
+  // gives the cached walkthrough no measurable gain over 64 (Cornell box, 256x256, N = 64).
   static constexpr int kShadingBatch = 64;
   // Draws the batch: its atlas, then shade().
   void flush(std::vector<Entry>& batch, const DeferredTarget& into, const GpuScene& gpu,

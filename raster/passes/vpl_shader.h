@@ -31,7 +31,7 @@ namespace irad::gl {
 // of the lit room with 0.5 (4.0e-5 with 0.75; the concave corners of occluder_distance keep
 // it there: without them 1.0e-4 with 0.5). Without them the lookup
 // trusts the receiver's own plane (cube_glsl.h in_front_of_receiver), so the offset need not cover
-// the texel's depth range (with the centre's distance alone it had to: 0.75 texel, half the texel's
+// the texel's depth range (with the centre's distance alone it has to: 0.75 texel, half the texel's
 // diagonal with a margin; 0.4 and below shadowed the surfaces themselves), and 0.2 is left for
 // curved meshes, whose shading normal is not their triangle's. Measured on the Cornell box
 // (256x256, R = 128, N = 1024, every VPL, interleave 1, against rt-vpl with the same VPLs,

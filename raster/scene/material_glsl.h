@@ -8,8 +8,8 @@
 //                                      material_emission(), and with alpha material_absent())
 // material_source() replaces them and defines, after the version line, only the features the
 // scene has: IRAD_UV1 (TEXCOORD_1), IRAD_COLOR (COLOR_0), IRAD_ALPHA (a Mask or Blend material).
-// A scene with none of them compiles the same maths as before these features existed (the uv
-// transform is one mat3 product, exact for the identity), so its images stay bit-identical.
+// A scene with none of them compiles none of their code (the uv transform is one mat3 product,
+// exact for the identity), so its images are bit-identical to those of shaders without them.
 #include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"

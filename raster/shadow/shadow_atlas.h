@@ -104,8 +104,8 @@ private:
   static constexpr std::array<double, 3> kRounds = {0.25, 0.5, 1.0};
   // ... but only for a batch whose faces picked at least this many triangles per VPL: each
   // readback waits for the GL (about 0.2 ms per VPL on llvmpipe, the cost of some 2000
-  // triangles), and culling took 30 % on zdm2 (23k per VPL; a subdivided Cornell box of 8k
-  // triangles, a few hundred per VPL, drew its shadows in 0.24 ms per VPL without the rounds
+  // triangles), and culling takes 30 % on zdm2 (23k per VPL; a subdivided Cornell box of 8k
+  // triangles, a few hundred per VPL, draws its shadows in 0.24 ms per VPL without the rounds
   // and 0.40-0.48 with them).
   static constexpr std::size_t kOcclusionTrianglesPerVpl = 8000;
   // The hierarchy of `scene`, made on first use; false when the faces draw everything.
