@@ -113,9 +113,9 @@ TEST(ScreenCompensation, FurnaceBox) {
     // Measured (N = 512, 32x32, 16 gathers, 3 iterations, batched, k = 4): global: clamped
     // 1.7742 (-11.3 %), compensated 1.9976 (-0.12 %), 7.2 % of the samples exact; local:
     // clamped 1.9480 (-2.6 %), compensated 1.9873 (-0.64 %), 0.6 % exact. Bound 1 % (1.6x).
-    // (Before a gather hit was looked up only where the pixel's centre sees its surface:
+    // (A gather hit looked up only in its own pixel, where that pixel's centre sees its surface:
     // -0.06 % and -0.4 %; at 32x32 most hits within the local clamp lie a pixel from a crease,
-    // where the image's own pixel showed the other face.)
+    // where the image's own pixel shows the other face.)
     EXPECT_LT(m.clamped, (local ? 0.99 : 0.95) * expected);
     EXPECT_NEAR(m.screen, expected, 0.01 * expected);
     EXPECT_GT(m.screen_fallback, 0.003); // the exact path is exercised

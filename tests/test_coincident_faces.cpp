@@ -2,7 +2,7 @@
 // tessellations, and a zero-thickness wall made of two back-to-back faces. The deferred passes
 // (RasterOptions::batch > 1, raster/passes/deferred_shader.h) shade the one surface the G-buffer
 // kept per pixel and must agree with rt-vpl (the same VPLs, ray-traced visibility: a ray hits one
-// of the coincident faces); the per-VPL forward passes (batch 1, the reference of today's image)
+// of the coincident faces); the per-VPL forward passes (batch 1, the batched passes' reference)
 // add light wherever a fragment passes the depth test and light each coincident face once more.
 //
 // With IRAD_TEST_IMAGES=DIR the test writes its images to DIR.

@@ -72,7 +72,7 @@ Renders render_three(const Scene& scene, const VplSet& vpls, const View& view, i
   return r;
 }
 
-// Every pixel the edges change now holds the k = 1 value; their number is at most the edge
+// Every pixel the edges change holds the k = 1 value; their number is at most the edge
 // pixels found, which are a few per cent of the Cornell box (its creases and the blocks'
 // outlines), none with the per-VPL passes (batch 1: the resolve cannot use them).
 TEST(EdgePixels, HoldEveryVplsLightWhereTheWindowIsCut) {
@@ -249,8 +249,8 @@ TEST(EdgePixels, TracedOnesHoldRtVplsValue) {
               without.relmse);
   // Measured (llvmpipe): 1570 edge pixels (17 %) and at most 444 unsure ones a round (5 %); 2119
   // changed, 1904 of them within 1e-5 of rt-vpl (those listed in both rounds); 4x4-block relMSE
-  // against rt-vpl 1.15e-5 with them, 9.48e-5 without (2.94e-5 with the edge pixels alone,
-  // session 16). A round that traced nothing would leave every pixel short of rt-vpl's value.
+  // against rt-vpl 1.15e-5 with them, 9.48e-5 without (2.94e-5 with the edge pixels alone). A round
+  // that traced nothing would leave every pixel short of rt-vpl's value.
   EXPECT_GT(traced.unsure_pixels, 0u);
   EXPECT_GT(changed, listed / 2);
   EXPECT_LE(changed, listed + traced.unsure_pixels); // each round's own unsure pixels

@@ -128,7 +128,7 @@ BackgroundCheck check_background(const Image& image, const Image& hidden, const 
 
 // Perspective and orthographic, interleave 1 and 4, no jitter: the background is the map's
 // radiance exactly, except within 1e-5 rad of a texel border, where the GPU's atan may round
-// differently (on llvmpipe none did: 0 mismatches with no pixel skipped; 1 of 4040 is skipped).
+// differently (on llvmpipe none does: 0 mismatches with no pixel skipped; 1 of 4040 is skipped).
 void expect_exact_background(bool orthographic, const std::string& name) {
   Scene s = small_object_scene(orthographic);
   const View view = make_view(s.cameras.at(0), s.bounds, kSize, kSize);

@@ -184,8 +184,8 @@ TEST_F(JitterEdges, ReferenceModeK1) {
   // (x0.20), RMSE 0.366 -> 0.076 (x0.21, the light's silhouette: L_e is jittered too).
   EXPECT_LT(on.edge.relmse, 0.4 * off.edge.relmse);
   EXPECT_LT(on.edge.rmse, 0.4 * off.edge.rmse);
-  // Interior: RMSE 0.00076 -> 0.00095 (x1.25; each VPL's hard shadow edge now sampled at one
-  // sub-pixel position), relMSE 3e-5 -> 3e-5, both far below the VPLs' own error against pt.
+  // Interior: RMSE 0.00076 -> 0.00095 (x1.25; with jitter each VPL's hard shadow edge is sampled
+  // at one sub-pixel position), relMSE 3e-5 -> 3e-5, both far below the VPLs' own error against pt.
   EXPECT_LT(on.interior.rmse, 2.0 * off.interior.rmse);
   EXPECT_LT(on.interior.relmse, 1e-4);
 }

@@ -184,8 +184,8 @@ TEST(PunctualLights, DirectionalLightOnAPlaneFollowsLambertsCosineLaw) {
                     -d.z, paths, names[k], worst);
         // Measured: 0 (pt), <= 6e-7 (rt-vpl: 64 VPLs summed in float), <= 5e-7 (raster) at cos 0.87
         // and 0.17; a shadowed (acne) pixel would be off by 1. With the sets by a hash of the path
-        // (before core/lights/interleave_sets.h) k = 4 was off by up to 0.5 (N = 64) and 0.47 (N =
-        // 60) within 2 pixels of the border.
+        // (not core/lights/interleave_sets.h's blocks) k = 4 is off by up to 0.5 (N = 64) and 0.47
+        // (N = 60) within 2 pixels of the border.
         EXPECT_LT(worst, 1e-5) << names[k];
       }
     }

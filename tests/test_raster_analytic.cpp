@@ -38,9 +38,9 @@ TEST(RasterAnalytic, InterleavedSquareLightOverPlaneMatchesLambert) {
   const LambertError e = square_light_error(4, 0);
   // Measured: relative RMS 0.0079, max 0.063 (next to the light's silhouette, where the window
   // keeps only part of the sets; sets by a hash of the path: 0.0076, 0.062); at 320x240 the RMS
-  // is about half. Before the window was
-  // centred (a k x k window is half a pixel off centre) the RMS was 0.041; with sets taken as
-  // path mod 16 (Halton strips) the max was 0.15. Bounds: 1.5x the measurement.
+  // is about half. With an uncentred window (a plain k x k window is half a pixel off centre) the
+  // RMS is 0.041; with sets taken as path mod 16 (Halton strips) the max is 0.15. Bounds: 1.5x
+  // the measurement.
   EXPECT_GT(e.count, 10000);
   EXPECT_LT(e.rel_rms, 0.012);
   EXPECT_LT(e.max_rel, 0.09);
@@ -75,7 +75,7 @@ TEST(RasterAnalytic, InterleavedResolveAveragesACurvedSurface) {
     std::printf("sphere under a square light, k = %d against k = 1: relMSE %.3g, mean ratio %.4f\n",
                 k, m.relmse, m.mean_ratio[1]);
     // Measured: k = 2 2.83e-5, k = 4 1.41e-4, means 0.9996 and 0.9991; with a pixel's own plane
-    // as the window's test (before the normals' bisector) 8.94e-5 and 3.96e-4. Bounds ~1.7x.
+    // as the window's test (not the normals' bisector) 8.94e-5 and 3.96e-4. Bounds ~1.7x.
     EXPECT_LT(m.relmse, k == 2 ? 5e-5 : 2.4e-4);
     EXPECT_NEAR(m.mean_ratio[1], 1.0, 0.003);
   }

@@ -473,8 +473,8 @@ TEST(Specular, JitterLeavesTheMirrorsUnlit) {
   std::printf("jitter on: mean inside the mirrors %.3g (%d pixels), elsewhere %.3g\n", inside,
               mirror_pixels, outside);
   // Measured: 6.4e-4 inside the mirrors, 1.4e-3 of the mean elsewhere (0 without jitter). With
-  // the mirror's base colour in the averaged albedo (before session 12): 0.474 against 0.454,
-  // the mirrors lit like walls, the CLI's image 14.6 % too bright after the mirror pass.
+  // the mirror's base colour in the averaged albedo: 0.474 against 0.454 (the mirrors lit like
+  // walls, the CLI's image 14.6 % too bright after the mirror pass).
   EXPECT_LT(inside, 1e-2 * outside);
 }
 
