@@ -150,9 +150,9 @@ TEST(HardCases, NoLightLeaksThroughATwoMillimetreWall) {
 // The receiver-slope term of a slope-scaled shadow bias, dist * texel * (1 + min(tan_x, 8)) with
 // texel = 2/256, is up to 0.07 m at 1 m from the VPL: far thicker than the wall, so B's surfaces
 // near the wall would pass the shadow test (265 lit pixels, up to 0.149 m from the wall). The
-// normal-offset lookup (raster/glsl/shaders.h) moves the receiver by dist * texel * sin_x along its
-// normal and keeps only the constant bias. Measured: 4 seam pixels within 2 mm of the wall
-// (max 0.021) at 256^2; this bound asks for that: light in B only at the seams.
+// normal-offset lookup (raster/glsl/cube_glsl.h lookup_offset) moves the receiver by dist * texel *
+// sin_x along its normal and keeps only the constant bias. Measured: 4 seam pixels within 2 mm of
+// the wall (max 0.021) at 256^2; this bound asks for that: light in B only at the seams.
 TEST(HardCases, RasterShadowsHoldAtATwoMillimetreWall) {
   const TwoRoomImages r = render_two_rooms();
   EXPECT_LT(r.raster[0].reach, 0.005);
