@@ -1,11 +1,11 @@
 // irad bench [--quick] [-o DIR] [--scene NAME,...] [--shared DIR]: speed against error
-// (apps/bench.h).
+// (apps/bench/bench.h).
 // irad bench --load FILE [--runs N] [-o DIR]: load, BVH and upload time and memory of one scene
-// (apps/load_bench.h).
-#include "apps/bench.h"
-#include "apps/bench_real_scenes.h"
+// (apps/bench/load_bench.h).
+#include "apps/bench/bench.h"
+#include "apps/bench/bench_real_scenes.h"
+#include "apps/bench/load_bench.h"
 #include "apps/commands.h"
-#include "apps/load_bench.h"
 
 #include <fmt/format.h>
 

@@ -1,11 +1,12 @@
 // irad compare A.exr B.exr [--block K] [--diff OUT.png] [--diff-max F] [--json FILE]: the
-// accuracy of image A against the reference B (see core/image_metrics.h for the metrics). Prints
-// one line per metric on stdout; exits 0 whenever the images could be compared, however different.
+// accuracy of image A against the reference B (see core/image/image_metrics.h for the metrics).
+// Prints one line per metric on stdout; exits 0 whenever the images could be compared, however
+// different.
 #include "apps/commands.h"
 #include "apps/options.h"
-#include "core/error.h"
-#include "core/image_io.h"
-#include "core/image_metrics.h"
+#include "core/image/image_io.h"
+#include "core/image/image_metrics.h"
+#include "core/util/error.h"
 
 #include <array>
 #include <cmath>

@@ -2,8 +2,8 @@
 // a linear EXR (for example a reference rendered earlier) with the same PNG pipeline as render.
 #include "apps/commands.h"
 #include "apps/options.h"
-#include "core/error.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
 
 #include <filesystem>
 #include <memory>

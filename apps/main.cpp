@@ -1,7 +1,7 @@
 // irad: instant radiosity from the command line. Each subcommand lives in its own file; errors
 // from anywhere arrive here as exceptions, are printed on one line, and exit with code 1.
 #include "apps/commands.h"
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -14,8 +14,8 @@ namespace {
 
 // llvmpipe allocates and frees its vertex and bin buffers per draw; with glibc's defaults the
 // freed top of the heap goes back to the kernel each time and comes back as fresh zeroed pages:
-// a fifth of a zdm2 render (256x256, N = 64) was page faults. Keeping up to 128 MiB of freed
-// heap took that render from 4.4-5.0 s to 3.1-3.7 s (docs/performance.md).
+// a fifth of a zdm2 render (256x256, N = 64) is page faults. Keeping up to 128 MiB of freed
+// heap renders it in 3.1-3.7 s against 4.4-5.0 s (docs/performance.md).
 void keep_freed_heap() {
 #if defined(__GLIBC__)
   mallopt(M_TRIM_THRESHOLD, 128 << 20);

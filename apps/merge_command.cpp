@@ -4,8 +4,8 @@
 // naming the file; nothing is written then.
 #include "apps/commands.h"
 #include "apps/options.h"
-#include "core/error.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
 #include "irad/parts.h"
 
 #include <cstdio>

@@ -1,7 +1,7 @@
 #include "apps/options.h"
 
-#include "core/error.h"
-#include "core/scene_builder.h"
+#include "core/scene/scene_builder.h"
+#include "core/util/error.h"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>

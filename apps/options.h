@@ -1,6 +1,6 @@
 #pragma once
 // Option values shared by the subcommands.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "raster/raster_renderer.h"
 
 #include <cstdint>

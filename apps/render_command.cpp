@@ -7,8 +7,8 @@
 #include "apps/options.h"
 #include "apps/progress_line.h"
 #include "apps/render_parts.h"
-#include "core/error.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
 #include "irad/render.h"
 
 #include <atomic>
@@ -29,7 +29,7 @@ struct RenderArgs {
   std::string scene;
   std::vector<std::string> outputs;
   std::string size;
-  std::string paths = "auto"; // N, or auto: the light budget (core/light_budget.h)
+  std::string paths = "auto"; // N, or auto: the light budget (core/lights/light_budget.h)
   int shadow_res = 0;
   float clamp = 0.05f;
   std::string clamp_mode = "local";

@@ -1,7 +1,7 @@
 #include "apps/render_parts.h"
 
 #include "apps/options.h"
-#include "core/error.h"
+#include "core/util/error.h"
 #include "irad/parts.h"
 
 #include <CLI/CLI.hpp>

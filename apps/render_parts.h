@@ -2,7 +2,7 @@
 // irad render --path-range / --spp-range: a part of a render for irad merge (lib/irad/parts.h,
 // docs/cluster.md). The part's EXR header names the scene (hash), N or S, the range, the
 // options that change the image and irad's version.
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 #include "irad/render.h"
 
 #include <string>

@@ -1,6 +1,6 @@
 // irad scene NAME -o OUT.gltf [--albedo R] [--radiance L] [--subdivisions K] [--scale S]: writes
-// one of the analytic scenes of design.md section 3 (core/analytic_scenes.h) as glTF and prints
-// its answer on stdout:
+// one of the analytic scenes of design.md section 3 (core/scene/analytic_scenes.h) as glTF and
+// prints its answer on stdout:
 //   scene <description>
 //   triangles <count>
 //   expected_radiance <value>          (integrating-sphere, furnace-box)
@@ -11,9 +11,9 @@
 // not apply to the chosen scene (--subdivisions other than for the sphere) are errors.
 #include "apps/commands.h"
 #include "apps/options.h"
-#include "core/analytic_scenes.h"
-#include "core/error.h"
 #include "core/gltf/writer.h"
+#include "core/scene/analytic_scenes.h"
+#include "core/util/error.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,7 +1,7 @@
 #include "apps/window_viewer.h"
 
-#include "core/error.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,17 +1,17 @@
 #pragma once
 // The interactive walkthrough window (irad walkthrough SCENE --window): a GLFW window that shows
-// the frames a renderer makes for a fly camera the user steers (core/fly_camera.h):
+// the frames a renderer makes for a fly camera the user steers (core/camera/fly_camera.h):
 //   W/S or Up/Down: forward/back, A/D or Left/Right: left/right, E/Q or PageUp/PageDown: up/down,
 //   Shift: 4x faster, left mouse drag: look around, Esc or closing the window: quit.
 // The window only presents: each frame the renderer's callback draws into its own offscreen GL
 // context (OSMesa or EGL) and returns a linear float image, which is tone mapped like a PNG
-// (clamp, sRGB; core/image_io.h) and drawn with the window's own (GLX) context, made current
+// (clamp, sRGB; core/image/image_io.h) and drawn with the window's own (GLX) context, made current
 // only while presenting. The viewer never touches the renderer's context; the renderer makes its
 // own current before drawing (RasterRenderer and RingRenderer do on every call).
-#include "core/bounds.h"
-#include "core/fly_camera.h"
-#include "core/image.h"
-#include "core/scene.h"
+#include "core/camera/fly_camera.h"
+#include "core/image/image.h"
+#include "core/scene/bounds.h"
+#include "core/scene/scene.h"
 
 #include <functional>
 #include <memory>

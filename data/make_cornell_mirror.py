@@ -12,7 +12,7 @@ the winding and the normals stay consistent) and moves it to x in [0.300, 0.430]
 
 The red material becomes "mirror": baseColorFactor (0.9, 0.9, 0.9) = the mirror's reflectance,
 metallicFactor 1 and roughnessFactor 0, which irad reads as a perfect mirror (metallicFactor >= 0.9
-and roughnessFactor <= 0.1, core/gltf_materials.h). Everything else is unchanged. The measured
+and roughnessFactor <= 0.1, core/gltf/read/materials.h). Everything else is unchanged. The measured
 left wall is slightly non-planar, so its two triangles are two mirror planes that meet at a
 0.47-degree kink.
 

@@ -5,10 +5,10 @@
 // The input is written to DIR/scene.glb when it starts with the GLB magic "glTF", else to
 // DIR/scene.gltf, and loaded with kFuzzLimits. DIR also holds two files that inputs may name as
 // external URIs: buffer.bin (64 bytes: 16 floats) and image.png (a 2x2 RGBA PNG).
-#include "core/error.h"
 #include "core/gltf/loader.h"
-#include "core/log.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 
 #include <cmath>
 #include <cstdint>

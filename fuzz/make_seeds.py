@@ -8,7 +8,7 @@ files the fuzz target provides (buffer.bin, image.png), sparse accessors, strips
 u8/u16 indices and normalized texcoords, a node hierarchy with TRS and matrix, cameras,
 KHR_lights_punctual and KHR_materials_emissive_strength. Each .gltf seed also goes in as GLB.
 
-Seeds for the decoders and extensions of the new loader: a KHR_draco_mesh_compression cube,
+Seeds for the loader's decoders and extensions: a KHR_draco_mesh_compression cube,
 an EXT_meshopt_compression cube (ATTRIBUTES with no filter, OCTAHEDRAL and EXPONENTIAL filters,
 TRIANGLES; a fallback buffer without data; KHR_mesh_quantization normals), EXT_texture_webp
 textures (a 2x2 lossless WebP), KHR_texture_transform with texCoord 1, a skin with morph targets

@@ -1,6 +1,6 @@
 #include "irad/parts.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <charconv>

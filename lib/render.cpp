@@ -1,8 +1,8 @@
 #include "irad/render.h"
 
-#include "core/animation.h"
-#include "core/clamp_field.h"
-#include "core/error.h"
+#include "core/animation/animation.h"
+#include "core/lights/clamp_field.h"
+#include "core/util/error.h"
 #include "walk/bias_compensation.h"
 #include "walk/mirror_pass.h"
 #include "walk/ray_scene.h"
@@ -121,9 +121,9 @@ int interleave(const RenderOptions& o, const RenderResult& r) {
 }
 
 // The raster's edge pixels: as asked, or with auto_edges for cluster representatives by the
-// rounds (core/light_budget.h; every VPL of a walk per traced pixel would cost what the whole
-// image's passes do). Traced at the pixel centre, they would lose the jitter's antialiasing where
-// it matters: none with jitter.
+// rounds (core/lights/light_budget.h; every VPL of a walk per traced pixel would cost what the
+// whole image's passes do). Traced at the pixel centre, they would lose the jitter's antialiasing
+// where it matters: none with jitter.
 EdgePixelMode edge_pixel_mode(const RenderOptions& o, const RenderResult& r) {
   EdgePixelMode mode = o.raster.edge_pixels;
   if (o.auto_edges)
@@ -134,7 +134,7 @@ EdgePixelMode edge_pixel_mode(const RenderOptions& o, const RenderResult& r) {
 }
 
 // The shadow faces' resolution: as asked, else raster_renderer.h's rule, for cluster
-// representatives core/light_budget.h's, which asks whether the raster made with `raster`
+// representatives core/lights/light_budget.h's, which asks whether the raster made with `raster`
 // (its interleaving and edge pixels resolved) lists the unsure pixels for tracing.
 int shadow_resolution(const RenderOptions& o, const RenderResult& r, const RasterOptions& raster) {
   if (o.raster.shadow_resolution != 0) return o.raster.shadow_resolution; // checked by the raster
@@ -246,9 +246,9 @@ void compensate_on_screen(Stages& s, const RayScene& rays) {
   s.r.seconds.compensation = since(t0);
 }
 
-// The local clamp (core/clamp_field.h) over the walk's VPLs: their clamp distances, and the field
-// the residual evaluates at its gather hits. A part of the paths takes the field of all N paths
-// (walked again: the walk is cheap), so that its VPLs keep the full render's clamp distances.
+// The local clamp (core/lights/clamp_field.h) over the walk's VPLs: their clamp distances, and the
+// field the residual evaluates at its gather hits. A part of the paths takes the field of all N
+// paths (walked again: the walk is cheap), so that its VPLs keep the full render's clamp distances.
 void assign_local_clamp(Stages& s, const RayScene& rays) {
   const ClampFieldOptions options{s.options.clamp_neighbours, s.options.clamp_scale,
                                   s.options.raster.clamp};

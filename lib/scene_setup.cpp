@@ -1,7 +1,7 @@
 #include "irad/scene_setup.h"
 
-#include "core/animation.h"
-#include "core/error.h"
+#include "core/animation/animation.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <cmath>

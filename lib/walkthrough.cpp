@@ -1,8 +1,8 @@
 #include "irad/walkthrough.h"
 
-#include "core/animation.h"
-#include "core/error.h"
-#include "core/view.h"
+#include "core/animation/animation.h"
+#include "core/camera/view.h"
+#include "core/util/error.h"
 #include "irad/render.h"
 #include "walk/mirror_pass.h"
 

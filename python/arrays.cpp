@@ -1,6 +1,6 @@
 #include "arrays.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <fmt/format.h>
 #include <string>

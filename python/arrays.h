@@ -1,7 +1,7 @@
 #pragma once
 // irad::Image and NumPy arrays: float32, shape (height, width, channels), row 0 at the top
 // (irad's own order, so an array equals the EXR the CLI writes, pixel for pixel).
-#include "core/image.h"
+#include "core/image/image.h"
 
 #include <pybind11/numpy.h>
 

@@ -3,9 +3,9 @@
 // irad.write_exr, irad.Error. A thin layer over the library (lib/irad/irad.h): every error is
 // irad::Error, raised as irad.Error with the CLI's one line as its text.
 #include "arrays.h"
-#include "core/animation.h"
+#include "core/animation/animation.h"
 #include "core/environment/environment_file.h"
-#include "core/light_sampler.h"
+#include "core/lights/light_sampler.h"
 #include "irad/irad.h"
 #include "render_call.h"
 #include "walkthrough_frames.h"

@@ -1,9 +1,9 @@
 #include "render_call.h"
 
 #include "arrays.h"
-#include "core/error.h"
-#include "core/log.h"
-#include "core/sequence.h"
+#include "core/sampling/sequence.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 #include "irad/render.h"
 #include "walk/ray_scene.h"
 

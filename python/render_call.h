@@ -2,7 +2,7 @@
 // irad.render and irad.walk: Python's keywords as irad::RenderOptions, the work with the GIL
 // released, and the results as NumPy arrays and dicts. The bindings add no logic of their own:
 // everything is irad::render (lib/irad/render.h) and irad::quasi_random_walk.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pytypes.h>
@@ -17,7 +17,7 @@ namespace irad::python {
 // The keywords of irad.render, with the CLI's defaults.
 struct RenderKeywords {
   std::optional<std::pair<int, int>> size; // (width, height); None: the camera's aspect, 512 high
-  std::optional<std::uint32_t> paths;      // None: auto (the light budget, core/light_budget.h)
+  std::optional<std::uint32_t> paths; // None: auto (the light budget, core/lights/light_budget.h)
   std::string estimator = "raster";
   std::uint32_t spp = 64;
   std::uint64_t seed = 0;

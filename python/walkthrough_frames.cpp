@@ -1,7 +1,7 @@
 #include "walkthrough_frames.h"
 
 #include "arrays.h"
-#include "core/error.h"
+#include "core/util/error.h"
 #include "irad/scene_setup.h"
 
 #include <fmt/format.h>

@@ -2,8 +2,8 @@
 // irad.walkthrough: the library's Walkthrough session (lib/irad/walkthrough.h) as a Python
 // iterator of frames, each a float32 array (h, w, 3). The session owns a copy of the scene (the
 // animation poses it in place) and its GL context; iterate it on the thread that created it.
-#include "core/log.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
+#include "core/util/log.h"
 #include "irad/walkthrough.h"
 
 #include <memory>

@@ -1,6 +1,6 @@
 #include "raster/raster_renderer.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "raster/raster_renderer_impl.h"
 
 namespace irad {
@@ -8,7 +8,7 @@ namespace irad {
 int shadow_resolution_for(int requested, int width, int height) {
   if (requested > 0) return requested;
   // A cube face spans 90 degrees; a quarter of the image's larger side per face edge (rounded up
-  // to a power of two, 64..1024) kept the shadow-map error of the Cornell box 20x below its total
+  // to a power of two, 64..1024) keeps the shadow-map error of the Cornell box 20x below its total
   // error at 256x256 (relMSE 2.5e-4 against 5.3e-3, docs/accuracy.md).
   int r = 64;
   while (r < 1024 && r < std::max(width, height) / 4) r *= 2;

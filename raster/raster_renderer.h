@@ -2,11 +2,11 @@
 // The instant radiosity rasterizer (design.md section 1, "Rasterization"): for every VPL a cube
 // shadow map and a shading pass that adds w * C(x) into an RGBA32F framebuffer; the visible
 // emitters' L_e once; then readback. Public header: no GL types.
-#include "core/image.h"
-#include "core/mesh_clusters.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/vpl.h"
+#include "core/mesh/mesh_clusters.h"
+#include "core/scene/scene.h"
 #include "raster/context/gl_backend.h"
 
 #include <atomic>
@@ -44,12 +44,12 @@ struct RasterOptions {
   bool jitter = false;
   // VPLs per batch (raster/passes/batched_passes.h): their shadow cubes in one atlas by one
   // instanced draw, their shading by one instanced draw per interleaved set. 1: one shadow cube and
-  // one shading pass per VPL (the reference, the same image). 16 was the fastest of 8..64 at
+  // one shading pass per VPL (the reference, the same image). 16 is the fastest of 8..64 at
   // 512x512 (docs/performance.md). Every kind of VPL and every mode takes them.
   int batch = 16;
-  // How the batched shadow atlas draws the opaque triangles (core/mesh_clusters.h): mode Off every
-  // triangle into every face, Cull only the clusters a face sees (the same image), On culled and
-  // simplified below `texels` (0.5) shadow texels at the VPL's distance (docs/performance.md).
+  // How the batched shadow atlas draws the opaque triangles (core/mesh/mesh_clusters.h): mode Off
+  // every triangle into every face, Cull only the clusters a face sees (the same image), On culled
+  // and simplified below `texels` (0.5) shadow texels at the VPL's distance (docs/performance.md).
   // The per-VPL passes (batch 1) always draw everything.
   ShadowLodOptions shadow_lod{};
   // When it becomes true (a signal handler), render() draws no further VPL passes and returns

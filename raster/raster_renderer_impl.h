@@ -3,9 +3,9 @@
 // raster/kept_shadow_maps.cpp (the shadow maps kept per path, render_cached). Private to raster/.
 #include "raster/raster_renderer.h"
 
-#include "core/error.h"
-#include "core/interleave_sets.h"
-#include "core/rng.h"
+#include "core/lights/interleave_sets.h"
+#include "core/sampling/rng.h"
+#include "core/util/error.h"
 #include "raster/context/gl_context.h"
 #include "raster/context/pass_timer.h"
 #include "raster/image/gbuffer.h"

@@ -1,6 +1,6 @@
 #include "raster/ring_renderer.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "raster/context/gl_context.h"
 #include "raster/glsl/shaders.h"
 #include "raster/image/gbuffer.h"

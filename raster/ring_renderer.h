@@ -7,10 +7,10 @@
 // `resum_every` frames, which bounds the float drift. For a static scene and camera the sum of all
 // N path images is exactly the full instant radiosity image of the same VPLs.
 // Public header: no GL types. Memory: N path images of W x H RGBA32F, and two more.
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "raster/raster_renderer.h"
 
 #include <cstdint>

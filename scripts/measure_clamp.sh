@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Measures the error of the raster against a converged path-traced reference on the Cornell box
-# for a grid of paths N and clamps (how the default --clamp was chosen; docs/accuracy.md).
+# for a grid of paths N and clamps (how the default --clamp is chosen; docs/accuracy.md).
 # Usage: bash scripts/measure_clamp.sh [OUT_DIR] [SIZE] [REFERENCE_SPP]
 set -euo pipefail
 cd "$(dirname "$0")/.."

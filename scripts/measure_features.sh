@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # "Only what the scene needs": a diffuse-only scene (the Cornell box: no texture, no mirror, no
-# punctual or directional light, no animation) renders in the same time with this build as with a
-# build from before the seed's extensions (textures aside, which it already had): jitter, mirrors,
-# directional lights, light allocation and animation. Alternates the two binaries, 7 runs each,
+# punctual or directional light, no animation) renders in the same time with this build as with
+# OLD_IRAD, a build without the extensions jitter, mirrors, directional lights, light allocation
+# and animation (both have textures). Alternates the two binaries, 7 runs each,
 # and prints the medians of seconds.raster and seconds.total from --stats.
 # Usage: bash scripts/measure_features.sh OLD_IRAD [NEW_IRAD]   (writes docs/data/features.csv)
 set -euo pipefail

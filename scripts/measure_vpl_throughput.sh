@@ -23,7 +23,7 @@ echo "config,run,vpls,seconds_raster,vpls_per_second"
 for run in $(seq "$runs"); do
   for spec in "${configs[@]}"; do
     label=${spec%%=*}; rest=${spec#*=}; binary=${rest%%:*}; args=${rest#*:}
-    # N = 256 as before the light budget (491 VPLs: every one drawn, k = 4 unless ARGS say).
+    # N = 256 fixed, not the light budget's (491 VPLs: every one drawn, k = 4 unless ARGS say).
     # shellcheck disable=SC2086
     "$binary" render data/cornell_box.gltf --size "${size}x${size}" --stats "$stats" -o "$image" \
       --quiet --paths 256 $args

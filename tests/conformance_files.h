@@ -3,7 +3,7 @@
 // test/**), each NAME.gltf / NAME.glb beside NAME.report.json, parsed without the loader: the
 // JSON, the buffers resolved (GLB BIN chunk for a uri-less buffer 0, base64 data URIs, files
 // beside the document) and the report's error-severity messages.
-#include "core/gltf/validate.h"
+#include "core/gltf/validate/validate.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -2,8 +2,8 @@
 // Pictures for the documentation, written by some tests only when the environment variable
 // IRAD_DOC_IMAGES names a directory (never in a normal test run): images side by side, crops
 // magnified with nearest-neighbour, masks.
-#include "core/image.h"
-#include "core/image_io.h"
+#include "core/image/image.h"
+#include "core/image/image_io.h"
 
 #include <cstdlib>
 #include <filesystem>

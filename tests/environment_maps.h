@@ -2,7 +2,7 @@
 // Maps and lookups the environment tests (test_environment.cpp, test_environment_lighting.cpp)
 // share, written from the map's geometry rather than from core/environment/environment.cpp.
 #include "core/environment/environment.h"
-#include "core/image.h"
+#include "core/image/image.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,10 +1,10 @@
 #pragma once
 // The fixture of the glTF loader tests (test_gltf_loader.cpp, test_gltf_loader_errors.cpp): a
 // temporary folder per test, a logger that keeps the warnings, and expect_error().
-#include "core/error.h"
 #include "core/gltf/loader.h"
-#include "core/log.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 #include "tests/gltf_test_scene.h"
 
 #include <filesystem>

@@ -2,7 +2,7 @@
 // glTF scenes written from C++ for the loader tests (test_gltf_loader.cpp, test_bad_input.cpp):
 // JSON through nlohmann::json, buffers as base64 data URIs, .bin files or GLB chunks, images as
 // hand-written (stored-deflate) PNGs.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 #include <algorithm>
 #include <cmath>

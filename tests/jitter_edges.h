@@ -2,9 +2,9 @@
 // Helpers of the edge-antialiasing tests (tests/test_jitter.cpp): a mask of the pixels near
 // geometric edges, computed by ray casting (independent of the raster), a box downsample, and
 // the error of an image against a reference over a mask.
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <cmath>

@@ -1,8 +1,8 @@
 #pragma once
 // Test images for the docs: with IRAD_TEST_IMAGES=DIR set, tests write PNGs of what they compare,
 // side by side, into DIR.
-#include "core/image.h"
-#include "core/image_io.h"
+#include "core/image/image.h"
+#include "core/image/image_io.h"
 
 #include <cstdlib>
 #include <string>

@@ -1,8 +1,8 @@
 #pragma once
 // The raster against Lambert's formula for a square light over a plane (design.md section 3):
 // shared by tests/test_raster_analytic.cpp and tests/test_batched.cpp.
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "walk/quasi_random_walk.h"
 

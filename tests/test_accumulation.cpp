@@ -1,6 +1,6 @@
 // Float accumulation of many raster passes (a hard case of the accuracy issue): 1e5 additive
 // passes into the raster's RGBA32F target, against a double-precision sum of the same values.
-#include "core/radical_inverse.h"
+#include "core/sampling/radical_inverse.h"
 #include "raster/context/gl_context.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/target.h"

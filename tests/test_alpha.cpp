@@ -4,10 +4,10 @@
 // Scene: a 1 m square light (radiance 1, albedo 0) 1 m over a 6 m floor (albedo 0.5), facing down,
 // and a 1 m square occluder at half height (albedo 0: direct light only on the floor) whose half
 // x > 0 is cut out.
-#include "core/animation.h"
-#include "core/log.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/animation/animation.h"
+#include "core/camera/view.h"
+#include "core/scene/scene_builder.h"
+#include "core/util/log.h"
 #include "walk/alpha.h"
 #include "walk/bias_compensation.h"
 #include "walk/path_tracer.h"

@@ -1,13 +1,13 @@
-// The analytic scenes of design.md section 3 (core/analytic_scenes.h): their geometry and answers,
-// the glTF round trip (core/gltf/writer.h), the path tracer against their answers, and the
+// The analytic scenes of design.md section 3 (core/scene/analytic_scenes.h): their geometry and
+// answers, the glTF round trip (core/gltf/writer.h), the path tracer against their answers, and the
 // `irad scene` command end to end.
-#include "core/analytic_scenes.h"
-#include "core/error.h"
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "core/gltf/writer.h"
-#include "core/image_io.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_io.h"
+#include "core/scene/analytic_scenes.h"
+#include "core/scene/scene_builder.h"
+#include "core/util/error.h"
 #include "keep_written_gltf.h"
 #include "walk/path_tracer.h"
 #include "walk/ray_scene.h"
@@ -335,12 +335,12 @@ Deviation deviation(const Image& image, double expected) {
 }
 
 // The camera sees the far wall only. Tessellation error there, at 4 subdivisions (radiosity with
-// exact point-to-facet form factors, core/analytic_scenes.h): the mean over the far wall is off
-// by -1e-5, single points by -0.65 % .. +0.60 %.
-// Measured at 256 spp, 24x24, over seeds 0..19: image mean -0.055 % +- 0.062 % (worst seed
-// 0.17 %), pixel RMS 1.9 % (noise), worst pixel 10.6 % (a rare firefly; 23.6 % at 3
-// subdivisions). Seed 11: see the printed line. A wrong bounce weight or patch power moves the
-// mean by whole percents (a 1 % error in rho moves L by 2 %), hence 0.5 % (8 sigma).
+// exact point-to-facet form factors, core/scene/analytic_scenes.h): the mean over the far wall is
+// off by -1e-5, single points by -0.65 % .. +0.60 %. Measured at 256 spp, 24x24, over seeds 0..19:
+// image mean -0.055 % +- 0.062 % (worst seed 0.17 %), pixel RMS 1.9 % (noise), worst pixel 10.6 %
+// (a rare firefly; 23.6 % at 3 subdivisions). Seed 11: see the printed line. A wrong bounce weight
+// or patch power moves the mean by whole percents (a 1 % error in rho moves L by 2 %), hence 0.5 %
+// (8 sigma).
 TEST(AnalyticScenes, PathTracerMatchesIntegratingSphere) {
   const AnalyticScene a = integrating_sphere(1.0, 0.5);
   const double expected = *a.expected_radiance; // 0.0165107

@@ -1,12 +1,12 @@
 // glTF node animation: keyframe interpolation against hand-computed values, the animated
 // Cornell box posed against its static twin, and the per-frame updates (Embree refit, GL vertex
 // upload, cached shadow maps) against renderers built from scratch on the posed scene.
-#include "core/animation.h"
+#include "core/animation/animation.h"
+#include "core/animation/keyframes.h"
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/keyframes.h"
-#include "core/rng.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/sampling/rng.h"
 #include "raster/raster_renderer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/ray_scene.h"

@@ -1,9 +1,9 @@
 // Every bad input of docs/errors.md, each with its exact message: through the library (one
 // irad::Error "FILE: ELEMENT: MESSAGE") and through the real command line (exit code 1, the one
 // line "irad: error: FILE: ELEMENT: MESSAGE" on stderr, no output file).
-#include "core/error.h"
 #include "core/gltf/loader.h"
-#include "core/log.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 #include "tests/gltf_test_scene.h"
 
 #include <cstdlib>

@@ -1,11 +1,11 @@
 // Batched VPL passes (RasterOptions::batch > 1, raster/passes/batched_passes.h) against the per-VPL
 // passes (batch = 1, the reference) with the same VPLs, and against Lambert's formula.
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
+#include "core/camera/view.h"
 #include "core/environment/environment.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
 #include "tests/square_light_error.h"
@@ -79,7 +79,7 @@ const std::filesystem::path cornell =
 // passes rasterize each set's tile through its own shifted projection, the deferred passes read
 // the surface the full-resolution G-buffer kept (the one the resolve also uses), and rounding
 // may pick the other face. A wrong face, texel or block costs far more: with the +x face read
-// mirrored relMSE was 1.9e-3 and 39 % of the pixels were off by more than 1 %.
+// mirrored relMSE is 1.9e-3 and 39 % of the pixels are off by more than 1 %.
 TEST(Batched, CornellBoxMatchesThePerVplPasses) {
   Log log = quiet_log();
   const Scene scene = load_gltf(cornell, log);
@@ -93,7 +93,7 @@ TEST(Batched, CornellBoxMatchesThePerVplPasses) {
       // Measured (llvmpipe, deferred): k = 1: relMSE 1.4e-8 (max abs 2.2e-3), 2 pixels (0.012 %)
       // off by 1 %; k = 4: relMSE 4.6e-6, mean ratio 1.000055, 16 pixels (0.098 %) off by more
       // than 1 %, on the edges of the blocks (the faces the G-buffer and the tile disagree on).
-      // Before the occluder planes (raster/glsl/cube_glsl.h) k = 1 gave 1.1e-14 and no pixel:
+      // Without the occluder planes (raster/glsl/cube_glsl.h) k = 1 gives 1.1e-14 and no pixel:
       // the planes' gradients are dFdx/dFdy over 2x2 quads that lie differently in a cube face
       // and in the atlas, and the neighbour test that drops a plane is a threshold on them.
       EXPECT_LT(d.metrics.relmse, k == 1 ? 2e-7 : 2e-5);
@@ -118,9 +118,9 @@ TEST(Batched, MirrorBoxMatchesThePerVplPasses) {
   for (int k : {1, 4}) {
     const Difference d = batched_against_reference(scene, vpls, view, k, 16, "mirror");
     // Measured: relMSE 2.7e-8, max abs 1.5e-3 (k = 1; 0.065 % of the pixels off by more than
-    // 1 %) and 1e-13 (k = 4) (the mirrored VPLs' per-VPL passes had given 1.4e-14: the atlas's
-    // gradients, as for the Cornell box; before the concave corners of cube_glsl.h, another
-    // threshold on them, 4.1e-9 and no pixel). With the mirror's albedo not zeroed in the batched
+    // 1 %) and 1e-13 (k = 4) (the atlas's gradients, as for the Cornell box: 1.4e-14 without
+    // the occluder planes; without the concave corners of cube_glsl.h, another threshold on
+    // them, 4.1e-9 and no pixel). With the mirror's albedo not zeroed in the batched
     // pass: relMSE 0.63 at k = 1. Without the pyramid test in the deferred shader, or without the
     // reflected scene in the atlas's cubes: relMSE 3.0e-3 (k = 1), 39 % of the pixels off by more
     // than 1 %.
@@ -254,7 +254,7 @@ TEST(Batched, KeptShadowMapsOfEveryPathMatchDrawingThemAnew) {
                     static_cast<double>(renderer.cache_bytes()) / 1048576.0);
         // Measured: batch 1 identical; batch 16 relMSE up to 3e-14 and max abs 1.1e-6 (the
         // summation order), except the mirror box at k = 1: 9.5e-12 and 5.3e-5 (a lookup whose
-        // neighbour texel, which the occluder's plane now uses both ways, lies across a block's
+        // neighbour texel, which the occluder's plane uses both ways, lies across a block's
         // edge: another block's texel in a page than in the atlas).
         EXPECT_LT(m.max_abs_error, 2e-4);
         EXPECT_LT(m.relmse, 1e-10);

@@ -1,6 +1,6 @@
-// The bench's comparison at equal time (apps/bench_versus.cpp): pt's error interpolated on the
-// log-log line between its rows, and the ratios written per row.
-#include "apps/bench.h"
+// The bench's comparison at equal time (apps/bench/bench_versus.cpp): pt's error interpolated on
+// the log-log line between its rows, and the ratios written per row.
+#include "apps/bench/bench.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,8 +1,8 @@
 // The clamp's bias and its compensation (Kollig & Keller 2004) on scenes with closed-form answers:
 // the clamp removes light near seams and corners; adding the gathered residual brings it back.
-#include "core/analytic_scenes.h"
-#include "core/clamp_field.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/lights/clamp_field.h"
+#include "core/scene/analytic_scenes.h"
 #include "raster/raster_renderer.h"
 #include "walk/bias_compensation.h"
 #include "walk/quasi_random_walk.h"
@@ -28,7 +28,7 @@ double mean_green(const Image& image, const Image* residual = nullptr) {
 }
 
 // The clamped raster image and its screen-space compensation; `local`: the VPLs' clamp follows
-// the local field (core/clamp_field.h) with `clamp` as its cap.
+// the local field (core/lights/clamp_field.h) with `clamp` as its cap.
 Means measure_screen(const AnalyticScene& a, float clamp, std::uint32_t paths, int size,
                      bool local) {
   Log log([](const std::string&) {});
@@ -113,9 +113,9 @@ TEST(ScreenCompensation, FurnaceBox) {
     // Measured (N = 512, 32x32, 16 gathers, 3 iterations, batched, k = 4): global: clamped
     // 1.7742 (-11.3 %), compensated 1.9976 (-0.12 %), 7.2 % of the samples exact; local:
     // clamped 1.9480 (-2.6 %), compensated 1.9873 (-0.64 %), 0.6 % exact. Bound 1 % (1.6x).
-    // (Before a gather hit was looked up only where the pixel's centre sees its surface:
+    // (A gather hit looked up only in its own pixel, where that pixel's centre sees its surface:
     // -0.06 % and -0.4 %; at 32x32 most hits within the local clamp lie a pixel from a crease,
-    // where the image's own pixel showed the other face.)
+    // where the image's own pixel shows the other face.)
     EXPECT_LT(m.clamped, (local ? 0.99 : 0.95) * expected);
     EXPECT_NEAR(m.screen, expected, 0.01 * expected);
     EXPECT_GT(m.screen_fallback, 0.003); // the exact path is exercised

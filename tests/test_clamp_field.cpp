@@ -1,10 +1,10 @@
-// The local clamp (core/clamp_field.h): the field on hand-placed VPLs with known spacing, its
-// scale invariance, and the estimators with per-VPL clamp distances: the batched and the per-VPL
-// raster passes and rt-vpl evaluate the same clamped sum.
-#include "core/clamp_field.h"
+// The local clamp (core/lights/clamp_field.h): the field on hand-placed VPLs with known spacing,
+// its scale invariance, and the estimators with per-VPL clamp distances: the batched and the
+// per-VPL raster passes and rt-vpl evaluate the same clamped sum.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/clamp_field.h"
 #include "raster/raster_renderer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
@@ -120,8 +120,8 @@ TEST(ClampField, EstimatorsAgreeOnLocalClampDistances) {
               "local vs global clamp mean %.5f\n",
               ab.relmse, at.relmse, at.mean_ratio[1], ag.mean_ratio[1]);
   // Measured (64x64): batched against per-VPL relMSE 4.8e-7 (the atlas's RG16F gradients against
-  // the cube's 32-bit ones, which the lookup's plane now uses both ways; 1.0e-10 while it only
-  // added shadow); raster against rt-vpl relMSE 4.1e-5, mean 0.9997 (2.3e-4 and 0.9987 with
+  // the cube's 32-bit ones, which the lookup's plane uses both ways; 1.0e-10 with the plane only
+  // adding shadow); raster against rt-vpl relMSE 4.1e-5, mean 0.9997 (2.3e-4 and 0.9987 with
   // the lesser of the centre's distance and the plane and a whole texel's offset); the local
   // clamp lets 0.27 % more light through than the global one at this N. Bounds ~4-5x.
   EXPECT_LT(ab.relmse, 2e-6);

@@ -1,8 +1,8 @@
 // Bad input through the real command line: one line on stderr naming the file and the element,
 // exit code 1, no output file written.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_io.h"
-#include "core/view.h"
+#include "core/image/image_io.h"
 
 #include <algorithm>
 #include <cmath>

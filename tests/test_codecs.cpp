@@ -1,5 +1,5 @@
-// core/gltf/codecs.h and core/gltf/image_decode.h: round trips through the libraries' own
-// encoders, corrupt data, limits.
+// core/gltf/decode/codecs.h and core/gltf/decode/image_decode.h: round trips through the libraries'
+// own encoders, corrupt data, limits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,8 +17,8 @@
 #include <webp/encode.h>
 
 #include "compressed_fixtures.h"
-#include "core/gltf/codecs.h"
-#include "core/gltf/image_decode.h"
+#include "core/gltf/decode/codecs.h"
+#include "core/gltf/decode/image_decode.h"
 
 namespace {
 

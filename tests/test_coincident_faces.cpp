@@ -2,13 +2,13 @@
 // tessellations, and a zero-thickness wall made of two back-to-back faces. The deferred passes
 // (RasterOptions::batch > 1, raster/passes/deferred_shader.h) shade the one surface the G-buffer
 // kept per pixel and must agree with rt-vpl (the same VPLs, ray-traced visibility: a ray hits one
-// of the coincident faces); the per-VPL forward passes (batch 1, the reference of today's image)
+// of the coincident faces); the per-VPL forward passes (batch 1, the batched passes' reference)
 // add light wherever a fragment passes the depth test and light each coincident face once more.
 //
 // With IRAD_TEST_IMAGES=DIR the test writes its images to DIR.
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
 #include "walk/quasi_random_walk.h"

@@ -10,9 +10,9 @@
 // A summary line gives the counts, and how many messages name one of the report's error
 // pointers (printed, not asserted). Load only, no rendering.
 #include "conformance_probe.h"
-#include "core/error.h"
 #include "core/gltf/loader.h"
-#include "core/log.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,7 +1,7 @@
 // The bundled Cornell box end to end: loader, walk, raster, and the command line.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_io.h"
-#include "core/view.h"
+#include "core/image/image_io.h"
 #include "raster/raster_renderer.h"
 #include "walk/quasi_random_walk.h"
 

@@ -4,10 +4,10 @@
 // (lib/render.cpp): rt-vpl's value over the same VPLs there, which the rt-vpl estimator gives.
 // Everywhere else the filter's result stays as it was.
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/light_budget.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/light_budget.h"
 #include "irad/render.h"
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
@@ -72,7 +72,7 @@ Renders render_three(const Scene& scene, const VplSet& vpls, const View& view, i
   return r;
 }
 
-// Every pixel the edges change now holds the k = 1 value; their number is at most the edge
+// Every pixel the edges change holds the k = 1 value; their number is at most the edge
 // pixels found, which are a few per cent of the Cornell box (its creases and the blocks'
 // outlines), none with the per-VPL passes (batch 1: the resolve cannot use them).
 TEST(EdgePixels, HoldEveryVplsLightWhereTheWindowIsCut) {
@@ -249,8 +249,8 @@ TEST(EdgePixels, TracedOnesHoldRtVplsValue) {
               without.relmse);
   // Measured (llvmpipe): 1570 edge pixels (17 %) and at most 444 unsure ones a round (5 %); 2119
   // changed, 1904 of them within 1e-5 of rt-vpl (those listed in both rounds); 4x4-block relMSE
-  // against rt-vpl 1.15e-5 with them, 9.48e-5 without (2.94e-5 with the edge pixels alone,
-  // session 16). A round that traced nothing would leave every pixel short of rt-vpl's value.
+  // against rt-vpl 1.15e-5 with them, 9.48e-5 without (2.94e-5 with the edge pixels alone). A round
+  // that traced nothing would leave every pixel short of rt-vpl's value.
   EXPECT_GT(traced.unsure_pixels, 0u);
   EXPECT_GT(changed, listed / 2);
   EXPECT_LE(changed, listed + traced.unsure_pixels); // each round's own unsure pixels

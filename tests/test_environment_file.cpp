@@ -1,9 +1,9 @@
 // Environment map files (core/environment/environment_file.h): OpenEXR and Radiance HDR round trips
 // with row 0 at the top, and one-line messages for every bad input; the --env colour.
 #include "core/environment/environment_file.h"
-#include "core/error.h"
-#include "core/image.h"
-#include "core/image_io.h"
+#include "core/image/image.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
 
 #include <gtest/gtest.h>
 

@@ -6,9 +6,9 @@
 // interleave factor, rt-vpl and pt. Its surface VPLs light nothing (no facet faces another), so
 // what is measured is the environment's direct light: the directional VPLs of the walk, the
 // light samples and escaping rays of pt, and the raster's orthographic shadow maps.
+#include "core/camera/view.h"
 #include "core/environment/environment.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"

@@ -4,9 +4,9 @@
 //  - a map black except one texel lights a scene as the directional light of the same
 //    irradiance, for pt, rt-vpl and the raster (image-mean ratio, RMS over lit pixels, shadows).
 // With IRAD_TEST_IMAGES=DIR the compared images are written there side by side.
+#include "core/camera/view.h"
 #include "core/environment/environment.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/environment_maps.h"
 #include "tests/side_by_side.h"

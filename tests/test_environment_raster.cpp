@@ -5,12 +5,12 @@
 // (raster/passes/directional_pass.h).
 //
 // With IRAD_TEST_IMAGES=DIR the tests write their images to DIR.
+#include "core/camera/view.h"
 #include "core/environment/environment.h"
-#include "core/error.h"
-#include "core/image_io.h"
-#include "core/log.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_io.h"
+#include "core/scene/scene_builder.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "walk/quasi_random_walk.h"
@@ -128,7 +128,7 @@ BackgroundCheck check_background(const Image& image, const Image& hidden, const 
 
 // Perspective and orthographic, interleave 1 and 4, no jitter: the background is the map's
 // radiance exactly, except within 1e-5 rad of a texel border, where the GPU's atan may round
-// differently (on llvmpipe none did: 0 mismatches with no pixel skipped; 1 of 4040 is skipped).
+// differently (on llvmpipe none does: 0 mismatches with no pixel skipped; 1 of 4040 is skipped).
 void expect_exact_background(bool orthographic, const std::string& name) {
   Scene s = small_object_scene(orthographic);
   const View view = make_view(s.cameras.at(0), s.bounds, kSize, kSize);

@@ -1,9 +1,9 @@
 // Every VPL estimator (raster in both modes, rt-vpl) against the closed-form answers of
 // design.md section 3. The clamp's bias is added back with the residual gather
 // (walk/bias_compensation.h), so what remains is the walk's quasi-Monte Carlo error.
-#include "core/analytic_scenes.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/scene/analytic_scenes.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "walk/bias_compensation.h"
 #include "walk/quasi_random_walk.h"

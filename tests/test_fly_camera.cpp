@@ -1,7 +1,7 @@
-// The walkthrough window's fly camera (core/fly_camera.h) without a window: key and mouse state
-// plus a frame time in, camera out. Expected values are from the contract (speed in scene
+// The walkthrough window's fly camera (core/camera/fly_camera.h) without a window: key and mouse
+// state plus a frame time in, camera out. Expected values are from the contract (speed in scene
 // diagonals per second, radians per pixel), not from running the code.
-#include "core/fly_camera.h"
+#include "core/camera/fly_camera.h"
 
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>

@@ -82,18 +82,18 @@ TEST_F(FuzzCorpus, RegressionInputsGiveTheirError) {
     const char* message; // part of the irad::Error
   };
   const Case cases[] = {
-      // tinygltf converts extras recursively: 6000 nested arrays overflowed the stack.
+      // 6000 nested arrays (tinygltf, converting extras recursively, overflows its stack).
       {"regression-deep-nesting.gltf", "JSON: nested deeper than the limit of 64 levels"},
-      // tinygltf read byte 0 of a GLB buffer of byteLength 0 with vector::at: std::out_of_range.
+      // A GLB buffer of byteLength 0 (tinygltf reads its byte 0 with vector::at: out_of_range).
       // Nothing uses the buffer, so its invalid byteLength is only counted in the warning about
       // unused parts; the file's error is that it has no mesh.
       {"regression-glb-empty-buffer.glb", "no triangles"},
-      // tinygltf read a negative byteOffset as absent, i.e. 0.
+      // A negative byteOffset (tinygltf reads it as absent, i.e. 0).
       {"regression-negative-offset.gltf", "bufferViews[0].byteOffset: value -4 is out of range"},
-      // tinygltf followed '..' out of the scene's folder (and looked in the current folder too).
+      // A uri out of the scene's folder (tinygltf follows '..', and looks in the current folder).
       {"regression-uri-escape.gltf", "buffers[0]: uri '../buffer.bin' leaves the scene's folder"},
-      // stb_image copied a PNG's empty first IDAT chunk to a null pointer (UBSan: nonnull). The
-      // input's POSITION is of unsigned ints (a fuzzer mutation), which the validator now refuses
+      // A PNG whose empty first IDAT chunk stb_image copies to a null pointer (UBSan: nonnull).
+      // The input's POSITION is of unsigned ints (a fuzzer mutation), which the validator refuses
       // before any image is decoded; its texture 0 has no source ("so0rce"), so the PNG is no
       // texture's. The empty IDAT itself is BadInput's image_empty_idat case.
       {"regression-png-empty-idat.glb",

@@ -1,9 +1,9 @@
 // The GL layer's failure paths: every compile, link and framebuffer problem is an irad::Error
 // on one line, never a black image.
-#include "core/error.h"
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/util/error.h"
 #include "raster/context/gl_context.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/target.h"

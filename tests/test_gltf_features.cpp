@@ -4,11 +4,11 @@
 // sparse accessors without a bufferView, Draco and meshopt compressed primitives against the
 // uncompressed mesh, EXT_texture_webp, orthographic cameras, choosing a scene, and the rules for
 // extensions and for problems in unused parts.
-#include "core/animation.h"
-#include "core/error.h"
+#include "core/animation/animation.h"
 #include "core/gltf/loader.h"
-#include "core/log.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 #include "tests/compressed_fixtures.h"
 #include "tests/gltf_test_scene.h"
 

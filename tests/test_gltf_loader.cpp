@@ -1,11 +1,11 @@
 // Tests of the glTF loader, textures and the scene model. glTF files are written from C++ into a
 // temporary directory: JSON through nlohmann::json, buffers as base64 data URIs, .bin files or GLB
 // chunks, images as hand-written (stored-deflate) PNGs.
-#include "core/error.h"
 #include "core/gltf/loader.h"
-#include "core/log.h"
-#include "core/scene.h"
-#include "core/texture.h"
+#include "core/scene/scene.h"
+#include "core/scene/texture.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 #include "tests/gltf_loader_fixture.h"
 #include "tests/gltf_test_scene.h"
 

@@ -147,7 +147,7 @@ const BadCase kBadCases[] = {
      "KHR_lights_punctual.lights[0]", "cone"},
     {"required_extension",
      [](Gltf& g) {
-       // An extension irad does not support (KHR_draco_mesh_compression now is).
+       // An extension irad does not support (it does support KHR_draco_mesh_compression).
        g.doc["extensionsUsed"] = {"EXT_lights_image_based"};
        g.doc["extensionsRequired"] = {"EXT_lights_image_based"};
      },

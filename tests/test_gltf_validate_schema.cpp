@@ -2,7 +2,7 @@
 // conformance files: each NAME.gltf / NAME.glb beside NAME.report.json. Valid files (no errors)
 // must give no issue; an invalid file whose report has an error with a code check_schema covers
 // must give an issue at (or above / below) one of those errors' JSON pointers.
-#include "core/gltf/validate_parts.h"
+#include "core/gltf/validate/validate_parts.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // Khronos glTF-Validator conformance files: no issue on any valid file, and on every invalid
 // file whose report has an error in the semantic half's scope, at least one issue at (or
 // above, or below) one of the report's error pointers.
-#include "core/gltf/validate_parts.h"
+#include "core/gltf/validate/validate_parts.h"
 #include "tests/conformance_files.h"
 
 #include <algorithm>

@@ -2,13 +2,13 @@
 // scene's scale, VPLs in corners, and the float accumulation of many passes (a thin wall between
 // a lit and a dark room: tests/test_two_rooms.cpp). Every bound below is a measured value with a
 // stated margin.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/light_sampler.h"
-#include "core/particle_counts.h"
-#include "core/radical_inverse.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/light_sampler.h"
+#include "core/sampling/particle_counts.h"
+#include "core/sampling/radical_inverse.h"
+#include "core/scene/scene_builder.h"
 #include "raster/context/gl_context.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/target.h"
@@ -419,9 +419,9 @@ TEST(HardCases, RasterRendererServesAnotherViewAndSize) {
   }
 }
 
-// Found while writing the test above: a RasterRenderer made its GL context current only when it
-// was created, so once a second renderer had been created, the first one's render() drew into the
-// other (or a destroyed) context: an all-black image. render() now makes its context current.
+// render() makes its renderer's GL context current: a renderer that made it current only at its
+// construction would, once a second renderer exists, draw into the other (or a destroyed)
+// context: an all-black image.
 TEST(HardCases, TwoRasterRenderersInTurn) {
   Log log = quiet_log();
   const Scene s = closed_box(1.0f, 0.5f, 0.3f, 1.0f);
@@ -443,10 +443,10 @@ TEST(HardCases, TwoRasterRenderersInTurn) {
   EXPECT_GT(mean_rgb(other), 0.0);
 }
 
-// Found while writing the corner test: a ray aimed exactly at a corner of a closed box missed
-// every triangle (the rt-vpl pixel through the corner (0,0,0) of closed_box from (0.8,0.8,0.8)
-// was 0 while the raster showed 3.06e4; 27 of 4000 rays escaped), because the Embree scene was
-// built without RTC_SCENE_FLAG_ROBUST. walk/ray_scene.cpp now sets it.
+// A ray aimed exactly at a corner of a closed box meets a triangle: walk/ray_scene.cpp builds the
+// Embree scene with RTC_SCENE_FLAG_ROBUST. Without it such a ray misses every triangle (the
+// rt-vpl pixel through the corner (0,0,0) of closed_box from (0.8,0.8,0.8) is 0 while the raster
+// shows 3.06e4; 27 of 4000 rays escape).
 TEST(HardCases, RaysFromInsideAClosedBoxNeverEscape) {
   const Scene s = closed_box(1.0f, 0.5f, 0.3f, 1.0f);
   const RayScene rays(s);

@@ -1,7 +1,7 @@
 // Image files: EXR round trips, half-float EXR input, PNG tone mapping and encoding, errors.
-#include "core/error.h"
-#include "core/image.h"
-#include "core/image_io.h"
+#include "core/image/image.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Image comparison metrics on hand-made images with known answers, the false-colour error image,
 // and `irad compare` end to end through the built binary.
-#include "core/error.h"
-#include "core/image.h"
-#include "core/image_io.h"
-#include "core/image_metrics.h"
+#include "core/image/image.h"
+#include "core/image/image_io.h"
+#include "core/image/image_metrics.h"
+#include "core/util/error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// core/interleave_sets.h: the paths dealt to the interleaved sets in blocks.
-#include "core/interleave_sets.h"
+// core/lights/interleave_sets.h: the paths dealt to the interleaved sets in blocks.
+#include "core/lights/interleave_sets.h"
 
 #include <gtest/gtest.h>
 

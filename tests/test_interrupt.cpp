@@ -2,8 +2,8 @@
 // stops, nothing is written (no image, no stats, no .tmp), and the process ends by the signal;
 // with --partial the image accumulated so far is written as OUT.partial.EXT. Also: the --stats
 // file is written atomically.
-#include "core/image.h"
-#include "core/image_io.h"
+#include "core/image/image.h"
+#include "core/image/image_io.h"
 
 #include <chrono>
 #include <csignal>

@@ -1,9 +1,9 @@
 // Jittered low-discrepancy sampling (raster/image/pixel_jitter.h, seed section 5.1.1): the offsets,
 // and the raster's error along geometric edges against a 16x supersampled reference, with and
 // without the jitter, in the reference mode (k = 1) and with interleaved sampling (k = 4).
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
 #include "raster/image/pixel_jitter.h"
 #include "raster/raster_renderer.h"
 #include "tests/doc_images.h"
@@ -184,8 +184,8 @@ TEST_F(JitterEdges, ReferenceModeK1) {
   // (x0.20), RMSE 0.366 -> 0.076 (x0.21, the light's silhouette: L_e is jittered too).
   EXPECT_LT(on.edge.relmse, 0.4 * off.edge.relmse);
   EXPECT_LT(on.edge.rmse, 0.4 * off.edge.rmse);
-  // Interior: RMSE 0.00076 -> 0.00095 (x1.25; each VPL's hard shadow edge now sampled at one
-  // sub-pixel position), relMSE 3e-5 -> 3e-5, both far below the VPLs' own error against pt.
+  // Interior: RMSE 0.00076 -> 0.00095 (x1.25; with jitter each VPL's hard shadow edge is sampled
+  // at one sub-pixel position), relMSE 3e-5 -> 3e-5, both far below the VPLs' own error against pt.
   EXPECT_LT(on.interior.rmse, 2.0 * off.interior.rmse);
   EXPECT_LT(on.interior.relmse, 1e-4);
 }

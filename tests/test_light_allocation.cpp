@@ -1,13 +1,13 @@
 // Lights by power (design.md 6.2): the walk's N paths are shared among the lights in proportion
-// to their power, stratified by the walk's first Halton dimension (core/light_sampler.h), against
-// the seed's uniform share (each of the G lights N/G paths, beta_0 divided by P(k) = 1/G instead).
-// On a room with one strong and many weak lights, power allocation must come closer to the path
-// tracer at equal N.
-#include "core/image_io.h"
-#include "core/image_metrics.h"
-#include "core/light_sampler.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+// to their power, stratified by the walk's first Halton dimension (core/lights/light_sampler.h),
+// against the seed's uniform share (each of the G lights N/G paths, beta_0 divided by P(k) = 1/G
+// instead). On a room with one strong and many weak lights, power allocation must come closer to
+// the path tracer at equal N.
+#include "core/camera/view.h"
+#include "core/image/image_io.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/light_sampler.h"
+#include "core/scene/scene_builder.h"
 #include "tests/side_by_side.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
@@ -36,8 +36,8 @@ struct ManyLights {
   std::vector<double> power;      // Phi of each
 };
 
-// The closed 2 m box of core/scene_builder.h with its 0.5 m ceiling patch (radiance 8: 6.3 W),
-// eight 0.1 m patches of radiance 2 on the walls (0.063 W each) and four point lights of
+// The closed 2 m box of core/scene/scene_builder.h with its 0.5 m ceiling patch (radiance 8: 6.3
+// W), eight 0.1 m patches of radiance 2 on the walls (0.063 W each) and four point lights of
 // intensity 0.02 (0.25 W each): 13 lights, the strong one 77 % of the power.
 ManyLights many_lights() {
   ManyLights m;

@@ -1,11 +1,11 @@
-// The automatic light budget (core/light_budget.h), `irad render`'s default: the rules on their
-// own, and render() with them on the Cornell box against a path-traced reference (an answer the
-// budget does not define) and against the old fixed default, N = 256 with every VPL drawn.
-#include "core/error.h"
+// The automatic light budget (core/lights/light_budget.h), `irad render`'s default: the rules on
+// their own, and render() with them on the Cornell box against a path-traced reference (an answer
+// the budget does not define) and against a fixed N = 256 with every VPL drawn.
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/light_budget.h"
-#include "core/sequence.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/light_budget.h"
+#include "core/sampling/sequence.h"
+#include "core/util/error.h"
 #include "irad/render.h"
 #include "tests/test_rooms.h"
 
@@ -76,7 +76,7 @@ TEST(LightBudget, ClustersFromOnePerSixteenVplsAboveTheFloor) {
 
 // The default render of the Cornell box at 48x48 resolves to N = 16384 paths as 1910
 // representatives; against a 2048-spp path-traced reference its mean is right and its error far
-// below the old default's (N = 256, 491 VPLs drawn one by one).
+// below that of a fixed N = 256 (491 VPLs drawn one by one).
 TEST(LightBudget, TheDefaultRenderAgainstThePathTracer) {
   Log log = quiet();
   const Scene scene = cornell(log);
@@ -227,9 +227,9 @@ TEST(LightBudget, RoundsAreTheMeanOfIndependentLightSets) {
   // Measured: alone 3.02e-4 (2.22e-4 for round 0; scrambled seeds 1..6 1.7e-4 to 5.3e-4), the
   // mean of 4 rounds 8.2e-5 (3.7x; 8 rounds 4.1e-5, 16 3.2e-5 where the 2048-spp reference and
   // the clamp's residual at 32x32 stop it). With one digit permutation for all digits the
-  // scrambled rounds were correlated (core/sequence.h). Before the screen compensation looked y
-  // up only in pixels whose centre sees y's surface (walk/screen_compensation.h) the rounds
-  // shared a bias near 1e-4. Bound: 3x.
+  // scrambled rounds would be correlated (core/sampling/sequence.h). With y taken from whatever
+  // pixel it falls in, not only from pixels whose centre sees y's surface
+  // (walk/screen_compensation.h), the rounds would share a bias near 1e-4. Bound: 3x.
   EXPECT_LT(e4, alone / 3.0);
 
   two.walk.end_path = 128;
@@ -239,8 +239,8 @@ TEST(LightBudget, RoundsAreTheMeanOfIndependentLightSets) {
 // The 2 mm wall of tests/test_two_rooms.cpp under irad render's default, the light budget (many
 // VPLs as cluster representatives, 2x2 interleaving, the local clamp and the screen compensation):
 // render() from a camera in each room. Seen from room B no row (exact shadow rays) sees any VPL,
-// so every VPL is dropped (core/light_clusters.h) and nothing is drawn: the clustered default
-// cannot leak into a room the camera sees alone, whatever the shadow maps do.
+// so every VPL is dropped (core/lights/light_clusters.h) and nothing is drawn: the clustered
+// default cannot leak into a room the camera sees alone, whatever the shadow maps do.
 TEST(LightBudget, TwoMillimetreWall) {
   Log log = quiet();
   const test_support::TwoRooms rooms = test_support::two_rooms(1.0f);

@@ -1,11 +1,11 @@
-// Matrix row-column sampling (core/light_clusters.h, walk/light_rows.h): the clustering on
+// Matrix row-column sampling (core/lights/light_clusters.h, walk/light_rows.h): the clustering on
 // hand-made matrices whose best clusters are known, the representatives' expectation, and the
 // clustered estimate against the very same VPLs summed exactly by rt-vpl (its error measured).
-#include "core/error.h"
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/light_clusters.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/lights/light_clusters.h"
+#include "core/util/error.h"
 #include "irad/render.h"
 #include "raster/raster_renderer.h"
 #include "walk/light_rows.h"

@@ -4,8 +4,8 @@
 // --stats writes.
 #include "core/environment/lighting.h"
 #include "core/environment/sky.h"
-#include "core/error.h"
-#include "core/scene_builder.h"
+#include "core/scene/scene_builder.h"
+#include "core/util/error.h"
 
 #include <cmath>
 #include <gtest/gtest.h>

@@ -1,10 +1,10 @@
 // Texture coordinate sets and KHR_texture_transform, COLOR_0, orthographic cameras, and alpha
 // (Mask and Blend) in the raster: each against the CPU lookups or rt-vpl, or against the same
-// scene built without the feature. Scenes are built in code (core/scene_builder.h).
-#include "core/log.h"
-#include "core/scene.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+// scene built without the feature. Scenes are built in code (core/scene/scene_builder.h).
+#include "core/camera/view.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_builder.h"
+#include "core/util/log.h"
 #include "raster/raster_renderer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/ray_scene.h"
@@ -159,7 +159,8 @@ TEST(MaterialFeatures, CoverageIsBaseAlphaTimesTextureAlphaTimesColourAlpha) {
   EXPECT_FALSE(covered(m, 0.3f, 0.3f));
 }
 
-// The raster's lookups (uv set, matrix, COLOR_0) against rt-vpl's (core/scene.cpp), same VPLs.
+// The raster's lookups (uv set, matrix, COLOR_0) against rt-vpl's (core/scene/scene.cpp), same
+// VPLs.
 TEST(MaterialFeatures, RasterTextureTransformAndColoursMatchRtVpl) {
   Log log([](const std::string&) {});
   const glm::mat3 m = uv_transform({0.3f, -0.2f}, 0.6f, {0.7f, 1.3f});

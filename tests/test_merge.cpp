@@ -1,7 +1,7 @@
 // Parts of a render (lib/irad/parts.h): path ranges (raster, rt-vpl) and spp ranges (pt) add up
 // to the single-process render; merge_parts refuses parts that do not belong together.
-#include "core/error.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
 #include "irad/parts.h"
 #include "irad/render.h"
 #include "irad/scene_setup.h"
@@ -99,10 +99,10 @@ TEST_F(Parts, ReferenceRasterPathRangesAddUpToTheFullRender) {
   EXPECT_LE(split(o, kFour).max_rel, kBound);
 }
 
-// At N = 1024 the local clamp (core/clamp_field.h) is below its cap for most VPLs and depends on
-// all N paths: a part takes the field of the full walk, and the screen-space compensation's
-// exact samples leave the emitters to the part from 0. Measured: max rel 3.9e-7 (as above);
-// with each part's own field the parts differed by up to 0.36 relative (1.1e-2 absolute).
+// At N = 1024 the local clamp (core/lights/clamp_field.h) is below its cap for most VPLs and
+// depends on all N paths: a part takes the field of the full walk, and the screen-space
+// compensation's exact samples leave the emitters to the part from 0. Measured: max rel 3.9e-7 (as
+// above); with each part's own field the parts differed by up to 0.36 relative (1.1e-2 absolute).
 TEST_F(Parts, LocalClampAndCompensationSplitWithTheFullWalksField) {
   irad::RenderOptions o = options(irad::Estimator::Raster);
   o.walk.paths = 1024;

@@ -1,7 +1,7 @@
 // irad render --path-range / --spp-range and irad merge through the real command line: the
 // parts' headers, the merge, and bad input (one line naming the file or option, exit code 1,
 // no output written).
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 
 #include <algorithm>
 #include <cstdlib>

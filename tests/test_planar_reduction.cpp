@@ -1,8 +1,8 @@
-// The exact reduction of flat parts (core/planar_reduction.h): how far it gets on flat,
+// The exact reduction of flat parts (core/mesh/planar_reduction.h): how far it gets on flat,
 // folded, closed and holed grids, and that it changes no surface: areas, the integral of the
 // normal, watertightness, and heights along vertical rays on a height field with flat, sloped
 // and bumpy parts against the original triangles.
-#include "core/planar_reduction.h"
+#include "core/mesh/planar_reduction.h"
 
 #include <algorithm>
 #include <glm/glm.hpp>

@@ -5,11 +5,11 @@
 // Lambert's cosine law and its walk against the flux E A cos theta it delivers to a plane.
 //
 // With IRAD_TEST_IMAGES=DIR the tests write their images and scenes to DIR (docs/ext/punctual.md).
+#include "core/camera/view.h"
 #include "core/gltf/writer.h"
-#include "core/image_io.h"
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_io.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "tests/side_by_side.h"
@@ -146,8 +146,9 @@ TEST(PunctualLights, DirectionalLightMatchesThePathTracer) {
 // A directional light on a lone plane: no indirect light (a plane does not see itself), so every
 // estimator must show rho E cos theta / pi exactly, in light and with no shadow acne, also at a
 // grazing 80 degrees. Every path leaves one such VPL, so the interleaved raster's 16 sets carry
-// equal shares (core/interleave_sets.h) at every pixel, also where the image's border cuts the
-// resolve's window: with N = 64 every set holds 4 paths, with N = 60 some hold 3 and are scaled.
+// equal shares (core/lights/interleave_sets.h) at every pixel, also where the image's border cuts
+// the resolve's window: with N = 64 every set holds 4 paths, with N = 60 some hold 3 and are
+// scaled.
 TEST(PunctualLights, DirectionalLightOnAPlaneFollowsLambertsCosineLaw) {
   Log log = quiet_log();
   const float albedo = 0.5f;
@@ -183,8 +184,8 @@ TEST(PunctualLights, DirectionalLightOnAPlaneFollowsLambertsCosineLaw) {
                     -d.z, paths, names[k], worst);
         // Measured: 0 (pt), <= 6e-7 (rt-vpl: 64 VPLs summed in float), <= 5e-7 (raster) at cos 0.87
         // and 0.17; a shadowed (acne) pixel would be off by 1. With the sets by a hash of the path
-        // (before core/interleave_sets.h) k = 4 was off by up to 0.5 (N = 64) and 0.47 (N = 60)
-        // within 2 pixels of the border.
+        // (not core/lights/interleave_sets.h's blocks) k = 4 is off by up to 0.5 (N = 64) and 0.47
+        // (N = 60) within 2 pixels of the border.
         EXPECT_LT(worst, 1e-5) << names[k];
       }
     }

@@ -1,8 +1,8 @@
 // The raster against answers no estimator of ours defines (design.md section 3).
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/sphere_mesh.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/image/image_metrics.h"
+#include "core/mesh/sphere_mesh.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/square_light_error.h"
 #include "tests/test_rooms.h"
@@ -30,7 +30,7 @@ TEST(RasterAnalytic, SquareLightOverPlaneMatchesLambert) {
 }
 
 // Interleaved sampling: each pixel sees 1/16 of the light's VPLs (a share of the paths dealt out in
-// blocks of 16, core/interleave_sets.h),
+// blocks of 16, core/lights/interleave_sets.h),
 // and the resolve averages the 16 sets over a 5x5 window centred on it (outer rows and
 // columns at half weight) on the same surface: a blur of about two pixels, which this small
 // image (a pixel covers up to 8 cm of the plane) makes visible.
@@ -38,9 +38,9 @@ TEST(RasterAnalytic, InterleavedSquareLightOverPlaneMatchesLambert) {
   const LambertError e = square_light_error(4, 0);
   // Measured: relative RMS 0.0079, max 0.063 (next to the light's silhouette, where the window
   // keeps only part of the sets; sets by a hash of the path: 0.0076, 0.062); at 320x240 the RMS
-  // is about half. Before the window was
-  // centred (a k x k window is half a pixel off centre) the RMS was 0.041; with sets taken as
-  // path mod 16 (Halton strips) the max was 0.15. Bounds: 1.5x the measurement.
+  // is about half. With an uncentred window (a plain k x k window is half a pixel off centre) the
+  // RMS is 0.041; with sets taken as path mod 16 (Halton strips) the max is 0.15. Bounds: 1.5x
+  // the measurement.
   EXPECT_GT(e.count, 10000);
   EXPECT_LT(e.rel_rms, 0.012);
   EXPECT_LT(e.max_rel, 0.09);
@@ -75,7 +75,7 @@ TEST(RasterAnalytic, InterleavedResolveAveragesACurvedSurface) {
     std::printf("sphere under a square light, k = %d against k = 1: relMSE %.3g, mean ratio %.4f\n",
                 k, m.relmse, m.mean_ratio[1]);
     // Measured: k = 2 2.83e-5, k = 4 1.41e-4, means 0.9996 and 0.9991; with a pixel's own plane
-    // as the window's test (before the normals' bisector) 8.94e-5 and 3.96e-4. Bounds ~1.7x.
+    // as the window's test (not the normals' bisector) 8.94e-5 and 3.96e-4. Bounds ~1.7x.
     EXPECT_LT(m.relmse, k == 2 ? 5e-5 : 2.4e-4);
     EXPECT_NEAR(m.mean_ratio[1], 1.0, 0.003);
   }

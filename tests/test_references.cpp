@@ -1,9 +1,9 @@
 // The CPU estimators against answers they do not define (design.md section 3), and the raster
 // against the exact-visibility estimator on the same VPLs.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
@@ -87,9 +87,8 @@ TEST(PathTracer, SquareLightOverPlaneMatchesLambert) {
 
 // The same far from the light: the plane 2 to 5 units off its axis, where the light leaves the
 // emitter 63 to 79 degrees from its normal. A light sample's shadow ray must not meet the
-// emitter it aims at (it did, once: aimed from the receiver but started at its offset point,
-// it crossed the light's plane beside the sample at grazing angles, and pt showed 0 beyond
-// about 2 units).
+// emitter it aims at (one aimed from the receiver but started at its offset point crosses the
+// light's plane beside the sample at grazing angles, and pt shows 0 beyond about 2 units).
 TEST(PathTracer, SquareLightSeenAtGrazingAnglesMatchesLambert) {
   const float albedo = 0.5f;
   Scene s = square_light_over_plane(1.0f, 1.0f, 1.0f, 12.0f, albedo);
@@ -115,8 +114,8 @@ TEST(PathTracer, SquareLightSeenAtGrazingAnglesMatchesLambert) {
   const double rel_rms = std::sqrt(sum_sq / (view.width * view.height));
   std::printf("pt square light at grazing angles: mean ratio %.5f, relative RMS %.5f\n",
               sum / sum_expected, rel_rms);
-  // Measured: mean ratio 0.99925, relative RMS 0.0157 at 256 spp (before the fix: mean ratio
-  // 0.0126, relative RMS 0.996).
+  // Measured: mean ratio 0.99925, relative RMS 0.0157 at 256 spp (with the shadow ray aimed from
+  // the receiver: mean ratio 0.0126, relative RMS 0.996).
   EXPECT_NEAR(sum / sum_expected, 1.0, 0.01);
   EXPECT_LT(rel_rms, 0.03);
 }
@@ -138,7 +137,7 @@ TEST(RasterVsRtVpl, CornellBoxSameVpls) {
   std::printf("raster vs rt-vpl: relMSE %.3g, RMSE %.3g, mean ratio %.5f\n", c.relmse, c.rmse,
               c.mean_ratio[0]);
   // Measured (llvmpipe, 256^2 shadow faces, normal-offset lookups): relMSE 4.2e-5, mean ratio
-  // 0.99952 (7.5e-6 with the slope-scaled bias that leaked through thin walls).
+  // 0.99952 (7.5e-6 with a slope-scaled bias, which leaks through thin walls).
   EXPECT_LT(c.relmse, 1e-3);
   EXPECT_NEAR(c.mean_ratio[0], 1.0, 2e-3);
 }

@@ -1,9 +1,9 @@
 // The real-time ring of path images (seed section 5.1.3) against the full instant radiosity image.
-#include "core/error.h"
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_io.h"
-#include "core/image_metrics.h"
-#include "core/view.h"
+#include "core/image/image_io.h"
+#include "core/image/image_metrics.h"
+#include "core/util/error.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "walk/quasi_random_walk.h"

@@ -2,8 +2,8 @@
 // Closed rooms for the leak and occlusion tests (tests/test_two_rooms.cpp,
 // tests/test_hard_cases.cpp, tests/test_shadow_lod.cpp, tests/test_shadow_occlusion.cpp,
 // tests/test_light_budget.cpp).
-#include "core/scene.h"
-#include "core/scene_builder.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_builder.h"
 
 #include <cstdint>
 

@@ -1,8 +1,8 @@
 // Radical inverses and the particle counts of the quasi-random walk (design.md section 1).
-#include "core/error.h"
-#include "core/particle_counts.h"
-#include "core/radical_inverse.h"
-#include "core/sequence.h"
+#include "core/sampling/particle_counts.h"
+#include "core/sampling/radical_inverse.h"
+#include "core/sampling/sequence.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -159,7 +159,7 @@ TEST(Sequence, HaltonAndScrambledHaltonAreStratified) {
 
 // Each digit has its own permutation, so one point over many seeds is uniform on [0, 1): the
 // rounds' light sets (`--rounds`, seeds 1..M-1) are independent and each is unbiased. With one
-// permutation for every digit, point 7 of the base-2 dimension took 2 values over all seeds.
+// permutation for every digit, point 7 of the base-2 dimension takes 2 values over all seeds.
 TEST(Sequence, ScrambledPointsAreUniformOverSeeds) {
   for (const std::size_t d : {0u, 1u, 4u}) {
     std::vector<double> values;

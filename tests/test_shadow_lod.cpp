@@ -1,13 +1,13 @@
-// The shadow passes' cluster hierarchy (core/mesh_clusters.h) and its use by the batched shadow
-// atlas (raster/shadow/shadow_lod.h, RasterOptions::shadow_lod): the tree's invariants on the
-// CPU, culling that changes no pixel, and the level of detail against the full meshes.
-// With IRAD_TEST_IMAGES=DIR the GL tests write their images to DIR.
+// The shadow passes' cluster hierarchy (core/mesh/mesh_clusters.h) and its use by the batched
+// shadow atlas (raster/shadow/shadow_lod.h, RasterOptions::shadow_lod): the tree's invariants on
+// the CPU, culling that changes no pixel, and the level of detail against the full meshes. With
+// IRAD_TEST_IMAGES=DIR the GL tests write their images to DIR.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/image_metrics.h"
-#include "core/mesh_clusters.h"
-#include "core/scene_builder.h"
-#include "core/sphere_mesh.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/sphere_mesh.h"
+#include "core/scene/scene_builder.h"
 #include "raster/context/gl_context.h"
 #include "raster/raster_renderer.h"
 #include "raster/scene/gpu_scene.h"
@@ -118,7 +118,7 @@ TEST(ShadowLod, BoundsHoldTheirMeshesAndErrorsGrowTowardTheRoot) {
 // error is an area-weighted mean, not a maximum); ShadowLodOptions::texels (half a texel) leaves
 // room for that. On the Cornell box with a sphere, the largest distance of sample points (the
 // centroid and edge midpoints of every simplified triangle) from the node's original triangles
-// was up to 2.7 times the error on the smallest nodes, 0.8 times on the root.
+// is up to 2.7 times the error on the smallest nodes, 0.8 times on the root.
 TEST(ShadowLod, ErrorBoundsTheDistanceFromTheSurface) {
   const Scene s = sphere_scene(64);
   const MeshClusters c = build_mesh_clusters(s, {256, true});
@@ -232,8 +232,8 @@ TEST(ShadowLod, CullingChangesNoPixel) {
 
 // The level of detail against the full sphere, and both against exact visibility (rt-vpl).
 // Measured (llvmpipe, 64^2 faces, texels 0.5): relMSE 1.05e-5 against the full meshes, mean
-// ratio 1.00047; against rt-vpl 6.08e-4 with LOD, 6.00e-4 without. With a bug that drew empty inner
-// meshes (the sphere gone from most faces): relMSE 1.2e-2, mean ratio 1.03.
+// ratio 1.00047; against rt-vpl 6.08e-4 with LOD, 6.00e-4 without. With a bug that draws empty
+// inner meshes (the sphere gone from most faces): relMSE 1.2e-2, mean ratio 1.03.
 TEST(ShadowLod, SimplifiedShadowsStayCloseToTheFullMeshes) {
   Log log = quiet_log();
   const Scene s = cornell_with_sphere(200); // 159200 triangles
@@ -259,9 +259,8 @@ TEST(ShadowLod, SimplifiedShadowsStayCloseToTheFullMeshes) {
 // What the faces draw: triangles over a batch of the walk's VPLs in the atlas itself, with every
 // triangle into every face (off), culled and with LOD. Measured (cornell + 159200-triangle
 // sphere, 16 surface VPLs, 64^2 faces): off 16 x 6 x 159232 = 15.3M; culled 2.34M; LOD 33k (a
-// face that sees the sphere from far draws one of its whole-sphere levels). At 2.1M triangles
-// (725 rings), before the cheapest-cut planning: culled 29.5M, LOD 84k, the batch's atlas
-// 17 ms against 7.1 s culled. The Cornell box split 4^7 times (524k): culled 8.6M, LOD 182k.
+// face that sees the sphere from far draws one of its whole-sphere levels). The Cornell box split
+// 4^7 times (524k): culled 8.6M, LOD 182k.
 TEST(ShadowLod, TheFacesDrawFewerTrianglesWithLod) {
   Log log = quiet_log();
   const Scene s = cornell_with_sphere(200);
@@ -344,7 +343,7 @@ TEST(ShadowLod, NoNewLeaksBetweenTwoSubdividedRooms) {
     std::printf("two subdivided rooms, k = %d: room B lit pixels %zu (max %.3g) full, %zu (max "
                 "%.3g) LOD; room A LOD against full: relMSE %.3g, mean ratio %.5f\n",
                 k, a.pixels, a.max, b.pixels, b.max, room_a.relmse, room_a.mean_ratio[1]);
-    // Measured: 5 (k = 1) and 28 (k = 4; 15 before the deferred resolve) lit pixels in room B
+    // Measured: 5 (k = 1) and 28 (k = 4) lit pixels in room B
     // with and without LOD, the same values; room A relMSE 0 (the walls simplify at error 0).
     EXPECT_LE(b.pixels, a.pixels) << k;
     EXPECT_LE(b.max, a.max * 1.001 + 1e-6) << k;

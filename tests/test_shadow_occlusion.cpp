@@ -1,10 +1,10 @@
 // Occlusion culling of the shadow faces' clusters (raster/shadow/shadow_occlusion.h,
 // ShadowLodOptions::occlusion): the box test on a depth map made by hand, and on the GL that it
 // changes no pixel while the faces draw less where walls hide most of a scene.
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/sphere_mesh.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/image/image_metrics.h"
+#include "core/mesh/sphere_mesh.h"
+#include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "raster/shadow/shadow_occlusion.h"
 #include "tests/test_rooms.h"

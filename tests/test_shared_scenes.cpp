@@ -3,7 +3,7 @@
 // warning (issue 12). Raster, the default estimator, small and with few paths: what is checked
 // is that the file is accepted and lit, not the image's accuracy (the furnace and the
 // environment tests do that).
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -5,7 +5,7 @@
 // orientation.
 #include "core/environment/environment.h"
 #include "core/environment/sky.h"
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,13 +1,13 @@
-// Perfect mirrors (seed section 5.1.2, core/mirrors.h): the loader's thresholds, the mirror
+// Perfect mirrors (seed section 5.1.2, core/scene/mirrors.h): the loader's thresholds, the mirror
 // polygons, the path tracer's mirror against Lambert's formula, the VPL estimators (mirrored VPLs,
 // the raster's pyramid clip and mirrored shadow cube, the ray-traced pass over visible mirrors)
 // against it and against the path tracer, and diffuse scenes untouched by all of it.
+#include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "core/gltf/writer.h"
-#include "core/image_metrics.h"
-#include "core/mirrors.h"
-#include "core/scene_builder.h"
-#include "core/view.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/mirrors.h"
+#include "core/scene/scene_builder.h"
 #include "keep_written_gltf.h"
 #include "raster/raster_renderer.h"
 #include "walk/mirror_pass.h"
@@ -473,8 +473,8 @@ TEST(Specular, JitterLeavesTheMirrorsUnlit) {
   std::printf("jitter on: mean inside the mirrors %.3g (%d pixels), elsewhere %.3g\n", inside,
               mirror_pixels, outside);
   // Measured: 6.4e-4 inside the mirrors, 1.4e-3 of the mean elsewhere (0 without jitter). With
-  // the mirror's base colour in the averaged albedo (before session 12): 0.474 against 0.454,
-  // the mirrors lit like walls, the CLI's image 14.6 % too bright after the mirror pass.
+  // the mirror's base colour in the averaged albedo: 0.474 against 0.454 (the mirrors lit like
+  // walls, the CLI's image 14.6 % too bright after the mirror pass).
   EXPECT_LT(inside, 1e-2 * outside);
 }
 

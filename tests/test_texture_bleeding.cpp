@@ -1,12 +1,12 @@
 // Textures colour the bounced light (the seed's "a red wall bleeds"): a box whose left wall is a
 // red | blue base-colour texture (white base colour factor). The walk reads the texture at each
-// hit (core/scene.cpp albedo_at), the raster samples the same texture: the floor next to the red
-// half must turn red and the floor next to the blue half blue, in raster, rt-vpl and pt alike,
+// hit (core/scene/scene.cpp albedo_at), the raster samples the same texture: the floor next to the
+// red half must turn red and the floor next to the blue half blue, in raster, rt-vpl and pt alike,
 // and the two VPL estimators must match pt on the floor and on the wall.
-#include "core/image_metrics.h"
-#include "core/scene_builder.h"
-#include "core/texture.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/image/image_metrics.h"
+#include "core/scene/scene_builder.h"
+#include "core/scene/texture.h"
 #include "raster/raster_renderer.h"
 #include "tests/doc_images.h"
 #include "walk/path_tracer.h"

@@ -1,6 +1,6 @@
 // The texture sampler and the scene model's surface queries.
-#include "core/scene.h"
-#include "core/texture.h"
+#include "core/scene/scene.h"
+#include "core/scene/texture.h"
 #include "tests/gltf_test_scene.h"
 
 #include <cmath>

@@ -4,7 +4,7 @@
 // wall) and double-sided surfaces at 0; one-sided faces with nothing behind them, a panel under a
 // ceiling and closed solids thicker than a few texels not at all. The Cornell box needs no planes
 // at any resolution the raster picks; the two rooms of tests/test_two_rooms.cpp need them.
-#include "core/scene_builder.h"
+#include "core/scene/scene_builder.h"
 #include "irad/irad.h"
 #include "raster/raster_renderer.h"
 #include "test_rooms.h"

@@ -1,9 +1,9 @@
 // A thin wall between a lit and a dark room (tests/test_rooms.h two_rooms): exact visibility lets
 // nothing through, the raster's shadow maps only at the seams, in every mode and at any scale;
-// walls just thick enough to go without the occluder planes let nothing through either. Moved
-// from tests/test_hard_cases.cpp, its section 5. Every bound is a measured value with a margin.
-#include "core/image_metrics.h"
-#include "core/view.h"
+// walls just thick enough to go without the occluder planes let nothing through either. Every
+// bound is a measured value with a margin.
+#include "core/camera/view.h"
+#include "core/image/image_metrics.h"
 #include "raster/raster_renderer.h"
 #include "tests/raster_test_options.h"
 #include "tests/test_rooms.h"
@@ -135,9 +135,8 @@ TEST(HardCases, NoLightLeaksThroughATwoMillimetreWall) {
   EXPECT_EQ(r.pt.pixels, 0u);
   // The raster's seams (see RasterShadowsHoldAtATwoMillimetreWall below). Measured (llvmpipe,
   // 256^2 faces, 64x64 pixels) with the occluder planes of raster/glsl/cube_glsl.h and their
-  // concave corners: no pixel at interleave 1 or 4 (without the corners, interleave 1 kept 4 of
-  // 4096 pixels, max 0.004, within 2 mm of the wall; before the planes 265 and 488 pixels, up to
-  // 0.149 and 0.312 m from the wall).
+  // concave corners: no pixel at interleave 1 or 4 (without the corners, interleave 1 keeps 4 of
+  // 4096 pixels, max 0.004, within 2 mm of the wall).
   const std::size_t max_pixels[] = {10, 10};
   const double max_value[] = {0.01, 0.01}, max_reach[] = {0.005, 0.005};
   for (std::size_t i = 0; i < std::size(interleaves); ++i) {
@@ -148,12 +147,12 @@ TEST(HardCases, NoLightLeaksThroughATwoMillimetreWall) {
   }
 }
 
-// The receiver-slope term of the former shadow bias, dist * texel * (1 + min(tan_x, 8)) with
-// texel = 2/256, was up to 0.07 m at 1 m from the VPL: far thicker than the wall, so B's surfaces
-// near the wall passed the shadow test (265 lit pixels, up to 0.149 m from the wall). The
-// normal-offset lookup (raster/glsl/shaders.h) moves the receiver by dist * texel * sin_x along its
-// normal and keeps only the constant bias. Measured: 4 seam pixels within 2 mm of the wall
-// (max 0.021) at 256^2; this bound asks for that: light in B only at the seams.
+// The receiver-slope term of a slope-scaled shadow bias, dist * texel * (1 + min(tan_x, 8)) with
+// texel = 2/256, is up to 0.07 m at 1 m from the VPL: far thicker than the wall, so B's surfaces
+// near the wall would pass the shadow test (265 lit pixels, up to 0.149 m from the wall). The
+// normal-offset lookup (raster/glsl/cube_glsl.h lookup_offset) moves the receiver by dist * texel *
+// sin_x along its normal and keeps only the constant bias. Measured: 4 seam pixels within 2 mm of
+// the wall (max 0.021) at 256^2; this bound asks for that: light in B only at the seams.
 TEST(HardCases, RasterShadowsHoldAtATwoMillimetreWall) {
   const TwoRoomImages r = render_two_rooms();
   EXPECT_LT(r.raster[0].reach, 0.005);
@@ -203,18 +202,17 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
   // Measured (llvmpipe, 64^2 faces, N = 128): default and --batch 1 4.07e-5 (53 pixels, max
   // 0.0082 x room A's mean, up to 0.22 m from the wall: the resolve spreads it), --interleave 1
   // 4.95e-5 (30 pixels, max 0.015 x, up to 2.4 cm), at every scale; issue 14 asks for below 1e-4.
-  // (Before the concave corners of raster/glsl/cube_glsl.h occluder_distance, with a whole
-  // texel's normal offset: 5.73e-5 and 6.86e-5.)
   // With k = 2 each pixel sees a quarter of the VPLs, 4x as bright: which of the few leaking
   // VPLs reach which pixels is the draw of the sets, and the expected leak is k = 1's (the sets
-  // by a hash of the path, before core/interleave_sets.h, drew 2.76e-5 in 44 pixels).
-  // Before the occluder planes (raster/glsl/cube_glsl.h) 2.70e-4 and 3.39e-4: one distance per
-  // texel, at its centre, while across the texel the distance of a wall seen at theta varies by
-  // dist * (2 / R) * tan(theta), far more than 2 mm. `--shadow-planes off` gives 5.1e-3 (the
-  // switch works; it is bounded from below): without the planes a lookup trusts the receiver's
-  // own plane and neighbourhood (cube_glsl.h in_front_of_receiver), which carries light along
-  // the floor under a wall this thin (2.70e-4 with the centre's distance alone); `auto` never
-  // turns them off for it. Bounds: the issue's 1e-4 (1.5-1.7x the measurements), 8e-3.
+  // by a hash of the path, not core/lights/interleave_sets.h's blocks, draw 2.76e-5 in 44
+  // pixels). With the centre's distance alone (no occluder planes, no receiver plane) 2.70e-4 and
+  // 3.39e-4: one distance per texel, at its centre, while across the texel the distance of a
+  // wall seen at theta varies by dist * (2 / R) * tan(theta), far more than 2 mm.
+  // `--shadow-planes off` gives 5.1e-3 (the switch works; it is bounded from below): without the
+  // planes a lookup trusts the receiver's own plane and neighbourhood (cube_glsl.h
+  // in_front_of_receiver), which carries light along the floor under a wall this thin (2.70e-4
+  // with the centre's distance alone); `auto` never turns them off for it. Bounds: the issue's
+  // 1e-4 (1.5-1.7x the measurements), 8e-3.
   const double bound[] = {1e-4, 1e-4, 1e-4, 8e-3};
   EXPECT_GT(modes[3].ratio[0], 1.5e-4);
   for (std::size_t i = 0; i < modes.size(); ++i) {

@@ -1,8 +1,8 @@
 // The quasi-random walk against its definition (design.md section 1).
-#include "core/error.h"
-#include "core/light_sampler.h"
-#include "core/particle_counts.h"
-#include "core/scene_builder.h"
+#include "core/lights/light_sampler.h"
+#include "core/sampling/particle_counts.h"
+#include "core/scene/scene_builder.h"
+#include "core/util/error.h"
 #include "walk/quasi_random_walk.h"
 
 #include <gtest/gtest.h>

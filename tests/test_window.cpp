@@ -2,8 +2,8 @@
 // (xvfb-run, scripts/setup.sh installs it), its framebuffer read back into a screenshot and
 // compared with the headless walkthrough's frame of the same camera; and the one-line error when
 // there is no display. Key and mouse handling is tested without a window (test_fly_camera.cpp).
-#include "core/image.h"
-#include "core/image_io.h"
+#include "core/image/image.h"
+#include "core/image/image_io.h"
 
 #include <algorithm>
 #include <cmath>

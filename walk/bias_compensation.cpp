@@ -1,9 +1,9 @@
 #include "walk/bias_compensation.h"
 
-#include "core/clamp_field.h"
-#include "core/light_sampler.h"
-#include "core/parallel_rows.h"
-#include "core/rng.h"
+#include "core/lights/clamp_field.h"
+#include "core/lights/light_sampler.h"
+#include "core/sampling/rng.h"
+#include "core/util/parallel_rows.h"
 #include "walk/vpl_gather.h"
 
 #include <cmath>

@@ -7,10 +7,10 @@
 // short gather paths: a cosine-distributed direction (f cos / pdf = rho), and at the hit y
 //   L(y -> x) = L_e(y) + (clamped VPL radiance at y, exact visibility) + R(y)   (recursively).
 // Adding R to a clamped image removes the clamp's bias; punctual lights are never clamped.
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <cstdint>

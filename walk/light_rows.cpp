@@ -1,7 +1,7 @@
 #include "walk/light_rows.h"
 
-#include "core/parallel_rows.h"
-#include "core/rng.h"
+#include "core/sampling/rng.h"
+#include "core/util/parallel_rows.h"
 #include "walk/vpl_gather.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include "walk/mirror_pass.h"
 
-#include "core/parallel_rows.h"
+#include "core/util/parallel_rows.h"
 #include "walk/mirror_walk.h"
 #include "walk/vpl_gather.h"
 
@@ -15,7 +15,7 @@ glm::vec3 mirror_radiance(const Scene& scene, const RayScene& rays, const VplSet
   glm::vec3 origin = position + eps * n;
   glm::vec3 reflected = reflect_direction(n, dir);
   const auto hit = trace_through_mirrors(scene, rays, origin, reflected, throughput, eps);
-  if (!hit) // the environment, whether or not camera rays see it (core/scene.h)
+  if (!hit) // the environment, whether or not camera rays see it (core/scene/scene.h)
     return scene.has_environment() ? throughput * scene.environment->radiance(reflected)
                                    : glm::vec3(0.0f);
   const ShadingPoint x = shading_point(scene, *hit, origin, reflected);

@@ -2,10 +2,10 @@
 // Visible mirrors (seed section 5.1.2: "the visible specular objects need a second, ray-traced
 // pass"): where the camera sees a mirror, the VPL estimator is evaluated at the diffuse surface
 // seen in it, with exact visibility, as rt-vpl does everywhere.
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <atomic>

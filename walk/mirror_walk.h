@@ -1,9 +1,9 @@
 #pragma once
-// Perfect mirrors (core/mirrors.h) on the Embree side: following a ray through them, the mirrored
-// copies the walk adds beside each VPL, and the visibility of a mirrored VPL.
-#include "core/mirrors.h"
-#include "core/scene.h"
-#include "core/vpl.h"
+// Perfect mirrors (core/scene/mirrors.h) on the Embree side: following a ray through them, the
+// mirrored copies the walk adds beside each VPL, and the visibility of a mirrored VPL.
+#include "core/lights/vpl.h"
+#include "core/scene/mirrors.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <optional>
@@ -23,8 +23,8 @@ std::optional<RayHit> trace_through_mirrors(const Scene& scene, const RayScene& 
                                             glm::vec3& origin, glm::vec3& dir,
                                             glm::vec3& throughput, float eps);
 
-// Appends the mirrored copy of `vpl` in every polygon it can reach (core/mirrors.h). By value:
-// `vpl` may be an element of `out`.
+// Appends the mirrored copy of `vpl` in every polygon it can reach (core/scene/mirrors.h). By
+// value: `vpl` may be an element of `out`.
 void append_mirrored(Vpl vpl, const std::vector<MirrorPolygon>& mirrors, std::vector<Vpl>& out);
 
 // Whether the mirrored VPL `vpl` reaches x: x on the lit side, the crossing m inside the polygon,

@@ -1,10 +1,10 @@
 #include "walk/path_tracer.h"
 
-#include "core/error.h"
-#include "core/light_sampler.h"
-#include "core/parallel_rows.h"
-#include "core/rng.h"
-#include "core/vpl.h"
+#include "core/lights/light_sampler.h"
+#include "core/lights/vpl.h"
+#include "core/sampling/rng.h"
+#include "core/util/error.h"
+#include "core/util/parallel_rows.h"
 #include "walk/alpha.h"
 
 #include <cmath>
@@ -94,7 +94,7 @@ glm::vec3 Tracer::directional(const Hit& x, const LightStart& s, std::uint64_t s
 }
 
 // Radiance of the environment along a ray that left the scene: what a camera ray sees
-// (core/scene.h background_radiance), the map after a mirror (weight 1: no light sample
+// (core/scene/scene.h background_radiance), the map after a mirror (weight 1: no light sample
 // reaches it through the mirror), else the map weighted against the light samples (MIS).
 glm::vec3 Tracer::escaped(const glm::vec3& dir, int depth, bool specular, double bsdf_pdf) const {
   if (depth == 0) return background_radiance(scene_, dir);
@@ -179,7 +179,7 @@ glm::vec3 Tracer::radiance(const glm::vec3& eye, const glm::vec3& dir0, float tm
       sum +=
           throughput * le * (depth == 0 || specular ? 1.0f : emitter_weight(x, origin, bsdf_pdf));
     const Material& material = scene_.material_of(x.triangle);
-    if (material.specular) { // perfect mirror (core/mirrors.h): no next event, f/pdf = R
+    if (material.specular) { // perfect mirror (core/scene/mirrors.h): no next event, f/pdf = R
       throughput *= material.base_color;
       if (max3(throughput) <= 0.0f) break;
       origin = x.position + eps_ * x.ng;

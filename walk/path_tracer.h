@@ -7,17 +7,17 @@
 // directional: delta lights) are reached by next-event estimation only, without MIS weight. The
 // environment (core/environment/environment.h) is sampled by its luminance density as one more
 // light and weighted against cosine sampling, which finds it when a scattered ray leaves the scene;
-// a camera ray that leaves shows core/scene.h background_radiance (0 when the environment is not
-// visible). Russian roulette after three bounces. No clamp: unbiased.
-// Mirrors (Material::specular) reflect perfectly: no next-event estimation there, and an emitter
-// found right after a mirror counts with weight 1 (light samples cannot reach it through the
-// mirror). So light that reaches a diffuse point by way of a mirror is found by scattering only
-// (noisier), and a punctual light seen through a mirror is never found (delta light and delta
-// mirror): compare mirror scenes with area lights only.
-// Deterministic for a given seed whatever the thread count (one RNG stream per pixel and sample).
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
+// a camera ray that leaves shows core/scene/scene.h background_radiance (0 when the environment is
+// not visible). Russian roulette after three bounces. No clamp: unbiased. Mirrors
+// (Material::specular) reflect perfectly: no next-event estimation there, and an emitter found
+// right after a mirror counts with weight 1 (light samples cannot reach it through the mirror). So
+// light that reaches a diffuse point by way of a mirror is found by scattering only (noisier), and
+// a punctual light seen through a mirror is never found (delta light and delta mirror): compare
+// mirror scenes with area lights only. Deterministic for a given seed whatever the thread count
+// (one RNG stream per pixel and sample).
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <atomic>

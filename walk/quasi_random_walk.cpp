@@ -1,9 +1,9 @@
 #include "walk/quasi_random_walk.h"
 
-#include "core/error.h"
-#include "core/light_sampler.h"
-#include "core/particle_counts.h"
-#include "core/radical_inverse.h"
+#include "core/lights/light_sampler.h"
+#include "core/sampling/particle_counts.h"
+#include "core/sampling/radical_inverse.h"
+#include "core/util/error.h"
 #include "walk/alpha.h"
 #include "walk/mirror_walk.h"
 
@@ -94,8 +94,8 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
   glm::vec3 offset_normal = start.triangle >= 0 ? start.normal : glm::vec3(0.0f);
   if (glm::dot(offset_normal, dir) < 0.0f) offset_normal = -offset_normal;
   for (int j = 1; j <= depth && positive(beta); ++j) {
-    // Mirrors (core/mirrors.h) reflect the particle on to the next diffuse surface (beta *= R);
-    // a specular bounce is not a reflection j (it takes no Halton dimensions).
+    // Mirrors (core/scene/mirrors.h) reflect the particle on to the next diffuse surface (beta *=
+    // R); a specular bounce is not a reflection j (it takes no Halton dimensions).
     glm::vec3 from = origin + eps * offset_normal;
     const auto hit = mirrors_.empty() ? rays_->intersect(from, dir, 0.0f, far)
                                       : trace_through_mirrors(scene, *rays_, from, dir, beta, eps);

@@ -7,17 +7,17 @@
 // point x_0 = (0, 0, ...) is degenerate (a light's corner, then every bounce along the normal, so
 // that path never leaves the scene) and, carrying the deepest terms alone, it biased the Cornell
 // box high by 8 % at N = 256 (RMSE against the path tracer 0.043 with x_0, 0.010 without).
-// Mirrors (seed section 5.1.2, core/mirrors.h): a particle reflects in every mirror it meets on
-// its way to the next diffuse surface (beta *= R each time; not counted as a reflection j, since
+// Mirrors (seed section 5.1.2, core/scene/mirrors.h): a particle reflects in every mirror it meets
+// on its way to the next diffuse surface (beta *= R each time; not counted as a reflection j, since
 // n_j counts diffuse events and the specular bounce is deterministic), and every VPL is followed
 // in the list by its mirrored copies, which keep its path index.
-#include "core/light_sampler.h"
-#include "core/log.h"
-#include "core/mirrors.h"
-#include "core/particle_counts.h"
-#include "core/scene.h"
-#include "core/sequence.h"
-#include "core/vpl.h"
+#include "core/lights/light_sampler.h"
+#include "core/lights/vpl.h"
+#include "core/sampling/particle_counts.h"
+#include "core/sampling/sequence.h"
+#include "core/scene/mirrors.h"
+#include "core/scene/scene.h"
+#include "core/util/log.h"
 #include "walk/ray_scene.h"
 
 #include <cstdint>
@@ -36,8 +36,9 @@ struct WalkOptions {
   int depth_cap = 64;
   SequenceKind sequence = SequenceKind::Halton; // design.md: Halton
   std::uint64_t seed = 0;                       // scrambled-halton and random only
-  // How the N paths are shared among the lights (core/light_sampler.h): by power (design.md 6.2)
-  // or N/G per light; the light is chosen from the walk's first, best stratified dimension.
+  // How the N paths are shared among the lights (core/lights/light_sampler.h): by power
+  // (design.md 6.2) or N/G per light; the light is chosen from the walk's first, best stratified
+  // dimension.
   LightAllocation allocation = LightAllocation::Power;
   // Trace only the particles first_path..end_path-1 (end_path 0: N) of the N-path walk: the same
   // VPLs with the same weights 1/n_j as the full walk, so the images of disjoint ranges add up to
@@ -64,7 +65,7 @@ private:
   LightSampler lights_;
   ParticleCounts counts_;
   Sequence halton_;
-  std::vector<MirrorPolygon> mirrors_; // core/mirrors.h; empty: the diffuse walk unchanged
+  std::vector<MirrorPolygon> mirrors_; // core/scene/mirrors.h; empty: the diffuse walk unchanged
 };
 
 // All N particles (or the range of WalkOptions). Throws irad::Error when the scene has no light or

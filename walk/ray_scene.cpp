@@ -1,8 +1,8 @@
 #include "walk/ray_scene.h"
 
-#include "core/animation.h"
-#include "core/error.h"
-#include "core/rng.h"
+#include "core/animation/animation.h"
+#include "core/sampling/rng.h"
+#include "core/util/error.h"
 #include "walk/alpha.h"
 
 #include <algorithm>

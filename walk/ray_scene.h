@@ -15,7 +15,7 @@
 // the same pixel always seeing the same thing, and the residual gather sees what rt-vpl saw).
 // The scene given to the constructor (or to update()) must then outlive this object: the filters
 // read its materials, uvs, colours and textures. Without such materials no filter is installed.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,10 +1,10 @@
 #include "walk/screen_compensation.h"
 
-#include "core/clamp_field.h"
-#include "core/error.h"
-#include "core/light_sampler.h"
-#include "core/parallel_rows.h"
-#include "core/rng.h"
+#include "core/lights/clamp_field.h"
+#include "core/lights/light_sampler.h"
+#include "core/sampling/rng.h"
+#include "core/util/error.h"
+#include "core/util/parallel_rows.h"
 #include "walk/vpl_gather.h"
 
 #include <atomic>
@@ -50,8 +50,8 @@ struct Context {
   // camera does not see y's side `n` (outside the image, behind the camera, or hidden). The
   // pixel must see y's surface at its centre (same_surface): y's own pixel, else the nearest of
   // its 8 neighbours that does; a pixel whose centre sees another surface holds that surface's
-  // radiance, and at the creases and contacts where the clamp's residual lives that was a bias
-  // the rounds shared (docs/accuracy.md). None: -1 (y is evaluated exactly).
+  // radiance, and at the creases and contacts where the clamp's residual lives that would be a
+  // bias the rounds share (docs/accuracy.md). None: -1 (y is evaluated exactly).
   int camera_pixel(const glm::vec3& y, const glm::vec3& n) const {
     const glm::vec4 clip = view.projection * view.view * glm::vec4(y, 1.0f);
     if (!(clip.w > 0.0f)) return -1;

@@ -19,15 +19,15 @@
 // Where the image's pixel and y differ: y's value is that of the pixel its projection falls in
 // when that pixel's centre sees y's surface (turned the same way, on y's tangent plane within
 // half a pixel), else of the nearest neighbour whose centre does, else y is evaluated exactly.
-// Taking whatever the pixel showed put the other face of a crease (or the surface behind a
-// silhouette) in y's place just where the residual is large: a bias all rounds shared, rt-vpl's
+// Taking whatever the pixel shows puts the other face of a crease (or the surface behind a
+// silhouette) in y's place just where the residual is large: a bias all rounds share, rt-vpl's
 // 4x4-block relMSE on the Cornell box at 128x128 with 8 rounds 7.8e-5 (32 rounds: 7.4e-5),
 // 1.4e-5 with the test (docs/accuracy.md). The image is the estimator's own (interleaved,
 // resolved) answer, so the residual inherits its light-set error, not more.
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 #include "walk/thin_walls.h"
 
-#include "core/parallel_rows.h"
+#include "core/util/parallel_rows.h"
 
 #include <algorithm>
 #include <atomic>

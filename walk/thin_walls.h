@@ -12,7 +12,7 @@
 // seen from behind, so nothing lies on their dark side), and a surface behind A that faces A's
 // back (a panel under a ceiling: what lies behind the panel is hidden by it from every point in
 // front of it).
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 namespace irad {

@@ -1,6 +1,6 @@
 #include "walk/vpl_clustering.h"
 
-#include "core/clamp_field.h"
+#include "core/lights/clamp_field.h"
 #include "walk/light_rows.h"
 
 namespace irad {

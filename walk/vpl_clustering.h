@@ -1,12 +1,12 @@
 #pragma once
 // The walk's VPLs as the representatives of their clusters (matrix row-column sampling:
-// core/light_clusters.h over the rows of walk/light_rows.h), what `--clusters` draws: rows
+// core/lights/light_clusters.h over the rows of walk/light_rows.h), what `--clusters` draws: rows
 // weighted by their inverse totals, at most `clusters` clusters, one representative each, and
-// the local clamp (core/clamp_field.h) anew at the representatives' density.
-#include "core/light_clusters.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+// the local clamp (core/lights/clamp_field.h) anew at the representatives' density.
+#include "core/camera/view.h"
+#include "core/lights/light_clusters.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <atomic>

@@ -88,7 +88,7 @@ glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl&
   const Unshadowed u = unshadowed(x, v, dmin, eps);
   if (u.term == glm::vec3(0.0f)) return u.term;
   // Shadow ray from the receiver toward the VPL, stopping short of both ends; a mirrored VPL
-  // (core/mirrors.h) by way of its mirror polygon.
+  // (core/scene/mirrors.h) by way of its mirror polygon.
   if (v.mirror >= 0
           ? !mirrored_visible(rays, v, mirrors[static_cast<std::size_t>(v.mirror)], x.position, eps)
           : rays.occluded(x.position, u.toward, eps, u.tmax))

@@ -1,9 +1,9 @@
 #pragma once
 // Exact-visibility evaluation of a VPL list at one surface point: the rt-vpl estimator's core,
 // also used by the clamp's bias compensation.
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <algorithm>
@@ -31,10 +31,10 @@ std::optional<ShadingPoint> visible_point(const Scene& scene, const RayScene& ra
                                           const View& view, int x, int y);
 
 // The VPLs' reflected radiance at x toward the viewer:
-//   rho(x)/pi * sum_k I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)   (core/vpl.h),
+//   rho(x)/pi * sum_k I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)   (core/lights/vpl.h),
 // with V from shadow rays (for a mirrored VPL, V through its mirror polygon: walk/mirror_walk.h).
 // x must not lie on a mirror (a mirror reflects nothing diffusely: walk/mirror_pass.h). d_min: the
-// VPL's own clamp_distance, else dmin (the global clamp, world units; core/vpl.h
+// VPL's own clamp_distance, else dmin (the global clamp, world units; core/lights/vpl.h
 // clamp_distance2); eps: the scene's ray offset.
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps);
@@ -64,8 +64,8 @@ void for_each_vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const 
   }
 }
 
-// E_k of core/vpl.h: the VPL's emission profile toward a direction with cosine cos_y (1 for a
-// directional VPL, which gather_directional() evaluates).
+// E_k of core/lights/vpl.h: the VPL's emission profile toward a direction with cosine cos_y (1 for
+// a directional VPL, which gather_directional() evaluates).
 float emission_profile(const Vpl& v, float cos_y);
 // A directional VPL's I max(0, n_x . -d) V(x, -d), V from a shadow ray to infinity (without
 // rho(x)/pi).

@@ -1,6 +1,6 @@
 #include "walk/vpl_tracer.h"
 
-#include "core/parallel_rows.h"
+#include "core/util/parallel_rows.h"
 #include "walk/mirror_pass.h"
 #include "walk/vpl_gather.h"
 

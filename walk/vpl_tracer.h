@@ -4,10 +4,10 @@
 // from a primary ray through the pixel centre. Raster and rt-vpl may differ only by shadow-map
 // error (and the raster's interpolation of positions). Where the primary ray meets a mirror, the
 // surface seen in it is shaded (walk/mirror_pass.h), as the raster's second pass does.
-#include "core/image.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
 #include <atomic>
@@ -29,7 +29,7 @@ Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, con
 
 // Overwrites `pixels` (Image coordinates) of `image` with rt-vpl's values, alpha kept: the
 // raster's edge pixels (raster/raster_renderer.h EdgePixelMode::Listed), where its interleaved
-// filter and its shadow maps are least sure (docs/accuracy.md, session 16). Pixels that see a
+// filter and its shadow maps are least sure (docs/accuracy.md). Pixels that see a
 // mirror get its L_e alone, as the raster's (walk/mirror_pass.h adds what it reflects).
 void trace_vpl_pixels(const Scene& scene, const RayScene& rays, const View& view,
                       const VplSet& vpls, const VplTracerOptions& options,

@@ -1,7 +1,7 @@
 #include "core/environment/environment.h"
 
-#include "core/cdf.h"
-#include "core/error.h"
+#include "core/sampling/cdf.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -21,7 +21,7 @@
 // constant per texel, pdf(w) = lum(L(w)) / S, and L(w) / pdf(w) has luminance S for every sample.
 // A texel whose radiance is positive in some channel has lum > 0 (all coefficients are > 0),
 // so every direction that carries light can be sampled: the estimators stay unbiased.
-#include "core/image.h"
+#include "core/image/image.h"
 
 #include <glm/glm.hpp>
 #include <string>

@@ -1,11 +1,11 @@
-// Environment map files: OpenEXR through core/image_io.h's read_exr (after a header check of our
-// own, so that sizes are refused before any pixel is read), Radiance HDR through stb_image.
+// Environment map files: OpenEXR through core/image/image_io.h's read_exr (after a header check of
+// our own, so that sizes are refused before any pixel is read), Radiance HDR through stb_image.
 // Library failures become fixed phrases of ours: no library text reaches a message.
 #include "core/environment/environment_file.h"
 
-#include "core/error.h"
-#include "core/image_io.h"
-#include "core/number_list.h"
+#include "core/image/image_io.h"
+#include "core/util/error.h"
+#include "core/util/number_list.h"
 
 #include <ImfChannelList.h>
 #include <ImfHeader.h>
@@ -24,8 +24,8 @@
 #include <system_error>
 #include <vector>
 
-// A second static stb_image, Radiance HDR only (core/gltf/image_decode.cpp's copy is PNG and JPEG
-// only, STBI_NO_HDR). Static: each copy's functions stay inside its own translation unit.
+// A second static stb_image, Radiance HDR only (core/gltf/decode/image_decode.cpp's copy is PNG and
+// JPEG only, STBI_NO_HDR). Static: each copy's functions stay inside its own translation unit.
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_STATIC
 #define STBI_ONLY_HDR

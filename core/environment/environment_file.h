@@ -1,7 +1,7 @@
 #pragma once
 // Environment maps from files and the --env colour, checked: what core/environment/environment.h's
 // Environment takes (linear RGB radiance, width == 2 height, every texel finite and >= 0).
-#include "core/image.h"
+#include "core/image/image.h"
 
 #include <filesystem>
 #include <glm/glm.hpp>

@@ -2,7 +2,7 @@
 
 #include "core/environment/environment_file.h"
 #include "core/environment/sky.h"
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <cmath>
 #include <fmt/format.h>

@@ -9,8 +9,8 @@
 // scaled by --env-strength and turned by --env-rotate degrees about +Y. A scene with no light of
 // its own and none of these is lit by a uniform white environment of radiance 1, with one
 // warning; `--env none` makes that an error instead (and adds no environment).
-#include "core/log.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
+#include "core/util/log.h"
 
 #include <glm/glm.hpp>
 #include <optional>

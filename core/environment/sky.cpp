@@ -5,8 +5,8 @@
 
 #include "core/environment/environment.h"
 
-#include "core/error.h"
-#include "core/number_list.h"
+#include "core/util/error.h"
+#include "core/util/number_list.h"
 
 #include <algorithm>
 #include <cmath>

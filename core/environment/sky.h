@@ -19,8 +19,8 @@
 // Below the horizon (directions with y < 0) the sky is black, and with the sun at or below the
 // horizon (elevation <= 0) the whole sky is black: the model has no twilight. Callers decide
 // what to do with such a sky (preetham_sun says there is no sun).
-#include "core/image.h"
-#include "core/scene.h"
+#include "core/image/image.h"
+#include "core/scene/scene.h"
 
 #include <glm/glm.hpp>
 #include <optional>

@@ -2,11 +2,11 @@
 // Internal to the glTF loader (not part of irad's API): the parsed document with its resolved
 // buffers, the file name for messages, the logger, the validator's findings, and index checking
 // shared by the loader's parts.
-#include "core/error.h"
 #include "core/gltf/issue_book.h"
-#include "core/gltf/json_read.h"
 #include "core/gltf/loader.h"
-#include "core/log.h"
+#include "core/gltf/read/json_read.h"
+#include "core/util/error.h"
+#include "core/util/log.h"
 
 #include <cstddef>
 #include <map>

@@ -1,6 +1,6 @@
 #include "core/gltf/file.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <array>
@@ -101,8 +101,8 @@ void split_glb(SceneFile& f, const Fail& fail) {
   f.bytes.resize(length);
 }
 
-// Parses the JSON text, failing on syntax errors and on nesting deeper than max_depth (tinygltf
-// converts extras and extensions recursively: deep nesting would overflow its stack).
+// Parses the JSON text, failing on syntax errors and on nesting deeper than max_depth (a JSON
+// value's copy and comparison recurse into it: deep nesting would overflow the stack).
 json parse_json(const SceneFile& f, int max_depth, const Fail& fail) {
   const auto* text = reinterpret_cast<const char*>(f.bytes.data() + f.json_offset);
   const json::parser_callback_t limit_depth = [&](int depth, json::parse_event_t, json&) {

@@ -1,7 +1,7 @@
 #include "core/gltf/issue_book.h"
 
-#include "core/error.h"
-#include "core/gltf/json_read.h"
+#include "core/gltf/read/json_read.h"
+#include "core/util/error.h"
 
 #include <array>
 #include <utility>

@@ -1,12 +1,12 @@
 #pragma once
-// Internal to the glTF loader: what the validator found (core/gltf/validate.h) and what the
-// loader made of it. The loader calls use(pointer) for every element it reads, before reading
+// Internal to the glTF loader: what the validator found (core/gltf/validate/validate.h) and what
+// the loader made of it. The loader calls use(pointer) for every element it reads, before reading
 // it: the first issue at or below that pointer is thrown as the error of the file, unless its
 // code is one the loader repairs (then it is a warning naming the repair). At the end,
 // warn_unused() reports the issues of the elements irad never used as one warning line that
 // counts them and shows the first.
-#include "core/gltf/validate.h"
-#include "core/log.h"
+#include "core/gltf/validate/validate.h"
+#include "core/util/log.h"
 
 #include <map>
 #include <string>

@@ -1,15 +1,15 @@
 #include "core/gltf/loader.h"
 
-#include "core/gltf/accessors.h"
-#include "core/gltf/animation.h"
-#include "core/gltf/cameras_lights.h"
 #include "core/gltf/context.h"
 #include "core/gltf/file.h"
-#include "core/gltf/geometry.h"
-#include "core/gltf/materials.h"
-#include "core/gltf/nodes.h"
-#include "core/gltf/skins.h"
-#include "core/gltf/validate.h"
+#include "core/gltf/read/accessors.h"
+#include "core/gltf/read/animation.h"
+#include "core/gltf/read/cameras_lights.h"
+#include "core/gltf/read/geometry.h"
+#include "core/gltf/read/materials.h"
+#include "core/gltf/read/nodes.h"
+#include "core/gltf/read/skins.h"
+#include "core/gltf/validate/validate.h"
 
 #include <algorithm>
 #include <array>

@@ -8,9 +8,9 @@
 // baseColorTexture decoded from sRGB, alphaMode and alphaCutoff, emissiveFactor x
 // KHR_materials_emissive_strength, emissiveTexture, doubleSided, KHR_texture_transform,
 // EXT_texture_webp; mirrors where metallicFactor >= 0.9 and roughnessFactor <= 0.1,
-// core/gltf/materials.h); perspective and orthographic cameras; KHR_lights_punctual lights.
+// core/gltf/read/materials.h); perspective and orthographic cameras; KHR_lights_punctual lights.
 //
-// Validation (core/gltf/validate.h): the document is checked as the Khronos glTF-Validator
+// Validation (core/gltf/validate/validate.h): the document is checked as the Khronos glTF-Validator
 // checks it. A problem in an element irad uses is the error of the file, named by its JSON path
 // ("meshes[2].primitives[0].attributes.NORMAL: ..."); problems irad repairs (a non-unit
 // rotation, missing POSITION bounds, ...) are warnings; problems in elements irad does not use
@@ -19,8 +19,8 @@
 // "MESSAGE") in irad's own words (docs/errors.md); no input makes the loader crash, hang or
 // allocate beyond the limits below. Triangles with a NaN or Inf vertex position are dropped with
 // one warning.
-#include "core/log.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
+#include "core/util/log.h"
 
 #include <cstdint>
 #include <filesystem>

@@ -1,7 +1,7 @@
 #include "core/gltf/writer.h"
 
-#include "core/error.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,9 +15,9 @@
 //   largest component, which becomes KHR_materials_emissive_strength.emissiveStrength (listed in
 //   extensionsUsed);
 // - every camera: perspective, yfov, aspectRatio when set, zfar when set, and znear = the
-//   camera's znear when positive, else the near plane make_view (core/view.h) fits for this scene
-//   (glTF requires znear > 0; loaded back, make_view then gives the same near plane); placed by a
-//   node whose matrix is camera_to_world;
+//   camera's znear when positive, else the near plane make_view (core/camera/view.h) fits for this
+//   scene (glTF requires znear > 0; loaded back, make_view then gives the same near plane); placed
+//   by a node whose matrix is camera_to_world;
 // - every punctual light as KHR_lights_punctual point or spot light: intensity = the largest
 //   component of the radiant intensity, color = intensity / that (white when zero); placed by a
 //   node whose matrix maps the light's -z axis to its direction.
@@ -27,7 +27,7 @@
 // The file is written to FILE.tmp and renamed over FILE, so FILE is either complete or untouched.
 // Errors throw irad::Error naming the file: a missing output folder, a failed write, or a scene
 // the loader would reject (non-finite positions, albedo outside [0, 1], negative emission).
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 #include <filesystem>
 

@@ -1,9 +1,9 @@
 #pragma once
-// Comparing an image against a reference: the metrics of core/image_metrics.h (RMSE, relMSE,
-// mean ratio, ... per pixel or over KxK blocks) and the EXR files of core/image_io.h.
-#include "core/image.h"
-#include "core/image_io.h"
-#include "core/image_metrics.h"
+// Comparing an image against a reference: the metrics of core/image/image_metrics.h (RMSE, relMSE,
+// mean ratio, ... per pixel or over KxK blocks) and the EXR files of core/image/image_io.h.
+#include "core/image/image.h"
+#include "core/image/image_io.h"
+#include "core/image/image_metrics.h"
 
 #include <string>
 

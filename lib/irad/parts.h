@@ -6,8 +6,8 @@
 // sample), and the part that starts at 0 also holds the visible emitters and the background, so
 // the full image is the plain sum of the parts (alpha too: 1 in total). merge_parts checks that
 // the parts belong together and cover 0..N exactly once, and sums them in double precision.
-#include "core/image.h"
-#include "core/image_io.h"
+#include "core/image/image.h"
+#include "core/image/image_io.h"
 
 #include <cstdint>
 #include <filesystem>

@@ -6,12 +6,12 @@
 //   pt      the path-traced reference, on the CPU
 // The image is linear float RGBA; the same scene, options and thread count give the same bits.
 // Errors throw irad::Error("FILE", "ELEMENT", "MESSAGE"); warnings go to the Log.
-#include "core/image.h"
-#include "core/light_budget.h"
-#include "core/log.h"
-#include "core/scene.h"
-#include "core/view.h"
-#include "core/vpl.h"
+#include "core/camera/view.h"
+#include "core/image/image.h"
+#include "core/lights/light_budget.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
+#include "core/util/log.h"
 #include "irad/scene_setup.h"
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
@@ -46,13 +46,13 @@ struct RenderOptions {
   // clamp and shadow resolution (clamp also for rt-vpl); interleave 0: automatic, 2 when the
   // render draws cluster representatives into an image below 512 pixels, else 4 (lib/render.cpp)
   RasterOptions raster;
-  // The clamp distance of the VPL estimators: local (core/clamp_field.h: d(y) = min(cap,
+  // The clamp distance of the VPL estimators: local (core/lights/clamp_field.h: d(y) = min(cap,
   // clamp_scale * r_k(y)), r_k the distance to the k-th nearest VPL, cap = raster.clamp of the
   // bounding diagonal) or global (raster.clamp of the diagonal everywhere).
   bool local_clamp = true;
   int clamp_neighbours = 8;
   float clamp_scale = 0.5f;
-  // Many VPLs through few passes (core/light_clusters.h): the walk's VPLs clustered by
+  // Many VPLs through few passes (core/lights/light_clusters.h): the walk's VPLs clustered by
   // `cluster_rows` exactly computed pixels' rows into at most `clusters` representatives, which
   // the estimator draws instead (walk/vpl_clustering.h: clamped anew at their own density,
   // d = cluster_clamp_scale r_k, larger than the walk's: a representative carries a cluster's
@@ -60,15 +60,15 @@ struct RenderOptions {
   std::size_t clusters = 0;
   std::size_t cluster_rows = 256;
   float cluster_clamp_scale = 1.0f;
-  // The automatic light budget (core/light_budget.h), `irad render`'s default: auto_paths sets
-  // walk.paths from a pilot walk of the scene (refused with a path range: the parts must share
+  // The automatic light budget (core/lights/light_budget.h), `irad render`'s default: auto_paths
+  // sets walk.paths from a pilot walk of the scene (refused with a path range: the parts must share
   // one N), auto_clusters sets `clusters` from the walk's VPL count (0 in a path range's part:
   // the clustering is not a sum over paths). Both resolved values are in the RenderResult.
   bool auto_paths = false;
   bool auto_clusters = false;
-  // auto_edges: raster.edge_pixels chosen by the rounds (core/light_budget.h trace_edge_pixels:
-  // traced, EdgePixelMode::Listed, from 2 rounds on for cluster representatives; never with
-  // jitter), in the RenderResult.
+  // auto_edges: raster.edge_pixels chosen by the rounds (core/lights/light_budget.h
+  // trace_edge_pixels: traced, EdgePixelMode::Listed, from 2 rounds on for cluster representatives;
+  // never with jitter), in the RenderResult.
   bool auto_edges = false;
   LightBudget budget;
   // Raster and rt-vpl: the mean of `rounds` renders of independent light sets (round m > 0: the

@@ -2,11 +2,11 @@
 // A scene made ready to render: the glTF file loaded within its limits, lit (its own lights, or
 // an environment), posed at a time of its animation, and the camera to render it from.
 // Every function throws irad::Error("FILE", "ELEMENT", "MESSAGE") on bad input; warnings go to
-// the Log (core/log.h: a sink of the caller's choice).
+// the Log (core/util/log.h: a sink of the caller's choice).
 #include "core/environment/lighting.h"
 #include "core/gltf/loader.h"
-#include "core/log.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
+#include "core/util/log.h"
 
 #include <optional>
 #include <string>

@@ -10,8 +10,8 @@
 //            paths see the current geometry).
 // With moving geometry, ring and cached keep each path's light as it was when the path was
 // traced: the lighting lags the motion by up to N frames.
-#include "core/log.h"
-#include "core/scene.h"
+#include "core/scene/scene.h"
+#include "core/util/log.h"
 #include "raster/context/gl_backend.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"

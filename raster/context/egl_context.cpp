@@ -2,7 +2,7 @@
 // exists (or the device asked for), else Mesa's surfaceless platform (llvmpipe on a machine with
 // no GPU). OpenGL 3.3 core, made current with no surface (EGL_KHR_surfaceless_context): the
 // renderer draws into framebuffer objects only.
-#include "core/error.h"
+#include "core/util/error.h"
 #include "raster/context/gl_context.h"
 
 #define EGL_NO_X11

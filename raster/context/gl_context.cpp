@@ -1,6 +1,6 @@
 #include "raster/context/gl_context.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <cstring>
 #include <fmt/format.h>

@@ -1,6 +1,6 @@
 // OSMesa: Mesa's off-screen context on llvmpipe, the embedded default. Optional at build time
 // (IRAD_HAVE_OSMESA): Mesa 25.1 removed it, and EGL's surfaceless platform then takes its place.
-#include "core/error.h"
+#include "core/util/error.h"
 #include "raster/context/gl_context.h"
 
 #ifdef IRAD_HAVE_OSMESA

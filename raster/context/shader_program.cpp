@@ -1,6 +1,6 @@
 #include "raster/context/shader_program.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <vector>

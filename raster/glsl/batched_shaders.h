@@ -22,8 +22,8 @@ inline std::string batched_source(const char* body, int batch, const std::string
 // the atlas pixel is p + u_offset[i]. u_face >= 0 names the instance i instead (the face by face
 // draws of the cluster hierarchy, raster/shadow/shadow_lod.h).
 // With mirrors in the scene (IRAD_MIRRORS, material_source) a batch may hold mirrored VPLs
-// (core/mirrors.h), whose cube is ShadowCube's unfolded one (raster/glsl/mirror_shaders.h): the
-// real scene and the scene reflected in the mirror plane, both clipped to the lit side of the
+// (core/scene/mirrors.h), whose cube is ShadowCube's unfolded one (raster/glsl/mirror_shaders.h):
+// the real scene and the scene reflected in the mirror plane, both clipped to the lit side of the
 // plane. Such a batch is drawn with u_copies = 2: instance 2 i + c draws copy c of face i (c = 1
 // the reflected scene; nothing for a VPL that is not mirrored, u_mirror[s] = 0).
 inline constexpr const char* batched_shadow_vertex = R"(

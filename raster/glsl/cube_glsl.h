@@ -9,13 +9,14 @@
 // is compared with the plane through the centre, d_c + g . (at - centre): a surface seen at a
 // grazing angle theta changes its distance by about dist (2/R) tan(theta) across one texel, far
 // more than a thin wall's thickness, so with d_c alone a receiver just behind such a wall but
-// nearer than its texel's centre passed (issue 14: a 2 mm wall let 2.7e-4 of the lit room's
-// light through), and a receiver on the surface itself but farther than the centre was shadowed
-// unless the normal offset lifted it over the texel's depth range. Until session 14 the lookup
-// took the lesser of d_c and the plane (the plane only added shadow), which kept that second
-// need: a whole texel of offset, then 0.75, which darkened receivers in narrow gaps (godot's
-// stacked spheres). The plane both ways is exact for a planar occluder. Next to a convex edge
-// seen from both sides it would darken the far face for up to a texel's footprint (the plane
+// nearer than its texel's centre passes (issue 14: a 2 mm wall lets 2.7e-4 of the lit room's
+// light through), and a receiver on the surface itself but farther than the centre is shadowed
+// unless the normal offset lifts it over the texel's depth range. The lookup compares the
+// receiver with the plane both ways, exact for a planar occluder; the lesser of d_c and the plane
+// (the plane only adding shadow) would keep that second need, an offset of 0.75 to a whole
+// texel, which darkens receivers in narrow gaps (godot's stacked spheres; raster/passes/
+// vpl_shader.h normal_offset_texels has the measurements). Next to a convex edge seen from both
+// sides the plane would darken the far face for up to a texel's footprint (the plane
 // extended past the edge floats in front of it); there the neighbouring texel sees something
 // behind the plane, and that direction's term is dropped (the centre's distance in it).
 // Where a texel holds a concave corner (the floor at a wall's foot, seen from the wall's lit
@@ -32,7 +33,7 @@ inline constexpr const char* cube_lookup_glsl = R"(
 // Normal-offset lookup: the receiver x (normal n, at distance dist from the VPL y, cos_x toward
 // it) is moved off its surface by u_offset_texels of a shadow texel's footprint there (dist *
 // texel angle * sin theta_x), so its own surface never shadows it, while a wall between it and
-// the VPL still does (a slope-scaled depth bias let light through walls thinner than the bias:
+// the VPL still does (a slope-scaled depth bias lets light through walls thinner than the bias:
 // 7 cm at 1 m with 256^2 faces). Returns the moved point relative to y. u_offset_texels:
 // raster/passes/vpl_shader.h normal_offset_texels.
 uniform float u_offset_texels;
@@ -86,13 +87,13 @@ ivec2 toward(vec2 at) {
 //     of q: the receiver's own surface, seen a little farther along the texel.
 // So a flat receiver never shadows itself, however grazing the angle, and creases do not shadow
 // their faces; the centre's distance alone needs the normal offset to exceed the texel's depth
-// range (0.75 of a texel kept the blocks' contact shadows up to 20 % too bright: raster/passes/
+// range (0.75 of a texel keeps the blocks' contact shadows up to 20 % too bright: raster/passes/
 // vpl_shader.h normal_offset_texels). Anything else nearer than the receiver shadows, as does o
 // when the plane runs along or away from the centre ray. Both exceptions would carry light under
 // a wall thinner than their reach that stands on the receiver's plane: walls thinner than 4 / R
 // of the diagonal get the occluder planes instead (raster_renderer.h planes_needed), and
 // tests/test_two_rooms measures walls 1.02x and 1.25x that thick (nothing passes; with a 12 f
-// reach 1.7e-6 of the lit room did). Measured on the Cornell box (256x256, R = 128, 4 rounds,
+// reach 1.7e-6 of the lit room does). Measured on the Cornell box (256x256, R = 128, 4 rounds,
 // interleave 1, no compensation, 4x4-block relMSE against rt-vpl over the same VPLs): the
 // centre's distance alone with 0.75 texel's offset 2.6e-5 (7.1e-5 per pixel); the plane crossing
 // alone (0.2 texel, a 6 f reach) 1.48e-5; with the neighbourhood 3.6e-6 (1.1e-5 per pixel). With

@@ -3,7 +3,7 @@
 // VPLs shades the camera's G-buffer (raster/image/gbuffer.h) screen-space, one instanced draw of
 // a full-screen triangle per interleaved set, instance i the draw's VPL u_first + i. The VPL's
 // record is read per vertex and handed on flat (a record read per fragment is a gather per lane
-// on llvmpipe: a loop over the batch's VPLs in one fragment ran at a quarter of the per-VPL
+// on llvmpipe: a loop over the batch's VPLs in one fragment runs at a quarter of the per-VPL
 // passes' speed on the Cornell box). The bodies get the version line and the array size from
 // batched_source (raster/glsl/batched_shaders.h).
 namespace irad::gl::shaders {
@@ -59,9 +59,9 @@ void main() {
 // Tile pixel t of the bound viewport (origin u_tile_origin) stands for image pixel
 // k t + (dx, dy) (raster/image/interleaved.h; k = 1, d = 0 without interleaving), or for the
 // pixel a list names (the edge pixels: raster/image/edge_pixels.h), whose G-buffer
-// texel holds the one surface it sees. The instance's VPL adds w * C(x) (core/vpl.h) with the
-// maths of raster/glsl/shaders.h vpl_fragment; its shadow cube is looked up in the batch's atlas
-// (raster/shadow/shadow_atlas.h): GL's cube-map face selection and (s, t) by hand, the texel
+// texel holds the one surface it sees. The instance's VPL adds w * C(x) (core/lights/vpl.h) with
+// the maths of raster/glsl/shaders.h vpl_fragment; its shadow cube is looked up in the batch's
+// atlas (raster/shadow/shadow_atlas.h): GL's cube-map face selection and (s, t) by hand, the texel
 // (nearest, clamped to the face's edge, as the cube map's sampler), then the face's place in the
 // VPL's blocks: a surface VPL's hemisphere in one block (+z, then the front halves of +x and -x
 // side by side, then those of +y and -y one over the other), any other VPL's six faces in two

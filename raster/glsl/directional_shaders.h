@@ -36,7 +36,8 @@ void main() {
 }
 )";
 
-// One directional VPL's w * C(x) = I max(0, n . -d) V rho(x)/pi (core/vpl.h), added by blending.
+// One directional VPL's w * C(x) = I max(0, n . -d) V rho(x)/pi (core/lights/vpl.h), added by
+// blending.
 inline constexpr const char* directional_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;

@@ -25,7 +25,7 @@ ivec2 environment_texel(vec3 d) {
   ivec2 size = u_environment_size;
   float u = 0.5 + atan(d.z, d.x) / (2.0 * ENVIRONMENT_PI);
   // acos(d.y) as atan(|d.xz|, d.y), equal for unit d: GLSL's acos is far less precise (on
-  // llvmpipe rows came out one off 1.2e-4 rad from their border), atan's error is the same as u's.
+  // llvmpipe rows come out one off 1.2e-4 rad from their border), atan's error is the same as u's.
   float v = atan(length(d.xz), d.y) / ENVIRONMENT_PI;
   ivec2 t = ivec2(floor(vec2(u, v) * vec2(size)));
   return clamp(t, ivec2(0), size - 1);
@@ -50,8 +50,8 @@ vec3 environment_radiance(vec3 w) {
 }
 )";
 
-// The visible suns (core/scene.h PunctualLight::angular_radius): IRAD_SUNS > 0 disks, sun k seen
-// where dot(w, toward_k) >= cos r_k with uniform radiance E_k / (pi sin^2 r_k); disks that
+// The visible suns (core/scene/scene.h PunctualLight::angular_radius): IRAD_SUNS > 0 disks, sun k
+// seen where dot(w, toward_k) >= cos r_k with uniform radiance E_k / (pi sin^2 r_k); disks that
 // overlap add.
 inline constexpr const char* sun_disks = R"(
 uniform vec3 u_sun_toward[IRAD_SUNS];   // unit, from the scene toward the sun: -direction
@@ -66,9 +66,9 @@ vec3 sun_radiance(vec3 w) {
 )";
 
 // What the camera ray through the pixel centre sees past the scene: L_env(w) (IRAD_ENVIRONMENT)
-// plus the sun disks (IRAD_SUNS > 0). The ray is core/view.cpp's image_point_ray at the pixel
-// centre, (x, y) in image pixels with y down, through u_inverse_view_projection (jittered: the
-// jittered projection's inverse, so the ray passes through the jittered point). Appended to the
+// plus the sun disks (IRAD_SUNS > 0). The ray is core/camera/view.cpp's image_point_ray at the
+// pixel centre, (x, y) in image pixels with y down, through u_inverse_view_projection (jittered:
+// the jittered projection's inverse, so the ray passes through the jittered point). Appended to the
 // #version line, the defines and the functions above (raster/passes/background.cpp).
 inline constexpr const char* background_fragment = R"(
 uniform mat4 u_inverse_view_projection;

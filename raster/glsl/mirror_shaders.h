@@ -1,6 +1,6 @@
 #pragma once
-// GLSL for mirrored VPLs (core/mirrors.h), kept apart from raster/glsl/shaders.h so that scenes
-// without mirrors run the very same programs as before.
+// GLSL for mirrored VPLs (core/scene/mirrors.h), kept apart from raster/glsl/shaders.h so that
+// the programs of scenes without mirrors hold no mirror code.
 #include <string>
 
 namespace irad::gl::shaders {
@@ -42,7 +42,7 @@ bool through_mirror(vec3 x) {
 )";
 
 // vpl_fragment with the pyramid test as the first statement of main(). Throws std::logic_error
-// if vpl_fragment no longer has the expected shape.
+// if vpl_fragment does not have the expected shape.
 std::string mirror_vpl_fragment(const char* vpl_fragment);
 
 // Shadow cube of a mirrored VPL y' (the image of y): the world as the unfolded path y' -> m -> x

@@ -49,7 +49,7 @@ void main() {
 }
 )";
 
-// One VPL's contribution w * C(x) (core/vpl.h), added by blending.
+// One VPL's contribution w * C(x) (core/lights/vpl.h), added by blending.
 inline constexpr const char* vpl_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;
@@ -203,7 +203,7 @@ inline constexpr const char* resolve_window_glsl = R"(
 // normal m within 18 degrees of n, and the chord d from x to q's point within 5 % of its length
 // of the plane normal to n + m. On a flat surface that is p's plane; on a sphere or a cylinder
 // the chord is normal to the bisector of the two normals, so a smooth curved mesh is averaged
-// as a flat one (with p's plane alone, a sphere a few pixels wide kept each pixel's own set: the
+// as a flat one (with p's plane alone, a sphere a few pixels wide keeps each pixel's own set: the
 // k x k pattern of the sets), while creases and steps still cut the window.
 bool same_surface(ivec2 q, vec3 x, vec3 n) {
   if (q.x < 0 || q.y < 0 || q.x >= u_size.x || q.y >= u_size.y) return false;
@@ -221,9 +221,9 @@ bool same_surface(ivec2 q, vec3 x, vec3 n) {
 // by k^2, estimates the whole sum; p averages the sets of the k x k window around it (offsets
 // -h..h, h = k / 2) over the pixels on its own surface (resolve_window_glsl). Where the window is
 // cut (a crease, a silhouette, the border) fewer sets are averaged, with unequal weights: still
-// an estimate of the whole sum, but a one-sided blur of it, which brightened a crease's row of
+// an estimate of the whole sum, but a one-sided blur of it, which brightens a crease's row of
 // pixels by 2-5 % in the mean of any number of rounds (Cornell box, k = 2). With u_edges those
-// pixels were shaded by every set instead (raster/image/edge_pixels.h), and their own sum is
+// pixels are shaded by every set instead (raster/image/edge_pixels.h), and their own sum is
 // taken. Then p's albedo.
 inline constexpr const char* resolve_fragment = R"(#version 330 core
 uniform sampler2D u_atlas;
@@ -233,7 +233,7 @@ uniform sampler2D u_albedo;
 uniform int u_k;
 uniform ivec2 u_tile;   // tile size in the atlas
 uniform ivec2 u_size;   // full image size
-uniform float u_scale[256]; // per set (core/interleave_sets.h), set = x + k y of its tile
+uniform float u_scale[256]; // per set (core/lights/interleave_sets.h), set = x + k y of its tile
 uniform bool u_edges;           // whether the edge pixels' own sums are given:
 uniform isampler2D u_edge_at;   // per pixel its texel in u_edge_light (x < 0: not an edge pixel)
 uniform sampler2D u_edge_light; // every set's light at the edge pixels (no albedo)
@@ -258,7 +258,7 @@ void main() {
   float weight = 0.0;
   int h = u_k / 2;
   // q's set and tile coordinates (q % k, q / k) from p's without a division per tap (an integer
-  // division per tap and lane made this pass cost as much as 150 VPL passes on llvmpipe).
+  // division per tap and lane makes this pass cost as much as 150 VPL passes on llvmpipe).
   ivec2 pm = p % u_k, pd = p / u_k;
   bool even = (u_k % 2) == 0; // odd k: h = (k - 1) / 2, every tap at full weight
   for (int dy = -h; dy <= h; ++dy)

@@ -3,15 +3,15 @@
 // the k x k window around them shows another surface (a crease, a step, a silhouette) or lies
 // off the image. There the resolve can only fill the missing sets in from one side, a blur that
 // does not average away over rounds: on the Cornell box (256x256, k = 2, 4 rounds) the crease
-// rows came out 2-5 % brighter than with every VPL shading every pixel. With edge pixels the
+// rows come out 2-5 % brighter than with every VPL shading every pixel. With edge pixels the
 // deferred passes shade these pixels with every set (k^2 times a tile pixel's work) and the
 // resolve keeps their own sum, k = 1's value.
 //
-// What it buys depends on the scene (docs/accuracy.md, session 16): per pixel it always helps
+// What it buys depends on the scene (docs/accuracy.md): per pixel it always helps
 // (zdm2 at 128x128: relMSE 7.45e-3 -> 4.88e-3 for 3-5 % more time; the Cornell box 4.36e-4 ->
 // 4.02e-4 for 30 % more); per 4x4 block it gains on zdm2 (1.65e-3 -> 1.34e-3), little on the
 // Cornell box, and loses on godot (1.40e-3 -> 1.59e-3), whose contact shadows the shadow maps
-// darken: the one-sided blur had lifted them. So shading them is an option (--interleave-edges
+// darken: the one-sided blur lifts them. So shading them is an option (--interleave-edges
 // shaded). The default from 2 rounds on only lists them (RasterOptions::edge_pixels Listed) and
 // lib/render.cpp traces them over the same VPLs, which also removes the shadow maps' error there.
 //

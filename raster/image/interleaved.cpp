@@ -1,6 +1,6 @@
 #include "raster/image/interleaved.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "raster/glsl/shaders.h"
 
 namespace irad::gl {

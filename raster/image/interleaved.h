@@ -54,7 +54,7 @@ public:
     return shade_edges_ && edges_ && edges_->count() > 0 ? edges_.get() : nullptr;
   }
   // Writes the resolved VPL light into the bound framebuffer (full resolution, no blending), set s
-  // scaled by scales[s] (core/interleave_sets.h; sets() of them). use_edges: the edge pixels
+  // scaled by scales[s] (core/lights/interleave_sets.h; sets() of them). use_edges: the edge pixels
   // take their own sums (every VPL of the image was shaded into them).
   void resolve(const std::vector<float>& scales, bool use_edges) const;
 

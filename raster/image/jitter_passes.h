@@ -3,8 +3,8 @@
 // jittered projection needs the depth of that very projection, and the passes drawn once per
 // image (visible emitters, the interleaved resolve's albedo) are averaged over a fixed set of
 // jittered passes, so the whole image is filtered with the same box over the pixel footprint.
-#include "core/scene.h"
-#include "core/view.h"
+#include "core/camera/view.h"
+#include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/gbuffer.h"
 #include "raster/passes/background.h"

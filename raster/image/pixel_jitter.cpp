@@ -1,6 +1,6 @@
 #include "raster/image/pixel_jitter.h"
 
-#include "core/radical_inverse.h"
+#include "core/sampling/radical_inverse.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,7 +39,7 @@ glm::vec2 vpl_jitter(const Vpl& vpl) {
 int jitter_stratum(const Vpl& vpl) {
   // Reflection 2 and deeper (amplitude <= 1/4, inside the middle cells' quarter) at the centre:
   // rounded to the middle cells' +-1/8 instead, the interior of the Cornell box of
-  // tests/test_jitter.cpp had 1.9x the RMSE (k = 1; docs/ext/jitter_textures.md).
+  // tests/test_jitter.cpp has 1.9x the RMSE (k = 1; docs/ext/jitter_textures.md).
   if (vpl.depth >= 2) return kJitterStrata;
   const glm::vec2 o = vpl_jitter(vpl);
   const auto cell = [](float x) {

@@ -6,7 +6,7 @@
 //
 // Offsets are in pixels of the full image, x to the right and y down (image rows): a pass with
 // offset o shades, at pixel (px, py), the surface seen through (px + 1/2 + o.x, py + 1/2 + o.y).
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
 
 #include <glm/glm.hpp>
 
@@ -16,10 +16,10 @@ namespace irad {
 // (rank-1 lattice) sequence u_i = frac(1/2 + i (1/g, 1/g^2)), g = 1.3247... the plastic number
 // (the root of g^3 = g + 1). Why this point (docs/ext/jitter_textures.md has the measurements):
 //  * a function of the particle i, not of the pass: the VPLs that reach reflection j are the
-//    particles i < n_j (core/particle_counts.h), a prefix of the sequence, and every prefix of
-//    this sequence covers the square evenly, so each depth's passes are stratified over the pixel
-//    on their own. The pass index interleaves the depths (path 0's VPLs, then path 1's, ...), so a
-//    radical inverse of it hands each depth an irregular subset.
+//    particles i < n_j (core/sampling/particle_counts.h), a prefix of the sequence, and every
+//    prefix of this sequence covers the square evenly, so each depth's passes are stratified over
+//    the pixel on their own. The pass index interleaves the depths (path 0's VPLs, then path 1's,
+//    ...), so a radical inverse of it hands each depth an irregular subset.
 //  * not the walk's radical inverses: Phi_2(i), Phi_3(i) already place the particle on the light
 //    (dimensions 0 and 1), and a jitter equal to them would tie the light sample to the sub-pixel
 //    position (at an edge pixel one surface would be lit from one half of the light only). The

@@ -1,6 +1,6 @@
 #include "raster/image/target.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 
 #include <string>
 

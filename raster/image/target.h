@@ -1,6 +1,6 @@
 #pragma once
 // The accumulation target: an RGBA32F colour texture and a 32-bit float depth buffer.
-#include "core/image.h"
+#include "core/image/image.h"
 #include "raster/context/gl_objects.h"
 
 namespace irad::gl {

@@ -1,6 +1,6 @@
 #include "raster/passes/background.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "raster/glsl/environment_glsl.h"
 #include "raster/glsl/shaders.h"
 #include "raster/passes/vpl_shader.h"
@@ -123,7 +123,7 @@ void Background::set_suns(const Scene& scene) const {
   for (const PunctualLight* l : visible_suns(scene)) {
     toward.push_back(-glm::normalize(l->direction));
     cosines.push_back(std::cos(l->angular_radius));
-    radiance.push_back(sun_disk_radiance(*l)); // core/scene.h, the CPU estimators' value
+    radiance.push_back(sun_disk_radiance(*l)); // core/scene/scene.h, the CPU estimators' value
   }
   api.Uniform3fv(program_.uniform("u_sun_toward"), suns_, glm::value_ptr(toward.front()));
   api.Uniform1fv(program_.uniform("u_sun_cos"), suns_, cosines.data());

@@ -1,17 +1,17 @@
 #pragma once
 // The background pass: where a camera ray sees no surface, the pixel shows the distant
 // environment's L(w) (core/environment/environment.h, when the scene has one and it is `visible`)
-// plus the disks of the visible suns (directional lights with angular_radius > 0, core/scene.h), w
-// the ray through the pixel centre (core/view.h pixel_ray). Drawn after everything else as a
-// triangle at depth 1 with GL_LEQUAL and depth writes off, over the depth buffer of the visible
-// surface, so it adds to the pixels that no surface covers and to no other.
-// Which of the two shows: the map when environment && environment->visible && it is not black;
-// the suns unless the scene has an environment with visible == false (the flag, --env-visible,
-// says what camera rays that miss see: all of it or nothing), so a sun without an environment
-// shows its disk on black. A scene that shows neither gets no Background (make() returns null):
-// no program, no texture, no pass.
-#include "core/scene.h"
-#include "core/view.h"
+// plus the disks of the visible suns (directional lights with angular_radius > 0,
+// core/scene/scene.h), w the ray through the pixel centre (core/camera/view.h pixel_ray). Drawn
+// after everything else as a triangle at depth 1 with GL_LEQUAL and depth writes off, over the
+// depth buffer of the visible surface, so it adds to the pixels that no surface covers and to no
+// other. Which of the two shows: the map when environment && environment->visible && it is not
+// black; the suns unless the scene has an environment with visible == false (the flag,
+// --env-visible, says what camera rays that miss see: all of it or nothing), so a sun without an
+// environment shows its disk on black. A scene that shows neither gets no Background (make()
+// returns null): no program, no texture, no pass.
+#include "core/camera/view.h"
+#include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 
 #include <glm/glm.hpp>

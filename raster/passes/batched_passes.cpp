@@ -111,7 +111,7 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
     first = end;
   }
   // The edge pixels: every set's VPLs, unscaled (the sets' sum is the whole estimate whatever
-  // their sizes: core/interleave_sets.h).
+  // their sizes: core/lights/interleave_sets.h).
   const EdgePixels* edges = into.interleaved ? into.interleaved->shaded_edges() : nullptr;
   if (edges == nullptr) return;
   edges->bind_light();

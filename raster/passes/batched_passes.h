@@ -10,8 +10,8 @@
 // not depend on the triangles, against 6 binds, 5 clears and 6 draws of the whole scene per VPL.
 // Every kind of VPL takes these passes: surface, point and spot VPLs' cubes and mirrored VPLs'
 // unfolded cubes in the atlas, directional VPLs' orthographic maps in their own atlas.
-#include "core/scene.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "raster/context/pass_timer.h"
 #include "raster/image/gbuffer.h"
 #include "raster/image/interleaved.h"
@@ -80,7 +80,7 @@ private:
   };
   // The shading's batch at most: more VPLs per full-screen draw than the shadow atlas holds,
   // for the kept shadow maps (GL guarantees 16 KB uniform blocks: 113 VPLs of 144 bytes). 256
-  // gave the cached walkthrough no measurable gain over 64 (Cornell box, 256x256, N = 64).
+  // gives the cached walkthrough no measurable gain over 64 (Cornell box, 256x256, N = 64).
   static constexpr int kShadingBatch = 64;
   // Draws the batch: its atlas, then shade().
   void flush(std::vector<Entry>& batch, const DeferredTarget& into, const GpuScene& gpu,

@@ -1,7 +1,7 @@
 #pragma once
 // The passes that see the scene from the camera once per image: depth only (the surface every
 // VPL pass then adds to), the G-buffer for interleaved sampling, and the visible emitters' L_e.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"

@@ -1,7 +1,7 @@
 #include "raster/passes/deferred_shader.h"
 
-#include "core/error.h"
-#include "core/mirrors.h"
+#include "core/scene/mirrors.h"
+#include "core/util/error.h"
 #include "raster/glsl/batched_shaders.h"
 #include "raster/glsl/cube_glsl.h"
 #include "raster/glsl/deferred_shaders.h"

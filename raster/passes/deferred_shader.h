@@ -1,14 +1,14 @@
 #pragma once
 // The deferred shading of a batch of VPLs: the camera's G-buffer (raster/image/gbuffer.h) holds
 // the one surface each pixel sees; a draw is an instanced full-screen triangle over the bound
-// viewport (the image, or one interleaved set's tile), instance i adding w * C(x) (core/vpl.h,
-// the maths of raster/passes/vpl_shader.h) of the draw's VPL i, its shadow map looked up in a
-// ShadowAtlas or an OrthoAtlas. The cost of a batch is pixels x VPLs, whatever the number of
-// triangles, and a pixel is lit once even where two faces coincide (duplicated faces, back-to-back
-// walls), which the forward passes light once per face that passes the depth test.
-#include "core/mirrors.h"
-#include "core/scene.h"
-#include "core/vpl.h"
+// viewport (the image, or one interleaved set's tile), instance i adding w * C(x)
+// (core/lights/vpl.h, the maths of raster/passes/vpl_shader.h) of the draw's VPL i, its shadow map
+// looked up in a ShadowAtlas or an OrthoAtlas. The cost of a batch is pixels x VPLs, whatever the
+// number of triangles, and a pixel is lit once even where two faces coincide (duplicated faces,
+// back-to-back walls), which the forward passes light once per face that passes the depth test.
+#include "core/lights/vpl.h"
+#include "core/scene/mirrors.h"
+#include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/gbuffer.h"
 
@@ -85,7 +85,8 @@ private:
   float diagonal_, clamp_;
   int batch_;
   bool planes_;
-  // Per mirror polygon (core/mirrors.h) the triangles its pyramid test reads (<= max_triangles).
+  // Per mirror polygon (core/scene/mirrors.h) the triangles its pyramid test reads (<=
+  // max_triangles).
   std::vector<int> mirror_triangles_;
   ShaderProgram program_;
   GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,

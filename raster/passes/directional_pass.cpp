@@ -10,7 +10,8 @@
 namespace irad::gl {
 
 bool has_directional_light(const Scene& scene) {
-  if (scene.has_environment()) return true; // its VPLs are directional (core/light_sampler.h)
+  if (scene.has_environment())
+    return true; // its VPLs are directional (core/lights/light_sampler.h)
   return std::any_of(scene.lights.begin(), scene.lights.end(), [](const PunctualLight& l) {
     return l.kind == PunctualLight::Kind::Directional;
   });

@@ -1,11 +1,11 @@
 #pragma once
-// Directional lights in the raster: a directional VPL (a light at infinity, core/vpl.h) gets an
-// orthographic shadow map over the scene (raster/shadow/ortho_shadow.h, shared by all VPLs of one
-// direction) and a shading pass that adds w * C(x) = I max(0, n . -d) V rho(x)/pi into whatever
+// Directional lights in the raster: a directional VPL (a light at infinity, core/lights/vpl.h) gets
+// an orthographic shadow map over the scene (raster/shadow/ortho_shadow.h, shared by all VPLs of
+// one direction) and a shading pass that adds w * C(x) = I max(0, n . -d) V rho(x)/pi into whatever
 // framebuffer and viewport are bound, over a depth buffer holding the visible surface (as
 // raster/passes/vpl_shader.h). Built only for scenes with a directional light or an environment.
-#include "core/scene.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"

@@ -1,10 +1,10 @@
 #pragma once
-// The shading pass of one VPL: draws the scene with w * C(x) (core/vpl.h) into whatever
+// The shading pass of one VPL: draws the scene with w * C(x) (core/lights/vpl.h) into whatever
 // framebuffer and viewport are bound, added by blending over a depth buffer that already holds
 // the visible surface (GL_LEQUAL, no depth writes).
-#include "core/mirrors.h"
-#include "core/scene.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/scene/mirrors.h"
+#include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
@@ -31,7 +31,7 @@ namespace irad::gl {
 // of the lit room with 0.5 (4.0e-5 with 0.75; the concave corners of occluder_distance keep
 // it there: without them 1.0e-4 with 0.5). Without them the lookup
 // trusts the receiver's own plane (cube_glsl.h in_front_of_receiver), so the offset need not cover
-// the texel's depth range (with the centre's distance alone it had to: 0.75 texel, half the texel's
+// the texel's depth range (with the centre's distance alone it has to: 0.75 texel, half the texel's
 // diagonal with a margin; 0.4 and below shadowed the surfaces themselves), and 0.2 is left for
 // curved meshes, whose shading normal is not their triangle's. Measured on the Cornell box
 // (256x256, R = 128, N = 1024, every VPL, interleave 1, against rt-vpl with the same VPLs,
@@ -47,9 +47,9 @@ public:
   VplShader(const GladGLContext& api, const Scene& scene, float clamp, bool planes);
   ~VplShader();
   // apply_albedo false: irradiance / pi without rho(x) (interleaved mode applies rho later).
-  // Mirrors receive no light (their rho is 0 here). A mirrored VPL (core/mirrors.h) is drawn by a
-  // second program that lights only its pyramid (raster/glsl/mirror_shaders.h); that program exists
-  // only for scenes with mirrors.
+  // Mirrors receive no light (their rho is 0 here). A mirrored VPL (core/scene/mirrors.h) is drawn
+  // by a second program that lights only its pyramid (raster/glsl/mirror_shaders.h); that program
+  // exists only for scenes with mirrors.
   void draw(const Vpl& vpl, const ShadowCube& shadow, const glm::mat3& frame,
             const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const {
     draw(vpl, shadow.texture(), shadow.texel_angle(), frame, view_projection, apply_albedo, gpu);

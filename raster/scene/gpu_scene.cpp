@@ -1,7 +1,7 @@
 #include "raster/scene/gpu_scene.h"
 
-#include "core/animation.h"
-#include "core/error.h"
+#include "core/animation/animation.h"
+#include "core/util/error.h"
 
 #include <algorithm>
 #include <numeric>
@@ -110,7 +110,8 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
   api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)),
                  vertices.data(), scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
-  // The optional arrays run parallel to the positions (core/scene.h): GL must never read past one.
+  // The optional arrays run parallel to the positions (core/scene/scene.h): GL must never read past
+  // one.
   if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
       (features_.colors && scene.colors.size() != scene.positions.size()))
     throw Error(scene.source, "gpu scene", "TEXCOORD_1 or COLOR_0 not one per vertex");

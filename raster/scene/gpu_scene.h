@@ -4,7 +4,7 @@
 // kUv1Attribute and kColorAttribute, raster/scene/material_glsl.h), one index buffer with the
 // triangles grouped by material, and the textures as linear RGBA32F with bilinear filtering (what
 // the walk samples). Textures are uploaded only when the scene has them.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/material_features.h"
 

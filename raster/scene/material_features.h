@@ -1,7 +1,7 @@
 #pragma once
 // Which optional material features a scene uses; the raster's programs compile only those
 // (raster/scene/material_glsl.h), so a scene without them pays nothing.
-#include "core/scene.h"
+#include "core/scene/scene.h"
 
 #include <glad/gl.h>
 
@@ -11,7 +11,7 @@ struct MaterialFeatures {
   bool uv1 = false;    // Scene::uvs1 is not empty
   bool colors = false; // Scene::colors is not empty
   bool alpha = false;  // some material is Mask or Blend
-  // Some material is a mirror (core/mirrors.h): the batched shadow atlas draws mirrored VPLs'
+  // Some material is a mirror (core/scene/mirrors.h): the batched shadow atlas draws mirrored VPLs'
   // cubes (raster/glsl/batched_shaders.h, IRAD_MIRRORS).
   bool mirrors = false;
   static MaterialFeatures of(const Scene& scene);

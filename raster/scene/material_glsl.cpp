@@ -34,13 +34,13 @@ void copy_material_attributes() {
 }
 )";
 
-// Fragment stage. material_uv: uv' = M (uv_n, 1) with the map's set n (core/scene.h TexCoordMap).
-// Albedo rho = base_color * texture(uv').rgb * COLOR_0.rgb; emission L_e = emission *
+// Fragment stage. material_uv: uv' = M (uv_n, 1) with the map's set n (core/scene/scene.h
+// TexCoordMap). Albedo rho = base_color * texture(uv').rgb * COLOR_0.rgb; emission L_e = emission *
 // emissive_texture(uv').rgb (COLOR_0 does not scale it: glTF).
 //
-// Alpha (core/scene.h coverage_at, covered): a = base_alpha * texture(uv').a * COLOR_0.a. Mask:
-// the fragment is absent where a < alpha_cutoff. Blend: absent unless h < a, h in [0, 1) a hash
-// of a key. Camera passes key on the fragment's world point (its float bits less the 10 lowest
+// Alpha (core/scene/scene.h coverage_at, covered): a = base_alpha * texture(uv').a * COLOR_0.a.
+// Mask: the fragment is absent where a < alpha_cutoff. Blend: absent unless h < a, h in [0, 1) a
+// hash of a key. Camera passes key on the fragment's world point (its float bits less the 10 lowest
 // mantissa bits: cells of ~1e-4 of the coordinate) and the primitive, so every camera pass of a
 // frame (depth, G-buffer, emitters, each VPL's shading, and the k x k tiles of interleaved
 // sampling, which reach the same points through other matrices: all but the pixels within a

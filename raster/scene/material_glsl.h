@@ -1,6 +1,6 @@
 #pragma once
 // The GLSL that every program reading a material shares: texture coordinates through the
-// material's TexCoordMap, COLOR_0, and the alpha coverage rule (core/scene.h coverage_at).
+// material's TexCoordMap, COLOR_0, and the alpha coverage rule (core/scene/scene.h coverage_at).
 // A program's source marks where the shared text goes with two lines:
 //   "#pragma irad_material_vertex"    (vertex stage: the attributes, varyings and
 //                                      copy_material_attributes())
@@ -8,9 +8,9 @@
 //                                      material_emission(), and with alpha material_absent())
 // material_source() replaces them and defines, after the version line, only the features the
 // scene has: IRAD_UV1 (TEXCOORD_1), IRAD_COLOR (COLOR_0), IRAD_ALPHA (a Mask or Blend material).
-// A scene with none of them compiles the same maths as before these features existed (the uv
-// transform is one mat3 product, exact for the identity), so its images stay bit-identical.
-#include "core/scene.h"
+// A scene with none of them compiles none of their code (the uv transform is one mat3 product,
+// exact for the identity), so its images are bit-identical to those of shaders without them.
+#include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_features.h"

@@ -1,6 +1,6 @@
 #include "raster/shadow/ortho_atlas.h"
 
-#include "core/error.h"
+#include "core/util/error.h"
 #include "raster/glsl/batched_shaders.h"
 #include "raster/glsl/ortho_atlas_shaders.h"
 #include "raster/shadow/ortho_shadow.h"

@@ -5,7 +5,7 @@
 // M x M texels) as the window depth (z + 1) / 2 of a DEPTH_COMPONENT32F texture, z = d.(p - c) / h
 // (c the bounds' centre, h the square's half width); the deferred passes read it as the depth
 // (2 z_w - 1) h along d. Cleared to 1 (far: never shadowed).
-#include "core/bounds.h"
+#include "core/scene/bounds.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"

@@ -1,6 +1,6 @@
 #include "raster/shadow/ortho_shadow.h"
 
-#include "core/light_sampler.h"
+#include "core/lights/light_sampler.h"
 #include "raster/glsl/directional_shaders.h"
 
 #include <algorithm>

@@ -3,8 +3,8 @@
 // seen along the light's travel d, storing the depth dot(p - c, d) of the nearest surface (c: the
 // centre of the bounds). Every directional VPL of one light has the same map, so the map is
 // rendered again only when d changes (or after forget()).
-#include "core/bounds.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/scene/bounds.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"

@@ -1,7 +1,7 @@
 #include "raster/shadow/shadow_atlas.h"
 
-#include "core/error.h"
-#include "core/mirrors.h"
+#include "core/scene/mirrors.h"
+#include "core/util/error.h"
 #include "raster/glsl/batched_shaders.h"
 #include "raster/shadow/shadow_cube.h"
 #include "raster/shadow/shadow_occlusion.h"

@@ -13,14 +13,14 @@
 // -y one over the other. Any other VPL (two-sided, point, spot) takes two blocks of three whole
 // faces each. Texels no face covers keep the clear value 1 (far: never shadowed).
 //
-// With ShadowLodMode Cull or On (core/mesh_clusters.h) the opaque triangles are drawn face by
+// With ShadowLodMode Cull or On (core/mesh/mesh_clusters.h) the opaque triangles are drawn face by
 // face from a cluster hierarchy (raster/shadow/shadow_lod.h): one glMultiDrawElements per face of
 // the clusters it sees (Cull: the same image), at the coarsest level whose error stays below
 // ShadowLodOptions::texels texels at the VPL's distance (On). The face comes from a uniform then
 // instead of gl_InstanceID; alpha-tested materials stay one instanced draw of all faces.
-#include "core/bounds.h"
-#include "core/mesh_clusters.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/mesh/mesh_clusters.h"
+#include "core/scene/bounds.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
@@ -65,7 +65,7 @@ public:
   static bool same_batch(const Vpl& a, const Vpl& b) { return (a.mirror < 0) == (b.mirror < 0); }
 
   // Clears the atlas and draws the cubes of vpls[0..n) (n <= batch(), their blocks_for summing to
-  // at most blocks(); no directional VPLs). A mirrored VPL (core/mirrors.h; the scene's
+  // at most blocks(); no directional VPLs). A mirrored VPL (core/scene/mirrors.h; the scene's
   // MaterialFeatures::mirrors) gets ShadowCube's unfolded cube; a batch with one draws the whole
   // scene twice per face, without the hierarchy. frames[s] receives the rotation world -> cube
   // frame of VPL s, blocks[s] the atlas texels of its first block (xy) and second block (zw).
@@ -104,8 +104,8 @@ private:
   static constexpr std::array<double, 3> kRounds = {0.25, 0.5, 1.0};
   // ... but only for a batch whose faces picked at least this many triangles per VPL: each
   // readback waits for the GL (about 0.2 ms per VPL on llvmpipe, the cost of some 2000
-  // triangles), and culling took 30 % on zdm2 (23k per VPL; a subdivided Cornell box of 8k
-  // triangles, a few hundred per VPL, drew its shadows in 0.24 ms per VPL without the rounds
+  // triangles), and culling takes 30 % on zdm2 (23k per VPL; a subdivided Cornell box of 8k
+  // triangles, a few hundred per VPL, draws its shadows in 0.24 ms per VPL without the rounds
   // and 0.40-0.48 with them).
   static constexpr std::size_t kOcclusionTrianglesPerVpl = 8000;
   // The hierarchy of `scene`, made on first use; false when the faces draw everything.

@@ -9,8 +9,8 @@
 // back to the free list when the slot is replaced, so a full ring allocates nothing per frame.
 // A page grows (doubling its rows, its blocks copied) up to the texture size before a second one
 // is started: one page, one texture per deferred draw, for every kept VPL of a usual ring.
-#include "core/bounds.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/scene/bounds.h"
 #include "raster/context/gl_objects.h"
 #include "raster/passes/batched_passes.h"
 #include "raster/scene/gpu_scene.h"

@@ -1,8 +1,8 @@
 #include "raster/shadow/shadow_cube.h"
 
-#include "core/error.h"
-#include "core/light_sampler.h"
-#include "core/mirrors.h"
+#include "core/lights/light_sampler.h"
+#include "core/scene/mirrors.h"
+#include "core/util/error.h"
 #include "raster/glsl/mirror_shaders.h"
 #include "raster/glsl/shaders.h"
 

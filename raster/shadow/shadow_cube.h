@@ -3,10 +3,10 @@
 // nearest surface and its gradient per texel (raster/glsl/cube_glsl.h),
 // rendered face by face into one framebuffer. A surface VPL lights only its hemisphere, so its
 // cube is turned to put the normal at the centre of the +z face and the -z face is skipped.
-// A mirrored VPL (core/mirrors.h) gets the cube of its unfolded paths
+// A mirrored VPL (core/scene/mirrors.h) gets the cube of its unfolded paths
 // (raster/glsl/mirror_shaders.h).
-#include "core/bounds.h"
-#include "core/vpl.h"
+#include "core/lights/vpl.h"
+#include "core/scene/bounds.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"

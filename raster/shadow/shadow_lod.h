@@ -1,5 +1,5 @@
 #pragma once
-// The cluster hierarchy of core/mesh_clusters.h on the GPU, and the choice of what one shadow
+// The cluster hierarchy of core/mesh/mesh_clusters.h on the GPU, and the choice of what one shadow
 // face draws: the nodes whose bounds meet the face's pyramid (clipped to the rectangle the face
 // is ever looked up on), and of those the cut with the fewest triangles in which every mesh's
 // error is below
@@ -11,7 +11,7 @@
 // Culling is exact: a node is left out only when its box lies wholly outside a plane of the
 // face's pyramid, where GL would clip all of it. The selected index ranges are drawn with one
 // glMultiDrawElements over one index buffer (ranges that touch are merged).
-#include "core/mesh_clusters.h"
+#include "core/mesh/mesh_clusters.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/gpu_scene.h"
 

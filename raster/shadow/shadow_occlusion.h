@@ -18,7 +18,7 @@
 // bound over the texels a box covers), from the atlas's depth read back after the clusters
 // nearest the VPL were drawn (ShadowAtlas: the occluders that hide most of a room's or a
 // corridor's far side). Faces are 90-degree square frusta (raster/shadow/shadow_cube.h).
-#include "core/bounds.h"
+#include "core/scene/bounds.h"
 
 #include <glm/glm.hpp>
 #include <vector>

@@ -1,0 +1,640 @@
+#include "core/gltf/read/geometry.h"
+
+#include "core/gltf/decode/codecs.h"
+#include "core/gltf/read/accessors.h"
+#include "core/gltf/read/skins.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <numeric>
+#include <optional>
+
+namespace irad::gltf {
+
+namespace {
+
+// A primitive's vertex attributes in its mesh's frame (morphed), or in the world when skinned.
+struct Attributes {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals; // empty without NORMAL
+  std::vector<glm::vec2> uvs;     // empty without the set of uv slot 0
+  std::vector<glm::vec2> uvs1;    // empty without the set of uv slot 1
+  std::vector<glm::vec4> colors;  // empty without COLOR_0
+};
+
+constexpr int kTriangles = 4;
+constexpr int kTriangleStrip = 5;
+
+// The accessor index of attribute `name` of `attributes` (an object), or nullopt.
+std::optional<std::uint64_t> attribute(const json& attributes, const std::string& name) {
+  return index_member(attributes, name.c_str());
+}
+
+template <class T>
+void require_count(const Context& ctx, const std::vector<T>& values, std::size_t n,
+                   const std::string& where, const std::string& name) {
+  if (values.size() != n) {
+    ctx.fail(where + ".attributes." + name,
+             fmt::format("{} elements, POSITION has {}", values.size(), n));
+  }
+}
+
+std::vector<glm::vec2> read_uv_set(const Context& ctx, const json& attrs, int set, std::size_t n,
+                                   const std::string& where) {
+  if (set < 0) return {};
+  const std::string name = "TEXCOORD_" + std::to_string(set);
+  const auto a = attribute(attrs, name);
+  if (!a) {
+    ctx.warn(where + ": its material's textures read " + name +
+             ", which the primitive lacks; (0, 0) is used");
+    return {};
+  }
+  std::vector<glm::vec2> uv = read_texcoords(ctx, *a, where + ".attributes." + name);
+  require_count(ctx, uv, n, where, name);
+  return uv;
+}
+
+// The morph targets' displacements (glTF 3.7.2.2), [target][vertex]; normals' empty when the
+// targets have none.
+struct Targets {
+  std::vector<std::vector<glm::vec3>> positions;
+  std::vector<std::vector<glm::vec3>> normals;
+};
+
+Targets read_targets(const Context& ctx, const json& p, std::size_t n, bool with_normals,
+                     const std::string& where) {
+  Targets out;
+  const json* targets = member(p, "targets");
+  if (!targets || !targets->is_array()) return out;
+  for (std::size_t t = 0; t < targets->size(); ++t) {
+    const json& target = (*targets)[t];
+    const std::string tw = where + ".targets[" + std::to_string(t) + "]";
+    auto read = [&](const char* name) {
+      const auto a = attribute(target, name);
+      if (!a) return std::vector<glm::vec3>(n, glm::vec3(0.0f));
+      std::vector<glm::vec3> d = read_vec3(ctx, *a, tw + "." + name);
+      if (d.size() != n)
+        ctx.fail(tw + "." + name, fmt::format("{} elements, POSITION has {}", d.size(), n));
+      return d;
+    };
+    out.positions.push_back(read("POSITION"));
+    if (with_normals) out.normals.push_back(read("NORMAL"));
+  }
+  return out;
+}
+
+// p += sum_i w_i dp_i (and normals alike).
+void apply_morph(const Targets& t, const std::vector<double>& weights, Attributes& a) {
+  for (std::size_t i = 0; i < t.positions.size() && i < weights.size(); ++i) {
+    const float w = float(weights[i]);
+    if (w == 0.0f) continue;
+    for (std::size_t v = 0; v < a.positions.size(); ++v) a.positions[v] += w * t.positions[i][v];
+    if (i < t.normals.size() && !a.normals.empty())
+      for (std::size_t v = 0; v < a.normals.size(); ++v) a.normals[v] += w * t.normals[i][v];
+  }
+}
+
+// JOINTS_0 and WEIGHTS_0 of a skinned primitive, per vertex.
+struct Influences {
+  std::vector<glm::uvec4> joints;
+  std::vector<glm::vec4> weights;
+};
+
+Influences read_influences(const Context& ctx, const json& attrs, std::size_t n,
+                           std::size_t joint_count, const std::string& where) {
+  Influences out;
+  const auto j = attribute(attrs, "JOINTS_0");
+  const auto w = attribute(attrs, "WEIGHTS_0");
+  if (!j || !w) {
+    ctx.warn(where + ": a skinned mesh without JOINTS_0 and WEIGHTS_0; left unskinned");
+    return out;
+  }
+  const Values jv = read_values(ctx, *j, where + ".attributes.JOINTS_0", {"VEC4"},
+                                {kUnsignedByte, kUnsignedShort});
+  const Values wv = read_values(ctx, *w, where + ".attributes.WEIGHTS_0", {"VEC4"},
+                                {kUnsignedByte, kUnsignedShort, kFloat}, true);
+  if (jv.count() != n || wv.count() != n)
+    ctx.fail(where + ".attributes", "JOINTS_0 and WEIGHTS_0 must have POSITION's count");
+  out.joints.resize(n);
+  out.weights.resize(n);
+  for (std::size_t v = 0; v < n; ++v)
+    for (int k = 0; k < 4; ++k) {
+      const float weight = wv.data[4 * v + std::size_t(k)];
+      const std::uint32_t joint = std::uint32_t(jv.data[4 * v + std::size_t(k)]);
+      if (weight != 0.0f && joint >= joint_count)
+        ctx.fail(where + ".attributes.JOINTS_0",
+                 fmt::format("joint {} out of range ({} joints)", joint, joint_count));
+      out.joints[v][k] = joint;
+      out.weights[v][k] = std::isfinite(weight) ? std::max(weight, 0.0f) : 0.0f;
+    }
+  return out;
+}
+
+// Linear blend skinning: p' = sum_k w_k M_{j_k} p with M = joint world x inverse bind matrix,
+// normals by the cofactor of the blended matrix (glTF 3.7.3). Weights are renormalised to sum 1;
+// a vertex without influence stays where it is.
+void apply_skin(const Influences& inf, const std::vector<glm::dmat4>& joints, Attributes& a) {
+  for (std::size_t v = 0; v < inf.joints.size(); ++v) {
+    glm::dmat4 m(0.0);
+    double total = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      const double weight = double(inf.weights[v][k]);
+      if (weight == 0.0) continue;
+      m += weight * joints[inf.joints[v][k]];
+      total += weight;
+    }
+    if (!(total > 0.0)) continue;
+    m /= total;
+    a.positions[v] = glm::vec3(m * glm::dvec4(glm::dvec3(a.positions[v]), 1.0));
+    if (!a.normals.empty()) {
+      const glm::dmat3 b(m);
+      const glm::dmat3 cof(glm::cross(b[1], b[2]), glm::cross(b[2], b[0]), glm::cross(b[0], b[1]));
+      a.normals[v] =
+          glm::vec3((glm::determinant(b) < 0.0 ? -1.0 : 1.0) * (cof * glm::dvec3(a.normals[v])));
+    }
+  }
+}
+
+// Decodes a KHR_draco_mesh_compression primitive: its attributes become the decoded data of the
+// primitive's accessors (ctx.decoded_accessors); returns the decoded indices.
+std::vector<std::uint32_t> decode_draco(const Context& ctx, const json& ext, const json& attrs,
+                                        const std::string& where) {
+  const std::string ew = where + ".extensions.KHR_draco_mesh_compression";
+  const auto view = index_member(ext, "bufferView");
+  if (!view) ctx.fail(ew, "no bufferView");
+  const std::string vname = element("bufferViews", std::size_t(*view));
+  const ViewBytes bytes = view_bytes(ctx, *view, ew);
+  try {
+    const DracoMesh mesh(bytes.data, bytes.length);
+    const json* ids = member(ext, "attributes");
+    for (const auto& [name, value] : attrs.items()) {
+      const auto accessor = as_index(value);
+      const auto id = ids ? index_member(*ids, name.c_str()) : std::nullopt;
+      if (!accessor || !id) continue;
+      const json& a = ctx.at("accessors", *accessor, where + ".attributes." + name, "accessor");
+      const std::size_t components = component_count(string_member(a, "type"));
+      if (components == 0) ctx.fail(element("accessors", std::size_t(*accessor)), "unknown type");
+      ctx.decoded_accessors[std::size_t(*accessor)] =
+          mesh.attribute(int(*id), int(number_member(a, "componentType", 0)), int(components),
+                         bool_member(a, "normalized", false));
+    }
+    return mesh.indices();
+  } catch (const CodecError& e) {
+    ctx.fail(vname, std::string("KHR_draco_mesh_compression: ") + e.what());
+  }
+}
+
+// A primitive's attributes as the file stores them (mesh frame, unmorphed, unskinned), with its
+// morph targets and skin influences.
+struct RawPrimitive {
+  Attributes a;
+  Targets targets;
+  Influences influences;
+};
+
+Attributes read_attributes(const Context& ctx, const json& p, UvSets uv, const std::string& where) {
+  Attributes a;
+  const json* attrs_ptr = member(p, "attributes");
+  const json& attrs = attrs_ptr ? *attrs_ptr : json::object();
+  const auto position = attribute(attrs, "POSITION");
+  a.positions = read_vec3(ctx, *position, where + ".attributes.POSITION");
+  const std::size_t n = a.positions.size();
+  if (const auto normal = attribute(attrs, "NORMAL")) {
+    a.normals = read_vec3(ctx, *normal, where + ".attributes.NORMAL");
+    require_count(ctx, a.normals, n, where, "NORMAL");
+  }
+  a.uvs = read_uv_set(ctx, attrs, uv.slot0, n, where);
+  a.uvs1 = read_uv_set(ctx, attrs, uv.slot1, n, where);
+  if (const auto color = attribute(attrs, "COLOR_0")) {
+    a.colors = read_colors(ctx, *color, where + ".attributes.COLOR_0");
+    require_count(ctx, a.colors, n, where, "COLOR_0");
+  }
+  return a;
+}
+
+RawPrimitive read_primitive(const Context& ctx, const json& p, const PrimitivePose& pose, UvSets uv,
+                            const std::string& where) {
+  RawPrimitive raw;
+  raw.a = read_attributes(ctx, p, uv, where);
+  const std::size_t n = raw.a.positions.size();
+  if (!pose.morph_weights.empty())
+    raw.targets = read_targets(ctx, p, n, !raw.a.normals.empty(), where);
+  if (pose.skin)
+    raw.influences =
+        read_influences(ctx, *member(p, "attributes"), n, pose.skin->matrices.size(), where);
+  return raw;
+}
+
+// The attributes at rest: morphed by the default weights, then skinned.
+Attributes posed_attributes(const RawPrimitive& raw, const PrimitivePose& pose) {
+  Attributes a = raw.a;
+  apply_morph(raw.targets, pose.morph_weights, a);
+  if (pose.skin && !raw.influences.joints.empty())
+    apply_skin(raw.influences, pose.skin->matrices, a);
+  return a;
+}
+
+// Vertex indices of the primitive (0, 1, ..., n - 1 when it has none), each checked < n.
+std::vector<std::uint32_t> read_vertex_indices(const Context& ctx, const json& p, std::size_t n,
+                                               const std::string& where) {
+  const auto accessor = index_member(p, "indices");
+  if (!accessor) {
+    if (n > std::numeric_limits<std::uint32_t>::max()) ctx.fail(where, "too many vertices");
+    std::vector<std::uint32_t> indices(n);
+    std::iota(indices.begin(), indices.end(), std::uint32_t(0));
+    return indices;
+  }
+  return read_indices(ctx, *accessor, where + ".indices");
+}
+
+void check_index_range(const Context& ctx, const std::vector<std::uint32_t>& indices, std::size_t n,
+                       const std::string& where) {
+  for (std::uint32_t i : indices) {
+    if (i >= n) {
+      ctx.fail(where, fmt::format("index value {} out of range ({} vertices)", i, n));
+    }
+  }
+}
+
+// Triangle list from the index sequence of a TRIANGLES, TRIANGLE_STRIP or TRIANGLE_FAN primitive
+// (strip triangle k: (k, k+1, k+2), odd k (k+1, k, k+2); fan triangle k: (0, k+1, k+2)).
+std::vector<glm::uvec3> assemble(const Context& ctx, int mode,
+                                 const std::vector<std::uint32_t>& idx, const std::string& where) {
+  std::vector<glm::uvec3> out;
+  if (mode == kTriangles) {
+    if (idx.size() % 3 != 0)
+      ctx.warn(where + ": TRIANGLES index count is not a multiple of 3; the "
+                       "last incomplete triangle is dropped");
+    for (std::size_t k = 0; k + 2 < idx.size(); k += 3)
+      out.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
+  } else if (mode == kTriangleStrip) {
+    for (std::size_t k = 0; k + 2 < idx.size(); ++k) {
+      if (k % 2 == 0)
+        out.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
+      else
+        out.emplace_back(idx[k + 1], idx[k], idx[k + 2]);
+    }
+  } else {
+    for (std::size_t k = 1; k + 1 < idx.size(); ++k) out.emplace_back(idx[0], idx[k], idx[k + 1]);
+  }
+  return out;
+}
+
+// The placement of a primitive: points by A p + t, normals by cofactor(A) sign(det A).
+struct Placement {
+  glm::dmat4 world;
+  glm::dmat3 normal_matrix;
+  bool flip; // det A < 0: reverse the winding
+};
+
+Placement placement(const glm::dmat4& world) {
+  const glm::dmat3 a(world);
+  const double det = glm::determinant(a);
+  const double sign = det < 0.0 ? -1.0 : 1.0;
+  // Columns of cofactor(A) = det(A) A^-T are a1 x a2, a2 x a0, a0 x a1.
+  const glm::dmat3 cof(glm::cross(a[1], a[2]), glm::cross(a[2], a[0]), glm::cross(a[0], a[1]));
+  return {world, sign * cof, det < 0.0};
+}
+
+glm::vec3 place_point(const Placement& pl, const glm::vec3& p) {
+  return glm::vec3(pl.world * glm::dvec4(glm::dvec3(p), 1.0));
+}
+
+// Unit transformed normal, or 0 when the result is zero or not finite.
+glm::vec3 place_normal(const Placement& pl, const glm::vec3& n) {
+  const glm::dvec3 m = pl.normal_matrix * glm::dvec3(n);
+  const double len = glm::length(m);
+  return len > 0.0 && std::isfinite(len) ? glm::vec3(m / len) : glm::vec3(0.0f);
+}
+
+// Appends one vertex of the primitive; returns its index in the soup.
+std::uint32_t push_vertex(const Context& ctx, const Attributes& a, std::size_t v,
+                          const Placement& pl, Soup& soup) {
+  if (soup.positions.size() >= std::numeric_limits<std::uint32_t>::max()) {
+    ctx.fail("", "more than 2^32 - 1 vertices");
+  }
+  soup.positions.push_back(place_point(pl, a.positions[v]));
+  soup.normals.push_back(a.normals.empty() ? glm::vec3(0.0f) : place_normal(pl, a.normals[v]));
+  // The optional sets only from the first primitive that has them (earlier vertices filled).
+  const std::size_t i = soup.positions.size() - 1;
+  if (!a.uvs.empty() || !soup.uvs.empty()) {
+    soup.uvs.resize(i, glm::vec2(0.0f));
+    soup.uvs.push_back(a.uvs.empty() ? glm::vec2(0.0f) : a.uvs[v]);
+  }
+  if (!a.uvs1.empty() || !soup.uvs1.empty()) {
+    soup.uvs1.resize(i, glm::vec2(0.0f));
+    soup.uvs1.push_back(a.uvs1.empty() ? glm::vec2(0.0f) : a.uvs1[v]);
+  }
+  if (!a.colors.empty() || !soup.colors.empty()) {
+    soup.colors.resize(i, glm::vec4(1.0f));
+    soup.colors.push_back(a.colors.empty() ? glm::vec4(1.0f) : a.colors[v]);
+  }
+  return std::uint32_t(soup.positions.size() - 1);
+}
+
+// Triangles an index list of n entries gives in `mode` (TRIANGLES, TRIANGLE_STRIP or _FAN).
+std::uint64_t triangle_count(int mode, std::size_t n) {
+  if (mode == kTriangles) return n / 3;
+  return n >= 3 ? n - 2 : 0;
+}
+
+void check_triangle_limit(const Context& ctx, std::uint64_t more, const Soup& soup,
+                          const std::string& where) {
+  const std::uint64_t total = soup.triangles.size() + more;
+  if (total > ctx.limits.max_triangles) {
+    ctx.fail(where, "the scene would have " + std::to_string(total) +
+                        " triangles, over the limit of " +
+                        std::to_string(ctx.limits.max_triangles) + " (--max-triangles)");
+  }
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// The triangles whose three placed vertices are finite; the others are counted in the soup (one
+// warning for the file, from finish_geometry).
+std::vector<glm::uvec3> drop_non_finite(std::vector<glm::uvec3> triangles, const Attributes& a,
+                                        const Placement& pl, const std::string& where, Soup& soup) {
+  std::vector<char> ok(a.positions.size());
+  for (std::size_t v = 0; v < ok.size(); ++v) ok[v] = finite(place_point(pl, a.positions[v]));
+  std::size_t kept = 0;
+  for (const glm::uvec3& t : triangles) {
+    if (ok[t.x] && ok[t.y] && ok[t.z]) triangles[kept++] = t;
+  }
+  if (kept < triangles.size() && soup.non_finite_dropped == 0) soup.non_finite_where = where;
+  soup.non_finite_dropped += triangles.size() - kept;
+  triangles.resize(kept);
+  return triangles;
+}
+
+void push_triangle(glm::uvec3 t, bool flip, std::uint32_t material, Soup& soup) {
+  soup.triangles.push_back(flip ? glm::uvec3(t.x, t.z, t.y) : t);
+  soup.triangle_material.push_back(material);
+}
+
+} // namespace
+
+namespace {
+
+// Capacity for n elements: exactly n the first time (one large primitive allocates no more
+// than it needs), else at least 1.5 x the capacity (many small ones grow geometrically).
+template <class T>
+void grow(std::vector<T>& v, std::size_t n) {
+  if (n <= v.capacity()) return;
+  v.reserve(v.capacity() == 0 ? n : std::max(n, v.capacity() + v.capacity() / 2));
+}
+
+// Room for `vertices` more vertices and `triangles` more triangles.
+void reserve(Soup& soup, std::size_t vertices, std::size_t triangles, const Attributes& a) {
+  const std::size_t n = soup.positions.size() + vertices;
+  grow(soup.positions, n);
+  grow(soup.normals, n);
+  if (!a.uvs.empty() || !soup.uvs.empty()) grow(soup.uvs, n);
+  if (!a.uvs1.empty() || !soup.uvs1.empty()) grow(soup.uvs1, n);
+  if (!a.colors.empty() || !soup.colors.empty()) grow(soup.colors, n);
+  grow(soup.triangles, soup.triangles.size() + triangles);
+  grow(soup.triangle_material, soup.triangle_material.size() + triangles);
+}
+
+Soup::Deform& start_deform(const RawPrimitive& raw, const PrimitivePose& pose, bool skinned,
+                           bool flip, Soup& soup) {
+  Soup::Deform d;
+  d.gltf_node = pose.node;
+  if (skinned) {
+    d.gltf_joints = pose.skin->joints;
+    d.part.joint_matrix = pose.skin->inverse_bind;
+  }
+  d.part.flat = raw.a.normals.empty();
+  d.part.flip = flip;
+  d.part.position_targets.resize(raw.targets.positions.size());
+  d.part.normal_targets.resize(raw.targets.normals.size());
+  soup.deforms.push_back(std::move(d));
+  return soup.deforms.back();
+}
+
+// Adds file vertex v, pushed as soup vertex `index`, to the deformed part.
+void record(const RawPrimitive& raw, std::size_t v, std::size_t index, Soup::Deform& d) {
+  Animation::DeformedPart& p = d.part;
+  p.vertices.push_back(std::uint32_t(index));
+  p.positions.push_back(raw.a.positions[v]);
+  if (!raw.a.normals.empty()) p.normals.push_back(raw.a.normals[v]);
+  for (std::size_t t = 0; t < p.position_targets.size(); ++t)
+    p.position_targets[t].push_back(raw.targets.positions[t][v]);
+  for (std::size_t t = 0; t < p.normal_targets.size(); ++t)
+    p.normal_targets[t].push_back(raw.targets.normals[t][v]);
+  if (!d.gltf_joints.empty()) {
+    p.vertex_joints.push_back(raw.influences.joints[v]);
+    p.vertex_weights.push_back(raw.influences.weights[v]);
+  }
+}
+
+} // namespace
+
+void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
+                      const PrimitivePose& pose, std::uint32_t material, UvSets uv, Soup& soup) {
+  const json& p = ctx.array("meshes")[mesh]["primitives"][primitive];
+  const std::string where = element("meshes", mesh) + element(".primitives", primitive);
+  const int mode = int(number_member(p, "mode", kTriangles));
+  if (mode >= 0 && mode <= 3) {
+    ctx.warn("point and line primitives are not supported; skipped");
+    return;
+  }
+  if (mode < kTriangles || mode > 6) ctx.fail(where, "invalid mode " + std::to_string(mode));
+  const json* attrs = member(p, "attributes");
+  if (!attrs || !attribute(*attrs, "POSITION")) {
+    ctx.warn(where + ": a primitive without POSITION draws nothing; skipped");
+    return;
+  }
+  const std::string pp =
+      "/meshes/" + std::to_string(mesh) + "/primitives/" + std::to_string(primitive);
+  ctx.use_exact(pp);
+  ctx.use_exact(pp + "/attributes");
+  std::vector<std::string> read{"POSITION", "NORMAL", "COLOR_0"};
+  for (int set : {uv.slot0, uv.slot1})
+    if (set >= 0) read.push_back("TEXCOORD_" + std::to_string(set));
+  if (pose.skin) read.insert(read.end(), {"JOINTS_0", "WEIGHTS_0"});
+  for (const std::string& name : read)
+    if (member(*attrs, name.c_str())) ctx.use(pp + "/attributes/" + name);
+  for (const char* part : {"/indices", "/mode", "/extensions/KHR_draco_mesh_compression"})
+    ctx.use(pp + part);
+  if (!pose.morph_weights.empty()) ctx.use(pp + "/targets");
+  std::optional<std::vector<std::uint32_t>> draco;
+  if (const json* ext = extension(p, "KHR_draco_mesh_compression"))
+    draco = decode_draco(ctx, *ext, *attrs, where);
+  RawPrimitive raw = read_primitive(ctx, p, pose, uv, where);
+  const bool skinned = pose.skin && !raw.influences.joints.empty();
+  const bool deformed = skinned || !raw.targets.positions.empty();
+  // The file's attributes are kept beside the posed ones only when an animation needs them.
+  const Attributes a = deformed ? posed_attributes(raw, pose) : std::move(raw.a);
+  const Placement pl = placement(skinned ? glm::dmat4(1.0) : pose.world);
+  std::vector<glm::uvec3> local;
+  { // the index list is freed before the soup grows
+    const std::vector<std::uint32_t> indices =
+        draco ? std::move(*draco) : read_vertex_indices(ctx, p, a.positions.size(), where);
+    check_index_range(ctx, indices, a.positions.size(), where + ".indices");
+    check_triangle_limit(ctx, triangle_count(mode, indices.size()), soup, where);
+    local = drop_non_finite(assemble(ctx, mode, indices, where), a, pl, where, soup);
+  }
+  const std::uint64_t vertices = a.normals.empty() ? 3 * local.size() : a.positions.size();
+  if (soup.positions.size() + vertices > 3 * ctx.limits.max_triangles) {
+    ctx.fail(where, fmt::format("the scene would have {} vertices, over the limit of 3 x {} "
+                                "(--max-triangles)",
+                                soup.positions.size() + vertices, ctx.limits.max_triangles));
+  }
+  reserve(soup, std::size_t(vertices), local.size(), a);
+  soup.has_uvs = soup.has_uvs || !a.uvs.empty();
+  soup.has_uvs1 = soup.has_uvs1 || !a.uvs1.empty();
+  soup.has_colors = soup.has_colors || !a.colors.empty();
+  Soup::Deform* deform = nullptr;
+  if (soup.record_deforms && deformed)
+    deform = &start_deform(raw, pose, skinned, a.normals.empty() && pl.flip, soup);
+  if (!a.normals.empty()) {
+    const std::uint32_t base = push_vertex(ctx, a, 0, pl, soup);
+    for (std::size_t v = 1; v < a.positions.size(); ++v) push_vertex(ctx, a, v, pl, soup);
+    if (deform)
+      for (std::size_t v = 0; v < a.positions.size(); ++v) record(raw, v, base + v, *deform);
+    for (const glm::uvec3& t : local) push_triangle(t + base, pl.flip, material, soup);
+    return;
+  }
+  for (const glm::uvec3& t : local) { // flat normals: every triangle gets its own vertices
+    const glm::uvec3 own{push_vertex(ctx, a, t.x, pl, soup), push_vertex(ctx, a, t.y, pl, soup),
+                         push_vertex(ctx, a, t.z, pl, soup)}; // braces: evaluated in order
+    if (deform)
+      for (int c = 0; c < 3; ++c) record(raw, t[c], own[c], *deform);
+    push_triangle(own, pl.flip, material, soup);
+  }
+}
+
+namespace {
+
+// (p1 - p0) x (p2 - p0) in double precision: |c| = 2 area, direction = front face.
+glm::dvec3 edge_cross(const Soup& s, const glm::uvec3& t) {
+  const glm::dvec3 p0(s.positions[t.x]);
+  return glm::cross(glm::dvec3(s.positions[t.y]) - p0, glm::dvec3(s.positions[t.z]) - p0);
+}
+
+Bounds triangle_bounds(const std::vector<glm::vec3>& positions,
+                       const std::vector<glm::uvec3>& triangles) {
+  Bounds b;
+  for (const glm::uvec3& t : triangles) {
+    b.extend(positions[t.x]);
+    b.extend(positions[t.y]);
+    b.extend(positions[t.z]);
+  }
+  return b;
+}
+
+// Keeps the non-degenerate triangles; returns how many were dropped.
+std::size_t drop_degenerate(Soup& s) {
+  const double diagonal = triangle_bounds(s.positions, s.triangles).diagonal();
+  const double min_area = 1e-12 * diagonal * diagonal;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < s.triangles.size(); ++i) {
+    const glm::uvec3 t = s.triangles[i];
+    const bool repeated = t.x == t.y || t.y == t.z || t.z == t.x;
+    if (repeated || !(0.5 * glm::length(edge_cross(s, t)) > min_area)) continue;
+    s.triangles[kept] = t;
+    s.triangle_material[kept++] = s.triangle_material[i];
+  }
+  const std::size_t dropped = s.triangles.size() - kept;
+  s.triangles.resize(kept);
+  s.triangle_material.resize(kept);
+  return dropped;
+}
+
+// Vertices without a usable normal take the geometric normal of the first triangle using them.
+void fill_normals(Soup& s) {
+  for (const glm::uvec3& t : s.triangles) {
+    const glm::vec3 n(glm::normalize(edge_cross(s, t)));
+    for (std::uint32_t v : {t.x, t.y, t.z}) {
+      if (s.normals[v] == glm::vec3(0.0f)) s.normals[v] = n;
+    }
+  }
+}
+
+// Removes vertices no triangle uses, keeping the order of the others.
+// Keeps the entries of a deformed part whose vertex survived compaction, renumbered. A flat part
+// loses whole triangles (triples) only, so its triples stay aligned.
+void remap_deform(const std::vector<std::uint32_t>& remap, const std::vector<char>& used,
+                  Animation::DeformedPart& p) {
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < p.vertices.size(); ++k) {
+    if (!used[p.vertices[k]]) continue;
+    p.vertices[kept] = remap[p.vertices[k]];
+    p.positions[kept] = p.positions[k];
+    if (!p.normals.empty()) p.normals[kept] = p.normals[k];
+    for (auto& t : p.position_targets) t[kept] = t[k];
+    for (auto& t : p.normal_targets) t[kept] = t[k];
+    if (!p.vertex_joints.empty()) {
+      p.vertex_joints[kept] = p.vertex_joints[k];
+      p.vertex_weights[kept] = p.vertex_weights[k];
+    }
+    ++kept;
+  }
+  p.vertices.resize(kept);
+  p.positions.resize(kept);
+  if (!p.normals.empty()) p.normals.resize(kept);
+  for (auto& t : p.position_targets) t.resize(kept);
+  for (auto& t : p.normal_targets) t.resize(kept);
+  if (!p.vertex_joints.empty()) {
+    p.vertex_joints.resize(kept);
+    p.vertex_weights.resize(kept);
+  }
+}
+
+void compact(Soup& s) {
+  std::vector<std::uint32_t> remap(s.positions.size(), 0);
+  for (const glm::uvec3& t : s.triangles) remap[t.x] = remap[t.y] = remap[t.z] = 1;
+  const std::vector<char> used(remap.begin(), remap.end());
+  std::uint32_t next = 0;
+  for (std::size_t v = 0; v < s.positions.size(); ++v) {
+    if (remap[v] == 0) continue;
+    remap[v] = next;
+    s.positions[next] = s.positions[v];
+    s.normals[next] = s.normals[v];
+    if (!s.vertex_node.empty()) s.vertex_node[next] = s.vertex_node[v];
+    if (!s.uvs1.empty()) s.uvs1[next] = s.uvs1[v];
+    if (!s.colors.empty()) s.colors[next] = s.colors[v];
+    if (!s.uvs.empty()) s.uvs[next] = s.uvs[v];
+    ++next;
+  }
+  s.positions.resize(next);
+  s.normals.resize(next);
+  if (!s.uvs.empty()) s.uvs.resize(next);
+  if (!s.uvs1.empty()) s.uvs1.resize(next);
+  if (!s.colors.empty()) s.colors.resize(next);
+  if (!s.vertex_node.empty()) s.vertex_node.resize(next);
+  for (glm::uvec3& t : s.triangles) t = {remap[t.x], remap[t.y], remap[t.z]};
+  for (Soup::Deform& d : s.deforms) remap_deform(remap, used, d.part);
+}
+
+} // namespace
+
+void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
+                     std::vector<std::uint32_t>* vertex_node, std::vector<Soup::Deform>* deforms) {
+  if (soup.non_finite_dropped > 0) {
+    ctx.warn(std::to_string(soup.non_finite_dropped) +
+             " triangle(s) with a NaN or Inf vertex position dropped (the first in " +
+             soup.non_finite_where + ")");
+  }
+  if (const std::size_t dropped = drop_degenerate(soup); dropped > 0) {
+    ctx.warn(std::to_string(dropped) + " degenerate (zero-area) triangles dropped");
+  }
+  fill_normals(soup);
+  compact(soup);
+  scene.bounds = triangle_bounds(soup.positions, soup.triangles);
+  scene.positions = std::move(soup.positions);
+  scene.normals = std::move(soup.normals);
+  if (soup.has_uvs) scene.uvs = std::move(soup.uvs);
+  if (soup.has_uvs1) scene.uvs1 = std::move(soup.uvs1);
+  if (soup.has_colors) scene.colors = std::move(soup.colors);
+  scene.triangles = std::move(soup.triangles);
+  scene.triangle_material = std::move(soup.triangle_material);
+  if (vertex_node) *vertex_node = std::move(soup.vertex_node);
+  if (deforms) *deforms = std::move(soup.deforms);
+}
+
+} // namespace irad::gltf

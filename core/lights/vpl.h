@@ -1,0 +1,86 @@
+#pragma once
+// Virtual point lights: what the walk hands to the estimators (design.md section 1).
+// A VPL at y lights a receiver x (normal n_x, albedo rho(x)) with
+//   C(x) = intensity * E(y, x) * max(0, cos theta_x) / max(|x - y|^2, d_min^2) * V(y, x) *
+//   rho(x)/pi
+// where the emission profile E depends on the kind:
+//   Surface:   max(0, cos theta_y)  (theta_y between normal and x - y)
+//   TwoSided:  |cos theta_y|        (a point on a double-sided emitter)
+//   Point:     1                    (a punctual light; no clamp, it is exact and not a sample)
+//   Spot:      glTF smooth cone falloff around `normal` (the spot axis); no clamp either.
+// A Directional VPL is a light at infinity travelling along `normal` (d): it has no position (the
+// field holds where its particle started) and
+//   C(x) = intensity * max(0, n_x . (-d)) * V(x, -d to infinity) * rho(x)/pi   (no 1/r^2, no
+//   clamp).
+// `intensity` already folds in the weight w = 1/n_j, the path throughput beta_j and, for depth >=
+// 1, rho(y_j)/pi, so an estimator adds C(x) of every VPL and nothing else.
+// A mirrored VPL (mirror >= 0, core/scene/mirrors.h) is the image of a VPL in a planar mirror: it
+// lights only the x on the positive side of mirror_plane whose segment from it crosses the plane
+// inside the polygon VplSet::mirrors[mirror], with V = free segments y -> m and m -> x.
+#include "core/scene/mirror_polygon.h"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <memory>
+#include <vector>
+
+namespace irad {
+
+class ClampField; // core/lights/clamp_field.h
+
+enum class VplKind : std::uint8_t { Surface, TwoSided, Point, Spot, Directional };
+
+struct Vpl {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f}; // unit; the spot axis for Spot, d for Directional
+  glm::vec3 intensity{0.0f};
+  VplKind kind = VplKind::Surface;
+  std::uint16_t depth = 0; // reflections before this VPL (0: on a light)
+  std::uint32_t path = 0;  // particle index i
+  float cos_inner = 1.0f;  // Spot only: cosines of the inner and outer cone angles
+  float cos_outer = 0.0f;
+  std::int32_t mirror = -1;     // mirrored VPL: index in VplSet::mirrors; -1: ordinary
+  glm::vec4 mirror_plane{0.0f}; // mirrored VPL: (n, w), n toward the side it lights
+  // d_min of this VPL in world units (core/lights/clamp_field.h, the local clamp); 0: the
+  // estimator's global clamp (a fraction of the bounding diagonal). Unused for unclamped kinds.
+  float clamp_distance = 0.0f;
+
+  bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
+  // Whether any channel of the intensity is positive (a black VPL draws no pass).
+  bool carries_light() const {
+    return intensity.x > 0.0f || intensity.y > 0.0f || intensity.z > 0.0f;
+  }
+};
+
+// The squared clamp distance d_min^2 of v in the estimator's geometry term: 0 for the unclamped
+// kinds, else its own clamp_distance or, without one, global_dmin (world units).
+inline float clamp_distance2(const Vpl& v, float global_dmin) {
+  if (!v.clamped()) return 0.0f;
+  const float d = v.clamp_distance > 0.0f ? v.clamp_distance : global_dmin;
+  return d * d;
+}
+
+// glTF KHR_lights_punctual spot falloff: smoothstep-free quadratic ramp between the cones.
+inline float spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
+  const float scale = 1.0f / glm::max(1e-3f, cos_inner - cos_outer);
+  const float t = glm::clamp((cos_angle - cos_outer) * scale, 0.0f, 1.0f);
+  return t * t;
+}
+
+struct VplSet {
+  std::vector<Vpl> vpls;
+  std::uint32_t paths = 0; // N
+  double rho_bar = 0.0;
+  int l_max = 0;
+  bool depth_capped = false; // rho_bar near or above 1 hit the depth cap
+  std::uint64_t planned = 0; // M = sum n_j: VPLs before misses and absorption
+  // The mirror polygons of the scene (core/scene/mirrors.h), which mirrored VPLs index; empty
+  // without mirrors. Mirrored copies are not counted in `planned`.
+  std::vector<MirrorPolygon> mirrors;
+  // The local clamp (core/lights/clamp_field.h) the VPLs' clamp_distance came from, for the
+  // estimators that need d(y) away from the VPLs (the clamp's residual); null with the global
+  // clamp.
+  std::shared_ptr<const ClampField> clamp_field;
+};
+
+} // namespace irad

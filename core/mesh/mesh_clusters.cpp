@@ -1,0 +1,361 @@
+#include "core/mesh/mesh_clusters.h"
+
+#include "core/mesh/planar_reduction.h"
+
+#include <algorithm>
+#include <limits>
+#include <meshoptimizer.h>
+#include <numeric>
+
+namespace irad {
+
+namespace {
+
+// welded[v]: the first vertex at v's position (bitwise equal floats).
+std::vector<std::uint32_t> weld_positions(const Scene& scene) {
+  const std::size_t n = scene.positions.size();
+  std::vector<unsigned int> remap(n);
+  const std::size_t unique = meshopt_generateVertexRemap(
+      remap.data(), nullptr, n, scene.positions.data(), n, sizeof(glm::vec3));
+  std::vector<std::uint32_t> first(unique, ~0u), welded(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (first[remap[v]] == ~0u) first[remap[v]] = static_cast<std::uint32_t>(v);
+    welded[v] = first[remap[v]];
+  }
+  return welded;
+}
+
+// The group of each triangle: its connected component (through shared welded vertices) where
+// that has at least `least` triangles, else kRestGroup (all the small components together).
+constexpr std::uint32_t kRestGroup = ~0u;
+std::vector<std::uint32_t> component_groups(const std::vector<glm::uvec3>& triangles,
+                                            std::size_t vertices, std::uint32_t least) {
+  std::vector<std::uint32_t> parent(vertices);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const glm::uvec3& t : triangles) {
+    const std::uint32_t a = find(t.x);
+    parent[find(t.y)] = a;
+    parent[find(t.z)] = a;
+  }
+  std::vector<std::uint32_t> size(vertices, 0), group(triangles.size());
+  for (const glm::uvec3& t : triangles) ++size[find(t.x)];
+  for (std::size_t k = 0; k < triangles.size(); ++k) {
+    const std::uint32_t c = find(triangles[k].x);
+    group[k] = size[c] >= least ? c : kRestGroup;
+  }
+  return group;
+}
+
+struct Builder {
+  const Scene& scene;
+  const ClusterOptions& options;
+  std::vector<glm::uvec3> triangles; // welded, in the order `order` permutes
+  std::vector<glm::vec3> centroids;
+  std::vector<std::uint32_t> order;
+  float leaf_error = 0.0f; // of the planar reduction the leaves hold (0: the scene's triangles)
+  MeshClusters out;
+
+  // Splits order[begin, end) in two (returns where the second part starts): the binned
+  // surface-area heuristic over the centroids (kBins bins per axis; cost = area(box) x count of
+  // each side), so that a few large triangles (a room's walls) get regions of their own and do not
+  // stretch the boxes of the small ones, which would keep these at full detail (the distance to
+  // a box is what the level of detail reads). The median of the longest axis where the
+  // centroids do not spread.
+  std::size_t split(std::size_t begin, std::size_t end, const Bounds& centre) {
+    constexpr int kBins = 16;
+    const glm::vec3 extent = centre.hi - centre.lo;
+    const auto bin_of = [&](std::uint32_t t, int axis) {
+      const float u = (centroids[t][axis] - centre.lo[axis]) / extent[axis];
+      return std::clamp(static_cast<int>(u * kBins), 0, kBins - 1);
+    };
+    const auto area = [](const Bounds& b) {
+      if (b.empty()) return 0.0;
+      const glm::dvec3 e(b.hi - b.lo);
+      return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
+    };
+    double best = std::numeric_limits<double>::infinity();
+    int best_axis = -1, best_bin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(extent[axis] > 0.0f)) continue;
+      Bounds boxes[kBins];
+      std::size_t counts[kBins] = {};
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::uint32_t t = order[k];
+        const int b = bin_of(t, axis);
+        ++counts[b];
+        for (int c = 0; c < 3; ++c) boxes[b].extend(scene.positions[triangles[t][c]]);
+      }
+      // right[b]: bins b.. merged.
+      Bounds right[kBins + 1];
+      std::size_t right_count[kBins + 1] = {};
+      for (int b = kBins - 1; b >= 0; --b) {
+        right[b] = right[b + 1];
+        right[b].extend(boxes[b].lo);
+        right[b].extend(boxes[b].hi);
+        if (boxes[b].empty()) right[b] = right[b + 1];
+        right_count[b] = right_count[b + 1] + counts[b];
+      }
+      Bounds left;
+      std::size_t left_count = 0;
+      for (int b = 0; b + 1 < kBins; ++b) {
+        if (!boxes[b].empty()) {
+          left.extend(boxes[b].lo);
+          left.extend(boxes[b].hi);
+        }
+        left_count += counts[b];
+        if (left_count == 0 || right_count[b + 1] == 0) continue;
+        const double cost = area(left) * static_cast<double>(left_count) +
+                            area(right[b + 1]) * static_cast<double>(right_count[b + 1]);
+        if (cost < best) {
+          best = cost;
+          best_axis = axis;
+          best_bin = b;
+        }
+      }
+    }
+    const auto first = order.begin() + static_cast<std::ptrdiff_t>(begin);
+    const auto last = order.begin() + static_cast<std::ptrdiff_t>(end);
+    if (best_axis >= 0)
+      return static_cast<std::size_t>(
+          std::partition(first, last,
+                         [&](std::uint32_t t) { return bin_of(t, best_axis) <= best_bin; }) -
+          order.begin());
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
+    const std::size_t mid = begin + (end - begin) / 2;
+    std::nth_element(
+        first, order.begin() + static_cast<std::ptrdiff_t>(mid), last,
+        [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+    return mid;
+  }
+
+  // Node over order[begin, end): a leaf writes its triangles to the original part, in
+  // depth-first order, so every subtree's leaves are contiguous there.
+  std::int32_t build(std::size_t begin, std::size_t end) {
+    const auto id = static_cast<std::int32_t>(out.nodes.size());
+    out.nodes.emplace_back();
+    Bounds centre;
+    for (std::size_t k = begin; k < end; ++k) centre.extend(centroids[order[k]]);
+    if (end - begin <= options.leaf_triangles) {
+      ClusterNode& node = out.nodes.back();
+      node.error = leaf_error;
+      node.leaf_first = node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
+      for (std::size_t k = begin; k < end; ++k) {
+        const glm::uvec3& t = triangles[order[k]];
+        for (int c = 0; c < 3; ++c) {
+          out.indices.push_back(t[c]);
+          node.bounds.extend(scene.positions[t[c]]);
+        }
+      }
+      node.leaf_count = node.mesh_count = static_cast<std::uint32_t>(3 * (end - begin));
+      return id;
+    }
+    const std::size_t mid = split(begin, end, centre);
+    const std::int32_t c0 = build(begin, mid);
+    const std::int32_t c1 = build(mid, end);
+    ClusterNode& node = out.nodes[static_cast<std::size_t>(id)];
+    const ClusterNode &a = out.nodes[static_cast<std::size_t>(c0)],
+                      &b = out.nodes[static_cast<std::size_t>(c1)];
+    node.children[0] = c0;
+    node.children[1] = c1;
+    node.bounds = a.bounds;
+    node.bounds.extend(b.bounds.lo);
+    node.bounds.extend(b.bounds.hi);
+    node.leaf_first = a.leaf_first;
+    node.leaf_count = a.leaf_count + b.leaf_count;
+    return id;
+  }
+};
+
+// The planar reduction's plane thickness, relative to the scene's diagonal (the shadow passes'
+// error floor is 1e-5 of it, raster/shadow/shadow_atlas.cpp).
+constexpr float kPlanar = 1e-6f;
+
+// Relative error (of the mesh's extent) below which meshoptimizer's collapses count as exact.
+constexpr float kExact = 1e-6f;
+
+// `input` simplified to 1/divisor of its triangles (divisor 0: as far as target_error, relative
+// to the extent, allows), its open edges (the region's border) locked;
+// error: this step's (world units).
+struct Simplified {
+  std::vector<std::uint32_t> indices;
+  float error = 0.0f;
+};
+Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& input,
+                          std::vector<std::uint32_t>& local_of, std::size_t divisor = 2,
+                          float target_error = 1.0f) {
+  // A compact vertex array of the vertices used (meshoptimizer scales by all it is given).
+  std::vector<std::uint32_t> global, local(input.size());
+  std::vector<glm::vec3> positions;
+  for (std::size_t k = 0; k < input.size(); ++k) {
+    std::uint32_t& l = local_of[input[k]];
+    if (l == ~0u) {
+      l = static_cast<std::uint32_t>(global.size());
+      global.push_back(input[k]);
+      positions.push_back(scene.positions[input[k]]);
+    }
+    local[k] = l;
+  }
+  for (std::uint32_t g : global) local_of[g] = ~0u;
+  Simplified s;
+  std::vector<std::uint32_t> dest(input.size());
+  const std::size_t target = divisor == 0 ? 0 : input.size() / (3 * divisor) * 3;
+  float relative = 0.0f;
+  const std::size_t count = meshopt_simplify(
+      dest.data(), local.data(), local.size(), &positions[0].x, positions.size(), sizeof(glm::vec3),
+      target, target_error, meshopt_SimplifyLockBorder, &relative);
+  s.error = relative * meshopt_simplifyScale(&positions[0].x, positions.size(), sizeof(glm::vec3));
+  s.indices.resize(count);
+  for (std::size_t k = 0; k < count; ++k) s.indices[k] = global[dest[k]];
+  return s;
+}
+
+// The inner nodes' meshes, children before parents (nodes are numbered parents first).
+void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify) {
+  std::vector<std::vector<std::uint32_t>> meshes(out.nodes.size());
+  std::vector<std::uint32_t> local_of(scene.positions.size(), ~0u);
+  const auto mesh_of = [&](std::int32_t n) {
+    const ClusterNode& c = out.nodes[static_cast<std::size_t>(n)];
+    const std::vector<std::uint32_t>& m = meshes[static_cast<std::size_t>(n)];
+    return c.leaf() ? std::vector<std::uint32_t>(out.indices.begin() + c.mesh_first,
+                                                 out.indices.begin() + c.mesh_first + c.mesh_count)
+                    : m;
+  };
+  for (std::size_t n = out.nodes.size(); n-- > 0;) {
+    ClusterNode& node = out.nodes[n];
+    if (node.leaf()) continue;
+    std::vector<std::uint32_t> input = mesh_of(node.children[0]);
+    const std::vector<std::uint32_t> second = mesh_of(node.children[1]);
+    input.insert(input.end(), second.begin(), second.end());
+    const float below = std::max(out.nodes[static_cast<std::size_t>(node.children[0])].error,
+                                 out.nodes[static_cast<std::size_t>(node.children[1])].error);
+    if (simplify && !input.empty()) {
+      Simplified s = simplify_union(scene, input, local_of);
+      if (s.indices.size() < input.size()) {
+        input = std::move(s.indices);
+        node.error = below + s.error;
+      } else {
+        node.error = below;
+      }
+    } else {
+      node.error = below;
+    }
+    meshes[n] = std::move(input);
+  }
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) {
+    ClusterNode& node = out.nodes[n];
+    if (node.leaf()) continue;
+    node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
+    node.mesh_count = static_cast<std::uint32_t>(meshes[n].size());
+    out.indices.insert(out.indices.end(), meshes[n].begin(), meshes[n].end());
+  }
+}
+
+// Each node's coarser levels: its mesh halved again and again (the border still locked) while
+// that removes at least a tenth of the triangles. A root of one connected component (`whole`)
+// starts from its original triangles instead and quarters them: no region border inside it is
+// locked, so a closed surface simplifies as far as its error allows.
+void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
+                        const std::vector<bool>& whole, float base_error) {
+  std::vector<std::uint32_t> local_of(scene.positions.size(), ~0u);
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) {
+    ClusterNode& node = out.nodes[n];
+    node.levels_first = static_cast<std::uint32_t>(out.levels.size());
+    const std::uint32_t first = whole[n] ? node.leaf_first : node.mesh_first;
+    const std::uint32_t count = whole[n] ? node.leaf_count : node.mesh_count;
+    std::vector<std::uint32_t> mesh(out.indices.begin() + first,
+                                    out.indices.begin() + first + count);
+    float error = whole[n] ? base_error : node.error;
+    // First what simplifies without error (coplanar triangles: flat walls to their borders),
+    // then quarters or halves, whatever that costs.
+    if (!mesh.empty()) {
+      Simplified s = simplify_union(scene, mesh, local_of, 0, kExact);
+      if (10 * s.indices.size() <= 9 * mesh.size()) {
+        error += s.error;
+        mesh = std::move(s.indices);
+        out.levels.push_back({error, static_cast<std::uint32_t>(out.indices.size()),
+                              static_cast<std::uint32_t>(mesh.size())});
+        out.indices.insert(out.indices.end(), mesh.begin(), mesh.end());
+      }
+    }
+    for (int l = 0; l < max_levels && !mesh.empty(); ++l) {
+      Simplified s = simplify_union(scene, mesh, local_of, whole[n] ? 4 : 2);
+      if (10 * s.indices.size() > 9 * mesh.size()) break;
+      error += s.error;
+      mesh = std::move(s.indices);
+      out.levels.push_back({error, static_cast<std::uint32_t>(out.indices.size()),
+                            static_cast<std::uint32_t>(mesh.size())});
+      out.indices.insert(out.indices.end(), mesh.begin(), mesh.end());
+    }
+    node.levels_count = static_cast<std::uint32_t>(out.levels.size()) - node.levels_first;
+  }
+}
+
+} // namespace
+
+float distance_to(const Bounds& b, const glm::vec3& p) {
+  return glm::length(glm::max(glm::max(b.lo - p, p - b.hi), glm::vec3(0.0f)));
+}
+
+std::uint32_t automatic_leaf_triangles(std::size_t triangles) {
+  std::uint32_t leaf = 128;
+  while (leaf < 1024 && static_cast<std::size_t>(leaf) * 512 < triangles) leaf *= 2;
+  return leaf;
+}
+
+MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& requested) {
+  ClusterOptions options = requested;
+  if (options.leaf_triangles == 0)
+    options.leaf_triangles = automatic_leaf_triangles(scene.triangle_count());
+  Builder b{scene, options, {}, {}, {}, 0.0f, {}};
+  const std::vector<std::uint32_t> welded = weld_positions(scene);
+  for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
+    if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
+    const glm::uvec3 v = scene.triangles[t];
+    b.out.triangles.push_back(static_cast<std::uint32_t>(t));
+    b.triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
+  }
+  if (options.simplify) {
+    // Flat parts first reduced exactly (to 2 kPlanar of the surface): the regions' locked
+    // borders then cost what their outlines need, not the tessellation's resolution.
+    const float epsilon = kPlanar * scene.bounds.diagonal();
+    PlanarReduction reduced = reduce_planar(scene.positions, b.triangles, epsilon);
+    if (reduced.collapses > 0 || reduced.triangles.size() < b.triangles.size()) {
+      b.triangles = std::move(reduced.triangles);
+      b.leaf_error = 2.0f * epsilon;
+    }
+  }
+  for (const glm::uvec3& t : b.triangles)
+    b.centroids.push_back((scene.positions[t.x] + scene.positions[t.y] + scene.positions[t.z]) /
+                          3.0f);
+  if (b.triangles.empty()) return std::move(b.out);
+  // One tree per connected component of at least a leaf's triangles, one for all the others.
+  const std::vector<std::uint32_t> group =
+      component_groups(b.triangles, scene.positions.size(), options.leaf_triangles);
+  b.order.resize(b.triangles.size());
+  std::iota(b.order.begin(), b.order.end(), 0u);
+  std::stable_sort(b.order.begin(), b.order.end(),
+                   [&](std::uint32_t x, std::uint32_t y) { return group[x] < group[y]; });
+  b.out.indices.reserve(3 * b.triangles.size());
+  std::vector<bool> whole;
+  for (std::size_t begin = 0; begin < b.order.size();) {
+    std::size_t end = begin + 1;
+    while (end < b.order.size() && group[b.order[end]] == group[b.order[begin]]) ++end;
+    const std::int32_t root = b.build(begin, end);
+    b.out.roots.push_back(root);
+    whole.resize(b.out.nodes.size(), false);
+    whole[static_cast<std::size_t>(root)] = group[b.order[begin]] != kRestGroup;
+    begin = end;
+  }
+  b.out.original_indices = b.out.indices.size();
+  simplify_inner_nodes(scene, b.out, options.simplify);
+  if (options.simplify) add_coarser_levels(scene, b.out, options.max_levels, whole, b.leaf_error);
+  return std::move(b.out);
+}
+
+} // namespace irad

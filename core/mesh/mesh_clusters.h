@@ -1,0 +1,143 @@
+#pragma once
+// A cluster hierarchy with levels of detail over a scene's opaque triangles, for the shadow
+// passes (raster/shadow/shadow_lod.h): they cull it against each cube face and draw, per face, a
+// cut through it whose geometric error stays below the shadow map's texel at the VPL's distance.
+//
+// The base: with ClusterOptions::simplify, the triangles after the exact planar reduction
+// (core/mesh/planar_reduction.h: flat parts down to what their outlines need, within 2e-6 of the
+// scene's diagonal, which is the leaves' error); without, the scene's own triangles (error 0).
+// Without it, a region cut through a finely tessellated wall keeps its border at the full
+// resolution in every level above: thousands of triangles per face on the 2.1M-triangle flat
+// scale scene (docs/performance.md).
+//
+// The tree: a binary tree of spatial regions (split by the surface-area heuristic over the
+// base triangles' centroids) down to leaves of at most ClusterOptions::leaf_triangles
+// triangles. Every node has a mesh: a leaf its base triangles, an inner node the union of its
+// children's meshes simplified to half their triangles (meshoptimizer, meshopt_SimplifyLockBorder)
+// with
+//     error(node) = max(error(children)) + meshopt's result_error * meshopt_simplifyScale,
+// a world-space bound on how far its mesh lies from the original surface (meshoptimizer's
+// quadric estimate; tests/test_shadow_lod.cpp measures it). Errors grow toward the root. Each
+// node also keeps coarser levels of its own mesh with the same locked border (error: the level
+// before's plus the step's): first what meshoptimizer reaches without error (coplanar
+// triangles down to their borders), then halved again and again, for the faces that see it
+// from far.
+//
+// The trees: one per large connected component (welded), and one for all the small ones. A
+// component's root also keeps levels of the whole component, simplified from its original
+// triangles with only the component's own open edges locked: a face that sees the component
+// from far draws one of them (one mesh, no seams), one that sees it from near a cut of its tree.
+//
+// Crack-free by construction: a node's open edges, the border of its region, are locked in its
+// simplification, and every region's border is part of the borders of the regions below it
+// that touch it, so every node's mesh keeps its region's original border exactly. Any cut (a
+// set of nodes whose regions tile the mesh) therefore meets along original edges: no gaps that
+// a shadow map could leak light through. Simplification keeps topology (edge collapses onto
+// existing vertices), so a closed surface stays closed.
+//
+// The meshes index the scene's own vertex array, so a GPU draws them with the scene's vertex
+// buffer. Positions are welded first (vertices at one position become the first of them: the
+// simplifier sees one connected surface where a file or subdivide() duplicated vertices at
+// seams); a welded index draws the same position, so without simplify the leaves draw the very
+// triangles the scene has.
+#include "core/scene/bounds.h"
+#include "core/scene/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace irad {
+
+// How the batched shadow passes use the hierarchy (RasterOptions::shadow_lod).
+enum class ShadowLodMode {
+  Off,  // every triangle into every face (the reference)
+  Cull, // only the clusters a face sees: exact, the same image
+  On,   // culled, and each face draws the coarsest nodes whose error is below its texel
+};
+enum class ShadowPlanes { Auto, On, Off };
+struct ShadowLodOptions {
+  ShadowLodMode mode = ShadowLodMode::On;
+  // On: the error a drawn level may have, in texels at the centre of a face at the cluster's
+  // distance (docs/performance.md measures the image error against it).
+  float texels = 0.5f;
+  // Cull and On: a face draws its nearest clusters first and leaves out those the depths then
+  // stored hide (exact: the same image; raster/shadow/shadow_occlusion.h).
+  bool occlusion = true;
+  // The batched passes' occluder planes (raster/glsl/cube_glsl.h): a gradient per shadow texel,
+  // so that thin walls seen at an angle hold (docs/accuracy.md); off: the centre's distance
+  // alone, 11-16 % more VPLs/s on llvmpipe's Cornell box at 512x512 and light through walls
+  // thinner than a texel's depth range. Auto: on where the scene's thinnest wall
+  // (walk/thin_walls.h) is thin enough for the faces' resolution (raster_renderer.h
+  // planes_needed); the raster, which cannot measure walls, takes Auto for On, and irad::render
+  // decides before it draws. (The per-VPL reference passes keep them.)
+  ShadowPlanes planes = ShadowPlanes::Auto;
+};
+
+// A coarser level of a node: indices [first, first + count), error as ClusterNode::error.
+// (For a component's root: relative to the original triangles, so not always above `error`.)
+struct ClusterLevel {
+  float error = 0.0f;
+  std::uint32_t first = 0, count = 0;
+};
+
+struct ClusterNode {
+  Bounds bounds;      // of the region's original triangles; every node below lies inside
+  float error = 0.0f; // world-space distance of the mesh from the original surface (0: a leaf)
+  // The node's mesh: indices [mesh_first, mesh_first + mesh_count) of MeshClusters::indices.
+  std::uint32_t mesh_first = 0, mesh_count = 0;
+  // The region's original triangles: indices [leaf_first, leaf_first + leaf_count), inside the
+  // original part (the leaves below, contiguous in depth-first order).
+  std::uint32_t leaf_first = 0, leaf_count = 0;
+  std::int32_t children[2] = {-1, -1};
+  // Its coarser levels: MeshClusters::levels [levels_first, levels_first + levels_count),
+  // errors ascending, triangles descending.
+  std::uint32_t levels_first = 0, levels_count = 0;
+  bool leaf() const { return children[0] < 0; }
+};
+
+struct MeshClusters {
+  std::vector<std::uint32_t> indices; // into Scene::positions, 3 per triangle
+  std::vector<ClusterNode> nodes;     // every tree's nodes, parents before children
+  // The trees' roots: one per connected component of at least ClusterOptions::leaf_triangles
+  // triangles (its coarser levels simplify the whole component, from its original triangles,
+  // with no region border inside it locked), one for all smaller components together. Empty
+  // when no triangle is clustered.
+  std::vector<std::int32_t> roots;
+  std::vector<ClusterLevel> levels; // the nodes' coarser levels
+  // indices[0, original_indices): the base, every clustered triangle once (welded; with
+  // simplify their planar reduction), leaves in depth-first order; the simplified meshes of the
+  // inner nodes and the coarser levels follow.
+  std::size_t original_indices = 0;
+  // The scene triangles in the hierarchy, ascending (those of Opaque materials).
+  std::vector<std::uint32_t> triangles;
+  std::size_t bytes() const {
+    return indices.size() * sizeof(std::uint32_t) + nodes.size() * sizeof(ClusterNode) +
+           levels.size() * sizeof(ClusterLevel) + triangles.size() * sizeof(std::uint32_t);
+  }
+};
+
+struct ClusterOptions {
+  // At most this many per leaf; 0: automatic_leaf_triangles. Smaller leaves cull tighter
+  // against a face's pyramid and the depths already drawn, larger ones leave fewer region
+  // borders, which every level keeps exactly (docs/performance.md measures both).
+  std::uint32_t leaf_triangles = 0;
+  // false: the base is the scene's triangles and inner nodes' meshes are their leaves' (the
+  // Cull mode: the same image as drawing every triangle).
+  bool simplify = true;
+  int max_levels = 8; // coarser levels per node at most
+};
+
+// About 512 leaves, 128 to 1024 triangles each (a power of two). On zdm2 (58k triangles,
+// 256x256, 64^2 faces) leaves of 128 leave 16k triangles per VPL against 33k with 1024; on the
+// 2.1M-triangle scale scenes 1024 draw their shadows in half the time of 128 (the borders).
+std::uint32_t automatic_leaf_triangles(std::size_t triangles);
+
+// The hierarchy over the triangles of Opaque materials (Mask and Blend ones keep their alpha
+// test, drawn apart by the caller). The caller decides about animated scenes (the tree is of the
+// positions at the time of the call).
+MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& options = {});
+
+// The distance from p to the box b (0 inside).
+float distance_to(const Bounds& b, const glm::vec3& p);
+
+} // namespace irad

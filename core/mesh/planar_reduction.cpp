@@ -1,0 +1,352 @@
+#include "core/mesh/planar_reduction.h"
+
+#include <algorithm>
+#include <array>
+#include <glm/glm.hpp>
+#include <numeric>
+
+namespace irad {
+
+namespace {
+
+using glm::dvec3;
+constexpr std::uint32_t kNone = ~0u;
+// A changed triangle must keep twice its projected area above this times its longest edge
+// squared (about the sine of its smallest angle): exactly degenerate fans are refused.
+constexpr double kMinSine = 1e-6;
+
+enum class Role : std::uint8_t { Locked, Interior, Line };
+
+// One edge v-x of v's fan: how many fan triangles hold it, in which directions, which patches.
+struct FanEdge {
+  std::uint32_t x = kNone;
+  int count = 0, out = 0;  // triangles with the edge, of them those running v -> x
+  std::uint32_t t[2] = {}; // the first two
+};
+
+struct Reducer {
+  const std::vector<glm::vec3>& positions;
+  float epsilon;
+  std::vector<glm::uvec3> tris;
+  std::vector<bool> alive;
+  std::vector<std::uint32_t> patch;            // per triangle
+  std::vector<dvec3> normals;                  // per patch, unit
+  std::vector<std::vector<std::uint32_t>> fan; // per vertex: its alive triangles
+  std::vector<Role> role;
+  std::vector<std::array<std::uint32_t, 2>> chain; // a Line vertex's neighbours on its chain
+  std::vector<std::uint32_t> stamp;                // per vertex, for set tests
+  std::uint32_t clock = 0;
+  std::vector<std::uint32_t> common, third, targets; // scratch of can_collapse and run
+
+  dvec3 p(std::uint32_t v) const { return dvec3(positions[v]); }
+  dvec3 cross_of(const glm::uvec3& t) const { return glm::cross(p(t.y) - p(t.x), p(t.z) - p(t.x)); }
+
+  // The fan's edges of v, sorted by x.
+  std::vector<FanEdge> fan_edges(std::uint32_t v) const {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> ends; // (x, triangle * 2 + out)
+    for (std::uint32_t t : fan[v]) {
+      const glm::uvec3& tri = tris[t];
+      const int i = tri.x == v ? 0 : tri.y == v ? 1 : 2;
+      ends.push_back({tri[(i + 1) % 3], 2 * t + 1});
+      ends.push_back({tri[(i + 2) % 3], 2 * t});
+    }
+    std::sort(ends.begin(), ends.end());
+    std::vector<FanEdge> out;
+    for (const auto& [x, code] : ends) {
+      if (out.empty() || out.back().x != x) out.push_back({x});
+      FanEdge& e = out.back();
+      if (e.count < 2) e.t[e.count] = code / 2;
+      ++e.count;
+      e.out += static_cast<int>(code & 1u);
+    }
+    return out;
+  }
+
+  bool feature(const FanEdge& e) const { return e.count == 1 || patch[e.t[0]] != patch[e.t[1]]; }
+
+  // Whether v's fan triangles form one piece through their shared edges.
+  bool one_piece(std::uint32_t v, const std::vector<FanEdge>& edges) const {
+    const std::vector<std::uint32_t>& f = fan[v];
+    std::vector<std::uint32_t> parent(f.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    const auto slot = [&](std::uint32_t t) {
+      return static_cast<std::uint32_t>(std::find(f.begin(), f.end(), t) - f.begin());
+    };
+    const auto find = [&](std::uint32_t a) {
+      while (parent[a] != a) a = parent[a] = parent[parent[a]];
+      return a;
+    };
+    std::size_t pieces = f.size();
+    for (const FanEdge& e : edges) {
+      if (e.count != 2) continue;
+      const std::uint32_t a = find(slot(e.t[0])), b = find(slot(e.t[1]));
+      if (a != b) {
+        parent[a] = b;
+        --pieces;
+      }
+    }
+    return pieces == 1;
+  }
+
+  // The distance of q from the line through a and b.
+  double off_line(const dvec3& q, const dvec3& a, const dvec3& b) const {
+    const dvec3 d = b - a;
+    return glm::length(glm::cross(q - a, d)) / glm::length(d);
+  }
+
+  void grow_patches();
+  void classify();
+  void straighten_chains();
+  bool can_collapse(std::uint32_t v, std::uint32_t u);
+  void collapse(std::uint32_t v, std::uint32_t u);
+  std::size_t run();
+};
+
+void Reducer::grow_patches() {
+  std::vector<double> area(tris.size());
+  for (std::size_t t = 0; t < tris.size(); ++t) area[t] = glm::length(cross_of(tris[t]));
+  std::vector<std::uint32_t> seeds(tris.size());
+  std::iota(seeds.begin(), seeds.end(), 0u);
+  std::stable_sort(seeds.begin(), seeds.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return area[a] > area[b]; });
+  patch.assign(tris.size(), kNone);
+  std::vector<std::uint32_t> queue;
+  for (std::uint32_t seed : seeds) {
+    if (!alive[seed] || patch[seed] != kNone) continue;
+    const auto id = static_cast<std::uint32_t>(normals.size());
+    const dvec3 n = cross_of(tris[seed]) / area[seed];
+    const double d = glm::dot(n, p(tris[seed].x));
+    normals.push_back(n);
+    const auto joins = [&](std::uint32_t t) {
+      if (!alive[t] || patch[t] != kNone || !(glm::dot(cross_of(tris[t]), n) > 0.0)) return false;
+      for (int c = 0; c < 3; ++c)
+        if (std::abs(glm::dot(n, p(tris[t][c])) - d) > epsilon) return false;
+      return true;
+    };
+    patch[seed] = id;
+    queue.assign(1, seed);
+    while (!queue.empty()) {
+      const glm::uvec3 t = tris[queue.back()];
+      queue.pop_back();
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t a = t[e], b = t[(e + 1) % 3];
+        for (std::uint32_t s : fan[a]) {
+          const glm::uvec3& o = tris[s];
+          if ((o.x == b || o.y == b || o.z == b) && joins(s)) {
+            patch[s] = id;
+            queue.push_back(s);
+          }
+        }
+      }
+    }
+  }
+}
+
+void Reducer::classify() {
+  role.assign(positions.size(), Role::Locked);
+  chain.assign(positions.size(), {kNone, kNone});
+  for (std::uint32_t v = 0; v < positions.size(); ++v) {
+    if (fan[v].empty()) continue;
+    const std::vector<FanEdge> edges = fan_edges(v);
+    std::vector<std::uint32_t> features;
+    bool sound = true;
+    for (const FanEdge& e : edges) {
+      // Non-manifold or inconsistently wound: left as it is.
+      if (e.count > 2 || (e.count == 2 && e.out != 1)) sound = false;
+      if (feature(e)) features.push_back(e.x);
+    }
+    if (!sound || !one_piece(v, edges)) continue;
+    if (features.empty()) {
+      role[v] = Role::Interior;
+    } else if (features.size() == 2) {
+      const dvec3 a = p(features[0]), b = p(features[1]), q = p(v);
+      const double along = glm::dot(q - a, b - a);
+      if (along > 0.0 && along < glm::dot(b - a, b - a) && off_line(q, a, b) <= epsilon) {
+        role[v] = Role::Line;
+        chain[v] = {features[0], features[1]};
+      }
+    }
+  }
+}
+
+// A chain of Line vertices between two other vertices A and B stays collapsible only if each of
+// its vertices lies within epsilon of the line AB: then whatever the collapses leave of it
+// stays within epsilon of every vertex it removed (a slowly curving outline is kept).
+void Reducer::straighten_chains() {
+  std::vector<std::uint32_t> parent(positions.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](std::uint32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (std::uint32_t v = 0; v < positions.size(); ++v)
+    if (role[v] == Role::Line)
+      for (std::uint32_t x : chain[v])
+        if (role[x] == Role::Line) parent[find(x)] = find(v);
+  struct Ends {
+    std::uint32_t a = kNone, b = kNone;
+    int count = 0;
+    bool straight = true;
+  };
+  std::vector<Ends> ends(positions.size());
+  for (std::uint32_t v = 0; v < positions.size(); ++v) {
+    if (role[v] != Role::Line) continue;
+    Ends& e = ends[find(v)];
+    for (std::uint32_t x : chain[v]) {
+      if (role[x] == Role::Line) continue;
+      (e.count == 0 ? e.a : e.b) = x;
+      ++e.count;
+    }
+  }
+  for (std::uint32_t v = 0; v < positions.size(); ++v) {
+    if (role[v] != Role::Line) continue;
+    Ends& e = ends[find(v)];
+    if (e.count != 2 || e.a == e.b || off_line(p(v), p(e.a), p(e.b)) > epsilon) e.straight = false;
+  }
+  for (std::uint32_t v = 0; v < positions.size(); ++v)
+    if (role[v] == Role::Line && !ends[find(v)].straight) role[v] = Role::Locked;
+}
+
+// The link condition (the vertices next to both v and u are exactly the third vertices of the
+// triangles on edge v-u) and every changed triangle still facing its patch's way.
+bool Reducer::can_collapse(std::uint32_t v, std::uint32_t u) {
+  ++clock;
+  for (std::uint32_t t : fan[u])
+    for (int c = 0; c < 3; ++c) stamp[tris[t][c]] = clock;
+  common.clear();
+  third.clear();
+  for (std::uint32_t t : fan[v]) {
+    const glm::uvec3& tri = tris[t];
+    const bool on_edge = tri.x == u || tri.y == u || tri.z == u;
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t x = tri[c];
+      if (x == v || x == u) continue;
+      if (stamp[x] == clock) common.push_back(x);
+      if (on_edge) third.push_back(x);
+    }
+    if (on_edge) continue;
+    glm::uvec3 moved = tri;
+    for (int c = 0; c < 3; ++c)
+      if (moved[c] == v) moved[c] = u;
+    const dvec3 a = p(moved.x), b = p(moved.y), c = p(moved.z);
+    const double longest =
+        std::max({glm::dot(b - a, b - a), glm::dot(c - b, c - b), glm::dot(a - c, a - c)});
+    if (!(glm::dot(glm::cross(b - a, c - a), normals[patch[t]]) > kMinSine * longest)) return false;
+  }
+  std::sort(common.begin(), common.end());
+  common.erase(std::unique(common.begin(), common.end()), common.end());
+  std::sort(third.begin(), third.end());
+  third.erase(std::unique(third.begin(), third.end()), third.end());
+  return !third.empty() && common == third;
+}
+
+void Reducer::collapse(std::uint32_t v, std::uint32_t u) {
+  const auto drop = [&](std::uint32_t x, std::uint32_t t) {
+    std::vector<std::uint32_t>& f = fan[x];
+    const auto at = std::find(f.begin(), f.end(), t);
+    *at = f.back();
+    f.pop_back();
+  };
+  for (std::uint32_t t : fan[v]) {
+    glm::uvec3& tri = tris[t];
+    if (tri.x == u || tri.y == u || tri.z == u) {
+      alive[t] = false;
+      for (int c = 0; c < 3; ++c)
+        if (tri[c] != v) drop(tri[c], t);
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+      if (tri[c] == v) tri[c] = u;
+    fan[u].push_back(t);
+  }
+  fan[v].clear();
+  if (role[v] == Role::Line) { // u and the chain's other neighbour w now meet
+    const std::uint32_t w = chain[v][0] == u ? chain[v][1] : chain[v][0];
+    for (std::uint32_t x : {u, w})
+      if (role[x] == Role::Line)
+        for (std::uint32_t& y : chain[x])
+          if (y == v) y = x == u ? w : u;
+  }
+}
+
+// Passes over the collapsible vertices, the shortest valid edge of each; a vertex next to a
+// collapse waits for the next pass (the collapses of one pass are independent, so fans grow
+// slowly instead of into one hub). Until a pass collapses nothing.
+std::size_t Reducer::run() {
+  std::vector<std::uint32_t> active;
+  for (std::uint32_t v = 0; v < positions.size(); ++v)
+    if (role[v] != Role::Locked) active.push_back(v);
+  std::vector<std::uint32_t> waits(positions.size(), 0);
+  std::size_t collapses = 0;
+  for (std::uint32_t pass = 1;; ++pass) {
+    std::size_t made = 0, kept = 0;
+    for (std::uint32_t v : active) {
+      if (waits[v] == pass) {
+        active[kept++] = v;
+        continue;
+      }
+      targets.clear();
+      if (role[v] == Role::Line) {
+        targets.assign(chain[v].begin(), chain[v].end());
+      } else {
+        for (std::uint32_t t : fan[v])
+          for (int c = 0; c < 3; ++c)
+            if (tris[t][c] != v) targets.push_back(tris[t][c]);
+        std::sort(targets.begin(), targets.end());
+        targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+      }
+      const dvec3 q = p(v);
+      std::sort(targets.begin(), targets.end(), [&](std::uint32_t a, std::uint32_t b) {
+        const double da = glm::dot(p(a) - q, p(a) - q), db = glm::dot(p(b) - q, p(b) - q);
+        return da != db ? da < db : a < b;
+      });
+      bool done = false;
+      for (std::uint32_t u : targets) {
+        if (!can_collapse(v, u)) continue;
+        for (std::uint32_t t : fan[v])
+          for (int c = 0; c < 3; ++c) waits[tris[t][c]] = pass;
+        collapse(v, u);
+        done = true;
+        break;
+      }
+      if (done) {
+        ++made;
+      } else {
+        active[kept++] = v;
+      }
+    }
+    active.resize(kept);
+    collapses += made;
+    if (made == 0) break;
+  }
+  return collapses;
+}
+
+} // namespace
+
+PlanarReduction reduce_planar(const std::vector<glm::vec3>& positions,
+                              const std::vector<glm::uvec3>& triangles, float epsilon) {
+  Reducer r{positions, epsilon, triangles, {}, {}, {}, {}, {}, {}, {}, 0, {}, {}, {}};
+  r.alive.assign(triangles.size(), true);
+  r.fan.resize(positions.size());
+  for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+    const glm::uvec3& tri = triangles[t];
+    if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x || r.cross_of(tri) == dvec3(0.0)) {
+      r.alive[t] = false;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) r.fan[tri[c]].push_back(t);
+  }
+  r.grow_patches();
+  r.classify();
+  r.straighten_chains();
+  r.stamp.assign(positions.size(), 0);
+  PlanarReduction out;
+  out.patches = r.normals.size();
+  out.collapses = r.run();
+  for (std::size_t t = 0; t < r.tris.size(); ++t)
+    if (r.alive[t]) out.triangles.push_back(r.tris[t]);
+  return out;
+}
+
+} // namespace irad
