@@ -10,14 +10,15 @@ namespace irad::gltf {
 // cameras[camera] placed by nodes[node] with world matrix `world`: camera_to_world is `world`
 // with scale and shear removed (Gram-Schmidt keeping the -z viewing axis, right-handed).
 // Fails unless 0 < yfov < pi, znear > 0, zfar > znear (if set), aspectRatio > 0 (if set).
-// Orthographic cameras give nullopt and a warning.
+// Orthographic cameras: fails unless xmag and ymag are finite and non-zero, znear >= 0 and
+// zfar > znear.
 std::optional<Camera> place_camera(const Context& ctx, std::size_t camera, std::size_t node,
                                    const glm::dmat4& world);
 
 // KHR_lights_punctual lights[light] placed by nodes[node]: position = world * (0, 0, 0, 1),
 // direction = normalised world * (0, 0, -1, 0), intensity = color * intensity. Fails unless
 // color and intensity are finite and >= 0 and 0 <= innerConeAngle < outerConeAngle <= pi/2.
-// Directional lights give nullopt and a warning; a range is ignored with a warning.
+// Point, spot and directional lights; a range is ignored with a warning.
 std::optional<PunctualLight> place_light(const Context& ctx, std::size_t light, std::size_t node,
                                          const glm::dmat4& world);
 
