@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # ctest's "sanitizers" test: configures, builds and runs the unit tests with AddressSanitizer and
 # UndefinedBehaviorSanitizer (CMakePresets.json "asan": gcc, -O1, -fno-omit-frame-pointer, every
-# report fatal) in build-asan/. Incremental: a second run rebuilds only what changed.
+# report fatal) in build-asan/. Incremental: a second run rebuilds only what changed. The preset
+# builds the libraries and the CLI as unity builds (batches of 8 sources) with line tables only
+# (-g1): every source file is compiled with the sanitizers, in fewer compiler runs.
 # Leaks are reported; tests/lsan.supp silences those inside Mesa, LLVM, Embree and TBB only.
 # Usage: bash tests/run_sanitizers.sh [GTEST_FILTER]
-# Without a filter it leaves out the slowest tests (1.5 s and more in the Release build; several
-# times that under the sanitizers): accuracy checks at large N and long CLI round trips whose
-# code paths the shorter tests run too. CI time is shared: keep this under about 15 minutes.
+# Without a filter it leaves out the slowest tests (1.5 s and more in the Release build, or 15 s
+# and more under the sanitizers): accuracy checks at large N, long CLI round trips, the shared
+# scenes' renders, ten thousand ring frames, whose code paths shorter tests run too (the loader on
+# the conformance files, the ring, the level of detail, kept shadow maps and the representatives'
+# faces in smaller scenes). CI time is shared: keep this under about 10 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
@@ -44,6 +48,12 @@ slow=(
   Interrupt.PartialOfTheRtVplEstimator
   LightBudget.TheDefaultRenderAgainstThePathTracer
   LightBudget.RoundsAreTheMeanOfIndependentLightSets
+  LightBudget.ShadowsOfRepresentatives
+  SharedScenes.UnlitFilesRenderWithTheWhiteEnvironmentAndOneWarning
+  Batched.KeptShadowMapsOfEveryPathMatchDrawingThemAnew
+  ShadowLod.NoNewLeaksBetweenTwoSubdividedRooms
+  ShadowLod.SimplifiedShadowsStayCloseToTheFullMeshes
+  Ring.DriftAfterTenThousandFramesStaysBounded
 )
 default_filter="*-$(IFS=:; echo "${slow[*]}")"
 filter=${1:-$default_filter}

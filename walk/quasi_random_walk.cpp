@@ -15,8 +15,6 @@ namespace irad {
 
 namespace {
 
-constexpr float inv_pi = std::numbers::inv_pi_v<float>;
-
 bool positive(const glm::vec3& v) {
   return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
 }
@@ -101,8 +99,9 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
                                       : trace_through_mirrors(scene, *rays_, from, dir, beta, eps);
     if (!hit) return; // the particle leaves the scene
     const PathVertex y = vertex_at(scene, *hit, dir);
-    const glm::vec3 radiant = beta * y.albedo * inv_pi; // beta_j rho(y_j) / pi
-    if (!positive(radiant)) return;                     // absorbed: nothing further
+    const glm::vec3 radiant =
+        beta * y.albedo * std::numbers::inv_pi_v<float>; // beta_j rho(y_j) / pi
+    if (!positive(radiant)) return;                      // absorbed: nothing further
     Vpl v;
     v.position = y.position;
     v.normal = y.normal;

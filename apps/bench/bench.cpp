@@ -1,6 +1,7 @@
 #include "apps/bench/bench.h"
 #include "apps/bench/bench_real_scenes.h"
 #include "apps/bench/peak_memory.h"
+#include "apps/bench/stopwatch.h"
 
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
@@ -29,11 +30,6 @@
 namespace irad::apps {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 struct Sweep {
   int size;

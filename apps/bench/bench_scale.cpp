@@ -14,6 +14,7 @@
 // (exact visibility), interleave 1 so that the difference is the shadow maps'.
 #include "apps/bench/bench.h"
 #include "apps/bench/bench_real_scenes.h"
+#include "apps/bench/stopwatch.h"
 
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
@@ -34,11 +35,6 @@
 namespace irad::apps {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

@@ -1,4 +1,5 @@
 #include "apps/bench/load_bench.h"
+#include "apps/bench/stopwatch.h"
 
 #include "core/gltf/loader.h"
 #include "core/scene/scene_builder.h"
@@ -19,11 +20,6 @@
 namespace irad::apps {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 // A field of /proc/self/status in bytes ("VmRSS", "VmHWM"); 0 when unreadable.
 std::size_t status_bytes(const char* field) {

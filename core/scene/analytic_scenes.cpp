@@ -18,11 +18,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-void require_positive(const char* builder, const char* name, double value) {
-  if (!(value > 0.0 && std::isfinite(value)))
-    throw Error(builder, name, fmt::format("must be a finite number > 0, got {}", value));
-}
-
 void require_albedo(const char* builder, double albedo) {
   if (!(albedo >= 0.0 && albedo < 1.0))
     throw Error(builder, "albedo", fmt::format("must be in [0, 1), got {}", albedo));

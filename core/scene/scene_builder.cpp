@@ -10,12 +10,6 @@ namespace irad {
 
 namespace {
 
-// Throws unless value > 0 and finite.
-void require_positive(const char* builder, const char* name, double value) {
-  if (!(value > 0.0 && std::isfinite(value)))
-    throw Error(builder, name, fmt::format("must be a finite number > 0, got {}", value));
-}
-
 // Throws unless lo <= value <= hi.
 void require_in(const char* builder, const char* name, double value, double lo, double hi) {
   if (!(value >= lo && value <= hi))
@@ -23,6 +17,11 @@ void require_in(const char* builder, const char* name, double value, double lo, 
 }
 
 } // namespace
+
+void require_positive(const char* builder, const char* name, double value) {
+  if (!(value > 0.0 && std::isfinite(value)))
+    throw Error(builder, name, fmt::format("must be a finite number > 0, got {}", value));
+}
 
 void add_quad(Scene& scene, const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2,
               const glm::vec3& p3, std::uint32_t material) {

@@ -28,6 +28,8 @@ std::uint32_t add_material(Scene& scene, const glm::vec3& albedo, const glm::vec
 Camera look_at(const glm::vec3& eye, const glm::vec3& target, const glm::vec3& up, float yfov);
 // Recomputes Scene::bounds.
 void finish(Scene& scene);
+// Throws Error(builder, name, ...) unless value is finite and > 0.
+void require_positive(const char* builder, const char* name, double value);
 
 // A square light of side `side` and radiance `radiance`, centred at height `height` above the
 // plane z = 0 (a square of side `plane_side` centred at the origin, albedo `albedo`, facing +z),

@@ -12,8 +12,8 @@ namespace irad::gl {
 
 namespace {
 
-constexpr GLint gbuffer_unit = 3; // position, normal (and albedo) at 3, 4, 5
-constexpr GLint atlas_unit = 2;   // the interleaved atlas (unsure pixels)
+constexpr GLint gbuffer_unit = 3;      // position, normal (and albedo) at 3, 4, 5
+constexpr GLint unsure_atlas_unit = 2; // the interleaved atlas (unsure pixels)
 
 // 1 where some pixel of the window -h..h around p does not show p's surface
 // (shaders::resolve_window_glsl), 0 elsewhere and on the background.
@@ -110,7 +110,7 @@ EdgePixels::EdgePixels(const GladGLContext& api, int k, const GBuffer& gbuffer, 
   if (!unsure_) return;
   unsure_->use();
   api.Uniform1i(unsure_->uniform("u_position"), gbuffer_unit);
-  api.Uniform1i(unsure_->uniform("u_atlas"), atlas_unit);
+  api.Uniform1i(unsure_->uniform("u_atlas"), unsure_atlas_unit);
   api.Uniform1i(unsure_->uniform("u_k"), k);
   api.Uniform1f(unsure_->uniform("u_share"), kUnsureShare);
   api.Uniform1f(unsure_->uniform("u_depth"), 0.0f);
@@ -149,7 +149,7 @@ void EdgePixels::add_unsure(GLuint atlas, glm::ivec2 tile) {
   if (!unsure_) return;
   unsure_->use();
   api_->Uniform2i(unsure_->uniform("u_tile"), tile.x, tile.y);
-  api_->ActiveTexture(GL_TEXTURE0 + atlas_unit);
+  api_->ActiveTexture(GL_TEXTURE0 + unsure_atlas_unit);
   api_->BindTexture(GL_TEXTURE_2D, atlas);
   const std::vector<glm::ivec2> unsure = marked(*unsure_);
   // Both lists are row-major: their union, in that order.

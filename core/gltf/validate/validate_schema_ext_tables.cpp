@@ -8,9 +8,6 @@
 namespace irad::gltf::schema {
 namespace {
 
-constexpr Prop unit(std::string_view name) {
-  return {.name = name, .kind = Kind::Number, .min = 0.0, .max = 1.0};
-}
 constexpr Prop at_least(std::string_view name, double lo) {
   return {.name = name, .kind = Kind::Number, .min = lo};
 }
@@ -22,12 +19,6 @@ constexpr Prop color(std::string_view name, double hi = 1.0) {
           .item = Kind::Number,
           .min_items = 3,
           .max_items = 3};
-}
-constexpr Prop texture(std::string_view name) {
-  return {.name = name, .kind = Kind::Object, .object = &kTextureInfo};
-}
-constexpr Prop index(std::string_view name, std::string_view target, bool required = false) {
-  return {.name = name, .kind = Kind::Index, .required = required, .target = target};
 }
 
 // KHR_lights_punctual

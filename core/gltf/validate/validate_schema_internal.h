@@ -100,6 +100,18 @@ extern const Schema kTextureInfo;       // textureInfo
 extern const Schema kNormalTextureInfo; // material.normalTextureInfo
 std::span<const Extension> extensions();
 
+// Building blocks of both tables: a number in [0, 1], a textureInfo object, an index into the
+// document's array at `target`.
+constexpr Prop unit(std::string_view name) {
+  return {.name = name, .kind = Kind::Number, .min = 0.0, .max = 1.0};
+}
+constexpr Prop texture(std::string_view name) {
+  return {.name = name, .kind = Kind::Object, .object = &kTextureInfo};
+}
+constexpr Prop index(std::string_view name, std::string_view target, bool required = false) {
+  return {.name = name, .kind = Kind::Index, .required = required, .target = target};
+}
+
 // Walker (validate_schema.cpp).
 std::string child(const std::string& ptr, std::string_view key);
 std::string child(const std::string& ptr, std::size_t index);

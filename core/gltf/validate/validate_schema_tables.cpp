@@ -10,12 +10,6 @@ namespace {
 // Building blocks.
 constexpr Prop name_prop{.name = "name", .kind = Kind::String};
 
-constexpr Prop index(std::string_view name, std::string_view target, bool required = false) {
-  return {.name = name, .kind = Kind::Index, .required = required, .target = target};
-}
-constexpr Prop unit(std::string_view name) {
-  return {.name = name, .kind = Kind::Number, .min = 0.0, .max = 1.0};
-}
 constexpr Prop numbers(std::string_view name, int length, double lo = -kInf, double hi = kInf) {
   return {.name = name,
           .kind = Kind::Array,
@@ -163,9 +157,6 @@ namespace {
 constexpr std::array occlusion_info_props{index("index", "/textures", true), natural("texCoord"),
                                           unit("strength")};
 constexpr Schema occlusion_info{.location = "textureInfo", .props = occlusion_info_props};
-constexpr Prop texture(std::string_view name) {
-  return {.name = name, .kind = Kind::Object, .object = &kTextureInfo};
-}
 
 // material
 constexpr std::array pbr_props{numbers("baseColorFactor", 4, 0.0, 1.0), texture("baseColorTexture"),
