@@ -468,12 +468,11 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "first and leaves out those they hide (the same image)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
-  cmd->add_option(
-         "--shadow-planes", args->shadow_planes,
-         "Raster, batched: a gradient per shadow texel so that walls thinner than a "
-         "texel's depth range cast their shadow (off: a cheaper program, docs/performance.md; "
-         "the lookups trust the receiver's plane, so light passes under such walls); "
-         "auto: on where the scene has such walls")
+  cmd->add_option("--shadow-planes", args->shadow_planes,
+                  "Raster, batched: a gradient per shadow texel so that walls thinner than a "
+                  "texel's depth range cast their shadow (off: cheaper lookups that trust the "
+                  "receiver's plane, so light passes under such walls); "
+                  "auto: on where the scene has such walls")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   cmd->add_option("--jitter", args->jitter,
