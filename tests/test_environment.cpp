@@ -1,5 +1,4 @@
-// The distant environment (issue 12, core/environment/environment.h) against what the test computes
-// itself:
+// The distant environment (core/environment/environment.h) against what the test computes itself:
 //  - orientation: where a map's texels land (Blender's equirectangular world texture with +Y up:
 //    the centre column at the middle row is +X, u = 0.75 is +Z, u = 0.25 is -Z, the top row +Y),
 //    and map_coordinates / map_direction as inverses;

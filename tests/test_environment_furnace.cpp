@@ -1,4 +1,4 @@
-// The white furnace under an environment (issue 12, design.md section 3): a convex object of
+// The white furnace under an environment (design.md section 3): a convex object of
 // albedo rho under a uniform sky of radiance L reflects L_o = rho/pi * integral over the
 // hemisphere of L cos = rho L at every point, whatever its normal. The object is a flat-shaded
 // subdivided octahedron (a convex polyhedron: the hemisphere above every facet is open sky and no

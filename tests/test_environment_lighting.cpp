@@ -1,4 +1,4 @@
-// Scenes lit by the distant environment (issue 12, core/environment/environment.h):
+// Scenes lit by the distant environment (core/environment/environment.h):
 //  - rotation: pt images under a map rotated by 2 pi k / W and under the map with its columns
 //    shifted k to the left agree within pt's noise, and the opposite shift does not;
 //  - a map black except one texel lights a scene as the directional light of the same

@@ -1,6 +1,6 @@
 // The third-party glTF files of ../shared/scenes (none carries a light) render without options:
 // the command line lights each with the uniform white environment and says so in exactly one
-// warning (issue 12). Raster, the default estimator, small and with few paths: what is checked
+// warning. Raster, the default estimator, small and with few paths: what is checked
 // is that the file is accepted and lit, not the image's accuracy (the furnace and the
 // environment tests do that).
 #include "core/image/image_io.h"

@@ -201,7 +201,7 @@ TEST(HardCases, TwoMillimetreWallLeaksTheSameInEveryModeAtAnyScale) {
   }
   // Measured (llvmpipe, 64^2 faces, N = 128): default and --batch 1 4.07e-5 (53 pixels, max
   // 0.0082 x room A's mean, up to 0.22 m from the wall: the resolve spreads it), --interleave 1
-  // 4.95e-5 (30 pixels, max 0.015 x, up to 2.4 cm), at every scale; issue 14 asks for below 1e-4.
+  // 4.95e-5 (30 pixels, max 0.015 x, up to 2.4 cm), at every scale; the bound asked is 1e-4.
   // With k = 2 each pixel sees a quarter of the VPLs, 4x as bright: which of the few leaking
   // VPLs reach which pixels is the draw of the sets, and the expected leak is k = 1's (the sets
   // by a hash of the path, not core/lights/interleave_sets.h's blocks, draw 2.76e-5 in 44
@@ -262,7 +262,7 @@ TEST(HardCases, AWallJustPastThePlanesReachLeaksNothingWithoutThem) {
                   gap, resolution, batch, ratio, leak.pixels, leak.reach);
       // Measured: 0 (no lit pixel) in every case (1.02x the reach: 5.9e-7 at R = 128); with twice
       // the reach of in_front_of_receiver's plane crossing 1.7e-6 (37 pixels), with no limit on it
-      // 4e-6 (1165 pixels). Issue 14 asks for below 1e-4.
+      // 4e-6 (1165 pixels). The bound asked is 1e-4.
       EXPECT_LT(ratio, 1e-6) << resolution << " batch " << batch;
     }
   }

@@ -58,7 +58,7 @@ Sweep sweep_for(const BenchOptions& o, const std::string& name) {
                 256, 4096, {16, 32, 64, 128, 256, 512, 1024}, {16, 64, 256}, {4, 16, 64, 256, 1024},
                 7};
   if (name == "large") s.raster_max = o.quick ? 16u : 64u;
-  if (name == "cornell" && !o.quick) { // up to ~30 s, where pt meets the raster (issue 14)
+  if (name == "cornell" && !o.quick) { // up to ~30 s, where pt meets the raster
     s.paths.insert(s.paths.end(), {4096, 16384});
     s.rt_paths.insert(s.rt_paths.end(), {1024, 4096});
     s.k1_max = 4096;
@@ -67,7 +67,7 @@ Sweep sweep_for(const BenchOptions& o, const std::string& name) {
     s.cluster_paths = o.quick ? std::vector<std::uint32_t>{256}
                               : std::vector<std::uint32_t>{2048, 4096, 8192, 16384, 32768};
     // 22 rounds: the last the raster renders within pt 1024 spp's time (about 30 s, the end of
-    // issue 14's range).
+    // the range the comparison at equal time covers).
     s.rounds =
         o.quick ? std::vector<std::uint32_t>{1, 2} : std::vector<std::uint32_t>{1, 2, 4, 8, 16, 22};
     s.rt_rounds_max = o.quick ? 2u : 4u; // rt-vpl: about 4 s a round at 256x256

@@ -1,6 +1,6 @@
 #pragma once
 // The clamp distance as a field over the scene's surfaces, following the local density of the
-// VPLs instead of the scene's size (issue 14). The VPL estimator's geometry term
+// VPLs instead of the scene's size. The VPL estimator's geometry term
 //   G_c(x, y) = cos_y cos_x / max(|x - y|^2, d(y)^2)
 // bounds the spike a single VPL at y leaves on receivers closer than the VPLs' spacing there;
 // a clamp larger than that spacing only removes light (bias), a smaller one leaves blotches. With

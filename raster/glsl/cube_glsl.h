@@ -9,7 +9,7 @@
 // is compared with the plane through the centre, d_c + g . (at - centre): a surface seen at a
 // grazing angle theta changes its distance by about dist (2/R) tan(theta) across one texel, far
 // more than a thin wall's thickness, so with d_c alone a receiver just behind such a wall but
-// nearer than its texel's centre passes (issue 14: a 2 mm wall lets 2.7e-4 of the lit room's
+// nearer than its texel's centre passes (a 2 mm wall lets 2.7e-4 of the lit room's
 // light through), and a receiver on the surface itself but farther than the centre is shadowed
 // unless the normal offset lifts it over the texel's depth range. The lookup compares the
 // receiver with the plane both ways, exact for a planar occluder; the lesser of d_c and the plane
