@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
   libembree-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl-dev libglm-dev libopenexr-dev
   libstb-dev libdraco-dev libmeshoptimizer-dev libnanoflann-dev libwebp-dev nlohmann-json3-dev libgtest-dev libcli11-dev libfmt-dev
   python3-glad gnuplot-nox

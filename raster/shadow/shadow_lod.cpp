@@ -20,17 +20,20 @@ glm::vec2 plane_range(const glm::vec4& plane, const Bounds& b) {
 
 void add_pick(const ClusterPick& pick, ClusterSelection& out) {
   if (pick.count == 0) return;
-  const auto* offset =
-      reinterpret_cast<const char*>(std::uintptr_t(pick.first) * sizeof(std::uint32_t));
+  // Byte offsets into the index buffer, as glMultiDrawElements takes them (pointers that are no
+  // address: their arithmetic is done on integers).
+  const std::uintptr_t offset = std::uintptr_t(pick.first) * sizeof(std::uint32_t);
   out.triangles += pick.count / 3;
-  if (!out.counts.empty() &&
-      static_cast<const char*>(out.offsets.back()) + out.counts.back() * sizeof(std::uint32_t) ==
-          offset) {
+  const auto end_of_last = [&] {
+    return reinterpret_cast<std::uintptr_t>(out.offsets.back()) +
+           std::uintptr_t(out.counts.back()) * sizeof(std::uint32_t);
+  };
+  if (!out.counts.empty() && end_of_last() == offset) {
     out.counts.back() += static_cast<GLsizei>(pick.count);
     return;
   }
   out.counts.push_back(static_cast<GLsizei>(pick.count));
-  out.offsets.push_back(offset);
+  out.offsets.push_back(reinterpret_cast<const void*>(offset));
 }
 
 std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm::vec4& rect,
