@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Measures the error of the raster against a converged path-traced reference on the Cornell box
-# for a grid of paths N and clamps (how the default --clamp is chosen; docs/accuracy.md).
+# for a grid of paths N and global clamps (how the default --clamp is chosen; docs/accuracy.md).
 # Usage: bash scripts/measure_clamp.sh [OUT_DIR] [SIZE] [REFERENCE_SPP]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,7 +16,8 @@ echo "paths,clamp,rmse,relmse,block8_rmse,raster_seconds"
 for n in 64 128 256 512 1024; do
   for c in 0.01 0.02 0.03 0.05 0.07 0.1 0.15 0.2; do
     img="$out/raster_${n}_${c}.exr"
-    "$irad" render "$scene" -o "$img" --paths "$n" --clamp "$c" --size "${size}x${size}" --quiet \
+    "$irad" render "$scene" -o "$img" --paths "$n" --clamp-mode global --clamp "$c" \
+      --size "${size}x${size}" --quiet \
       --stats "$out/stats.json"
     "$irad" compare "$img" "$ref" --json "$out/c1.json" > /dev/null
     "$irad" compare "$img" "$ref" --block 8 --json "$out/c8.json" > /dev/null
