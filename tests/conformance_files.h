@@ -4,6 +4,7 @@
 // JSON, the buffers resolved (GLB BIN chunk for a uri-less buffer 0, base64 data URIs, files
 // beside the document) and the report's error-severity messages.
 #include "core/gltf/validate/validate.h"
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -9,6 +9,7 @@
 #include "core/scene/scene_builder.h"
 #include "core/util/error.h"
 #include "keep_written_gltf.h"
+#include "tests/test_paths.h"
 #include "walk/path_tracer.h"
 #include "walk/ray_scene.h"
 

@@ -8,6 +8,7 @@
 #include "core/image/image_metrics.h"
 #include "core/sampling/rng.h"
 #include "raster/raster_renderer.h"
+#include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/ray_scene.h"
 

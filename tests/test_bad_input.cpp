@@ -5,6 +5,7 @@
 #include "core/util/error.h"
 #include "core/util/log.h"
 #include "tests/gltf_test_scene.h"
+#include "tests/test_paths.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -9,6 +9,7 @@
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
 #include "tests/square_light_error.h"
+#include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 
 #include <algorithm>

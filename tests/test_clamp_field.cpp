@@ -6,6 +6,7 @@
 #include "core/image/image_metrics.h"
 #include "core/lights/clamp_field.h"
 #include "raster/raster_renderer.h"
+#include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
 

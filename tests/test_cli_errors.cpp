@@ -3,6 +3,7 @@
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "core/image/image_io.h"
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <cmath>
@@ -303,7 +304,8 @@ TEST_F(CliErrors, LookAtCamera) {
 TEST_F(CliErrors, LookAtCameraEqualsTheFilesCamera) {
   // glTF requires znear; the file's is the near plane make_view fits for a camera without one.
   irad::Log quiet([](const std::string&) {});
-  const irad::Scene loaded = irad::load_gltf(IRAD_SOURCE_DIR "/data/cornell_box.gltf", quiet);
+  const irad::Scene loaded =
+      irad::load_gltf(std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf", quiet);
   irad::Camera fitted = loaded.cameras.at(0);
   fitted.znear = 0.0f;
   const float znear = irad::make_view(fitted, loaded.bounds, 24, 24).znear;

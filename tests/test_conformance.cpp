@@ -13,6 +13,7 @@
 #include "core/gltf/loader.h"
 #include "core/util/error.h"
 #include "core/util/log.h"
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <cctype>

@@ -3,6 +3,7 @@
 #include "core/gltf/loader.h"
 #include "core/image/image_io.h"
 #include "raster/raster_renderer.h"
+#include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 
 #include <cstdlib>

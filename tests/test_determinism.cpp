@@ -1,6 +1,8 @@
 // The same input, options and thread count give a bit-identical EXR on the same machine: every
 // estimator is rendered twice through the command line and the files compared byte for byte.
 // The path tracer is also the same whatever the thread count (one RNG stream per pixel, sample).
+#include "tests/test_paths.h"
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>

@@ -11,6 +11,7 @@
 #include "irad/render.h"
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
+#include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/ray_scene.h"
 #include "walk/vpl_tracer.h"

@@ -4,6 +4,7 @@
 // the sanitizers too (tests/run_sanitizers.sh). Files named seed-* must load, and regression-*
 // inputs (one per loader bug found) must give their error.
 #include "fuzz/fuzz_input.h"
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <filesystem>

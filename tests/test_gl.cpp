@@ -8,6 +8,7 @@
 #include "raster/context/shader_program.h"
 #include "raster/image/target.h"
 #include "raster/raster_renderer.h"
+#include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 
 #include <gtest/gtest.h>

@@ -8,6 +8,7 @@
 #include "core/util/log.h"
 #include "tests/gltf_loader_fixture.h"
 #include "tests/gltf_test_scene.h"
+#include "tests/test_paths.h"
 
 #include <cmath>
 #include <cstdint>

@@ -3,6 +3,7 @@
 // must give no issue; an invalid file whose report has an error with a code check_schema covers
 // must give an issue at (or above / below) one of those errors' JSON pointers.
 #include "core/gltf/validate/validate_parts.h"
+#include "tests/test_paths.h"
 
 #include <gtest/gtest.h>
 

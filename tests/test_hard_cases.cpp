@@ -14,6 +14,7 @@
 #include "raster/image/target.h"
 #include "raster/raster_renderer.h"
 #include "tests/raster_test_options.h"
+#include "tests/test_paths.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"

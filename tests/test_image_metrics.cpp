@@ -4,6 +4,7 @@
 #include "core/image/image_io.h"
 #include "core/image/image_metrics.h"
 #include "core/util/error.h"
+#include "tests/test_paths.h"
 
 #include <gtest/gtest.h>
 

@@ -4,6 +4,7 @@
 // file is written atomically.
 #include "core/image/image.h"
 #include "core/image/image_io.h"
+#include "tests/test_paths.h"
 
 #include <chrono>
 #include <csignal>

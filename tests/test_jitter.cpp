@@ -8,6 +8,7 @@
 #include "raster/raster_renderer.h"
 #include "tests/doc_images.h"
 #include "tests/jitter_edges.h"
+#include "tests/test_paths.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/ray_scene.h"

@@ -2,6 +2,7 @@
 // times with the image render_file gives; progress reaches its total; cancellation by the
 // callback or the flag stops at once and says so; errors name the file and the element.
 #include "irad/irad.h"
+#include "tests/test_paths.h"
 
 #include <atomic>
 #include <gtest/gtest.h>

@@ -7,6 +7,7 @@
 #include "core/sampling/sequence.h"
 #include "core/util/error.h"
 #include "irad/render.h"
+#include "tests/test_paths.h"
 #include "tests/test_rooms.h"
 
 #include <bit>

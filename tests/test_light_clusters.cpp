@@ -8,6 +8,7 @@
 #include "core/util/error.h"
 #include "irad/render.h"
 #include "raster/raster_renderer.h"
+#include "tests/test_paths.h"
 #include "walk/light_rows.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"

@@ -5,6 +5,7 @@
 #include "irad/parts.h"
 #include "irad/render.h"
 #include "irad/scene_setup.h"
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <cmath>

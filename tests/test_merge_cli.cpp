@@ -2,6 +2,7 @@
 // parts' headers, the merge, and bad input (one line naming the file or option, exit code 1,
 // no output written).
 #include "core/image/image_io.h"
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -5,6 +5,7 @@
 #include "core/image/image_metrics.h"
 #include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
+#include "tests/test_paths.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"

@@ -6,6 +6,7 @@
 #include "core/util/error.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
+#include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 
 #include <cstdlib>

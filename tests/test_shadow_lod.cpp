@@ -13,6 +13,7 @@
 #include "raster/scene/gpu_scene.h"
 #include "raster/shadow/shadow_atlas.h"
 #include "tests/side_by_side.h"
+#include "tests/test_paths.h"
 #include "tests/test_rooms.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"

@@ -4,6 +4,7 @@
 // is that the file is accepted and lit, not the image's accuracy (the furnace and the
 // environment tests do that).
 #include "core/image/image_io.h"
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -10,6 +10,7 @@
 #include "core/scene/scene_builder.h"
 #include "keep_written_gltf.h"
 #include "raster/raster_renderer.h"
+#include "tests/test_paths.h"
 #include "walk/mirror_pass.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"

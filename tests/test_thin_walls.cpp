@@ -8,6 +8,7 @@
 #include "irad/irad.h"
 #include "raster/raster_renderer.h"
 #include "test_rooms.h"
+#include "tests/test_paths.h"
 #include "walk/ray_scene.h"
 #include "walk/thin_walls.h"
 

@@ -4,6 +4,7 @@
 // there is no display. Key and mouse handling is tested without a window (test_fly_camera.cpp).
 #include "core/image/image.h"
 #include "core/image/image_io.h"
+#include "tests/test_paths.h"
 
 #include <algorithm>
 #include <cmath>
