@@ -17,7 +17,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
 # A build-asan/ configured with another compiler is configured anew.
-if [ -f build-asan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang++-14' build-asan/CMakeCache.txt; then
+cache=build-asan/CMakeCache.txt
+if [ -f "$cache" ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang++-14' "$cache"; then
   rm -rf build-asan
 fi
 if [ ! -f build-asan/build.ninja ]; then
