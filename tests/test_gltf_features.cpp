@@ -3,7 +3,7 @@
 // animated weights), KHR_texture_transform and texCoord sets, COLOR_0, KHR_mesh_quantization,
 // sparse accessors without a bufferView, Draco and meshopt compressed primitives against the
 // uncompressed mesh, EXT_texture_webp, orthographic cameras, choosing a scene, and the rules for
-// extensions and for problems in unused parts.
+// extensions and for problems in unused parts and in extensions irad ignores.
 #include "core/animation/animation.h"
 #include "core/gltf/loader.h"
 #include "core/scene/scene.h"
@@ -450,6 +450,54 @@ TEST_F(GltfFeatures, ProblemsInUnusedPartsAreOneWarningAndUsedOnesAnError) {
     FAIL() << "no error";
   } catch (const irad::Error& e) {
     EXPECT_NE(std::string(e.what()).find("used.gltf: accessors[0]"), std::string::npos) << e.what();
+  }
+}
+
+// The quad with a clearcoat normal map (KHR_materials_clearcoat, which irad ignores) and neither
+// TANGENT nor a normal map: the validator's MESH_PRIMITIVE_NO_TANGENT_SPACE at the primitive's
+// material, a problem that the ignored extension alone raises.
+Gltf clearcoat_normals_quad() {
+  Gltf g = emissive_quad();
+  g.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
+      g.vec2s({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  g.push("textures", {{"source", g.image_png(png(1, 1, 3, 8, {128, 128, 255}))}});
+  g.doc["materials"][0]["extensions"]["KHR_materials_clearcoat"] = {
+      {"clearcoatFactor", 1.0}, {"clearcoatNormalTexture", {{"index", 0}}}};
+  g.doc["extensionsUsed"] = {"KHR_materials_clearcoat"};
+  return g;
+}
+
+TEST_F(GltfFeatures, ProblemsOfAnIgnoredExtensionAreWarningsAndOfAReadOneAnError) {
+  Gltf g = clearcoat_normals_quad();
+  const fs::path coat = g.write_gltf(dir / "coat.gltf");
+  EXPECT_EQ(load(coat).triangle_count(), 2u);
+  // One line naming the file and the element.
+  const std::string tangents = "warning: " + coat.string() +
+                               ": meshes[0].primitives[0].material: the material needs tangents "
+                               "and neither the primitive nor a normal map gives them; irad "
+                               "ignores extension 'KHR_materials_clearcoat'";
+  EXPECT_EQ(std::count(warnings.begin(), warnings.end(), tangents), 1)
+      << ::testing::PrintToString(warnings);
+  // A problem inside the ignored extension's object is a warning too.
+  g.doc["materials"][0]["extensions"]["KHR_materials_clearcoat"]["clearcoatFactor"] = 2.0;
+  EXPECT_EQ(load(g.write_gltf(dir / "factor.gltf")).triangle_count(), 2u);
+  EXPECT_TRUE(warned("factor.gltf: materials[0].extensions.KHR_materials_clearcoat.clearcoatFactor"
+                     ": value 2.0 is out of range; irad ignores extension "
+                     "'KHR_materials_clearcoat'"));
+  // The same kind of problem in an extension irad reads, on the same material, is the error of
+  // the file.
+  g.doc["materials"][0]["extensions"]["KHR_materials_emissive_strength"] = {
+      {"emissiveStrength", -2.0}};
+  g.doc["extensionsUsed"].push_back("KHR_materials_emissive_strength");
+  try {
+    load(g.write_gltf(dir / "strength.gltf"));
+    FAIL() << "no error";
+  } catch (const irad::Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "strength.gltf: materials[0].extensions.KHR_materials_emissive_strength."
+                  "emissiveStrength: value -2.0 is out of range"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -3,7 +3,9 @@
 #include "core/gltf/read/json_read.h"
 #include "core/util/error.h"
 
+#include <algorithm>
 #include <array>
+#include <string_view>
 #include <utility>
 
 namespace irad::gltf {
@@ -46,8 +48,27 @@ const char* repair_of(const std::string& code) {
   return nullptr;
 }
 
-IssueBook::IssueBook(std::string file, std::vector<Issue> issues) : file_(std::move(file)) {
+IssueBook::IssueBook(std::string file, std::vector<Issue> issues,
+                     std::function<bool(const std::string&)> supported)
+    : file_(std::move(file)), supported_(std::move(supported)) {
   for (Issue& i : issues) add(std::move(i));
+}
+
+std::optional<std::string> IssueBook::ignored_extension(const Issue& issue) const {
+  // Each "/extensions/NAME" on the pointer, outermost first (extension names hold no '/' or '~',
+  // so the segment is the name itself).
+  constexpr std::string_view kList = "/extensions/";
+  const std::string& p = issue.pointer;
+  for (std::size_t at = p.find(kList); at != std::string::npos; at = p.find(kList, at + 1)) {
+    const std::size_t begin = at + kList.size();
+    const std::size_t end = std::min(p.find('/', begin), p.size());
+    std::string name = p.substr(begin, end - begin);
+    if (!supported_(name)) return name;
+  }
+  if (issue.extensions.empty()) return std::nullopt;
+  for (const std::string& name : issue.extensions)
+    if (supported_(name)) return std::nullopt;
+  return issue.extensions.front();
 }
 
 void IssueBook::add(Issue issue) {
@@ -63,6 +84,11 @@ void IssueBook::use(const std::string& pointer, Log& log, bool exact) {
     if (e.used) continue;
     e.used = true;
     const std::string where = path_of(e.issue.pointer);
+    if (const std::optional<std::string> ignored = ignored_extension(e.issue)) {
+      log.warn(file_ + ": " + where + ": " + e.issue.message + "; irad ignores extension '" +
+               *ignored + "'");
+      continue;
+    }
     if (const char* repair = repair_of(e.issue.code)) {
       log.warn(file_ + ": " + where + ": " + e.issue.message + "; " + repair);
       continue;

@@ -171,7 +171,7 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
                 const std::string& scene_name) {
   const std::string file = path.string();
   gltf::SceneFile f = gltf::read_scene_file(path, file, limits);
-  gltf::IssueBook issues(file, {});
+  gltf::IssueBook issues(file, {}, supported);
   const std::vector<gltf::BufferData> buffers =
       gltf::resolve_buffers(f, path.parent_path(), limits, issues);
   for (gltf::Issue& issue : gltf::validate(f.root, buffer_views(f, buffers)))

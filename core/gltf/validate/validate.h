@@ -1,8 +1,9 @@
 #pragma once
 // Internal to the glTF loader: the checks of the Khronos glTF-Validator that concern a
 // document's JSON and its buffers' data, each problem reported as an Issue with the JSON pointer
-// of the element it concerns. The loader decides what an issue means (core/gltf/loader.cpp): an
-// error when irad uses the element, a repaired value, or one warning line for the unused rest.
+// of the element it concerns. The loader decides what an issue means (core/gltf/issue_book.h): an
+// error when irad uses the element, a repaired value, a warning when it concerns only an
+// extension irad ignores, or one warning line for the unused rest.
 #include <cstddef>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
@@ -14,6 +15,11 @@ struct Issue {
   std::string pointer; // JSON pointer, e.g. "/meshes/2/primitives/0/attributes/NORMAL"
   std::string code;    // the validator's code, e.g. "MESH_PRIMITIVE_UNEQUAL_ACCESSOR_COUNT"
   std::string message; // irad's own words, one line, without the pointer
+  // The extensions whose content alone raises an issue that lies outside them (e.g.
+  // MESH_PRIMITIVE_NO_TANGENT_SPACE at a primitive's material, raised by the material's
+  // KHR_materials_clearcoat): without all of them the issue does not arise. Empty when the core
+  // document raises it; an issue inside an extension's object is known by its pointer instead.
+  std::vector<std::string> extensions = {};
 };
 
 // The bytes of buffer i as the loader resolved them (GLB BIN chunk, data URI or external file);

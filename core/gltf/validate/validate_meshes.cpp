@@ -167,39 +167,55 @@ void check_indices(const Context& ctx, std::int64_t acc, const std::string& ptr)
             "the indices' buffer view cannot have a byteStride");
 }
 
+// The parts of a material that ask for something of the primitive: "" for the material's core
+// members, else the extensions whose objects ask. An issue raised by extensions only carries
+// their names (Issue::extensions); one the core members raise carries none.
+std::vector<std::string> raised_by(const std::set<std::string>& parts) {
+  if (parts.empty() || parts.count("") != 0) return {};
+  return {parts.begin(), parts.end()};
+}
+
 // TEXCOORD_n sets, NORMAL/TANGENT presence: what a material needs from the primitive.
 void check_material(const Context& ctx, const json& prim, const std::set<std::string>& names,
                     int texcoords, const std::string& ptr) {
   const auto mi = index(prim, "material");
   const json* mat = mi ? ctx.object("materials", *mi) : nullptr;
   if (mat == nullptr) return;
-  bool too_few = false;
-  // Every texture binding (an object member named *Texture), down to a bounded depth.
-  auto walk = [&](auto& self, const json& obj, int depth) -> void {
+  std::set<std::string> too_few; // the parts reading a set the primitive lacks
+  // Every texture binding (an object member named *Texture), down to a bounded depth. `part` is
+  // "" in the core material; each member of the material's "extensions" object is its own part.
+  auto walk = [&](auto& self, const json& obj, int depth, const std::string& part,
+                  bool extension_list) -> void {
     if (!obj.is_object() || depth > 8) return;
     for (const auto& [key, v] : obj.items()) {
+      const std::string& owner = extension_list ? key : part;
       if (key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0 && v.is_object() &&
           has(v, "index")) {
         std::int64_t set = index(v, "texCoord").value_or(0);
         const json* ext = member(v, "extensions");
         const json* tt = ext != nullptr ? member(*ext, "KHR_texture_transform") : nullptr;
         if (tt != nullptr) set = index(*tt, "texCoord").value_or(set);
-        if (set >= texcoords) too_few = true;
+        if (set >= texcoords) too_few.insert(owner);
       }
-      self(self, v, depth + 1);
+      self(self, v, depth + 1, owner, depth == 0 && key == "extensions");
     }
   };
-  walk(walk, *mat, 0);
-  if (too_few)
+  walk(walk, *mat, 0, "", false);
+  if (!too_few.empty())
     ctx.add(at(ptr, "material"), "MESH_PRIMITIVE_TOO_FEW_TEXCOORDS",
-            "the material reads a texture coordinate set the primitive does not have");
+            "the material reads a texture coordinate set the primitive does not have",
+            raised_by(too_few));
   const json* ext = member(*mat, "extensions");
   const json* clearcoat = ext != nullptr ? member(*ext, "KHR_materials_clearcoat") : nullptr;
-  const bool needs_tangents = (ext != nullptr && has(*ext, "KHR_materials_anisotropy")) ||
-                              (clearcoat != nullptr && has(*clearcoat, "clearcoatNormalTexture"));
-  if (needs_tangents && names.count("TANGENT") == 0 && !has(*mat, "normalTexture"))
+  std::set<std::string> needs_tangents; // the extensions whose normals need a tangent frame
+  if (ext != nullptr && has(*ext, "KHR_materials_anisotropy"))
+    needs_tangents.insert("KHR_materials_anisotropy");
+  if (clearcoat != nullptr && has(*clearcoat, "clearcoatNormalTexture"))
+    needs_tangents.insert("KHR_materials_clearcoat");
+  if (!needs_tangents.empty() && names.count("TANGENT") == 0 && !has(*mat, "normalTexture"))
     ctx.add(at(ptr, "material"), "MESH_PRIMITIVE_NO_TANGENT_SPACE",
-            "the material needs tangents and neither the primitive nor a normal map gives them");
+            "the material needs tangents and neither the primitive nor a normal map gives them",
+            raised_by(needs_tangents));
 }
 
 void check_attributes(const Context& ctx, MeshState& st, const json& prim, const std::string& ptr) {

@@ -105,8 +105,11 @@ struct Context {
   std::vector<Issue>& issues;
   // Per accessor: 1 when a Draco-compressed primitive uses it (its data is not in its view).
   std::vector<char> draco_accessors;
-  void add(std::string pointer, std::string code, std::string message) const {
-    issues.push_back({std::move(pointer), std::move(code), std::move(message)});
+  // extensions: Issue::extensions.
+  void add(std::string pointer, std::string code, std::string message,
+           std::vector<std::string> extensions = {}) const {
+    issues.push_back(
+        {std::move(pointer), std::move(code), std::move(message), std::move(extensions)});
   }
   // root[key] as an array (an empty array when absent or of another type).
   const nlohmann::json& list(std::string_view key) const;
