@@ -22,6 +22,22 @@ glm::dmat3 normal_matrix(const glm::dmat4& world) {
   return det < 0.0 ? -cofactor : cofactor;
 }
 
+// (normalize(A t.xyz), w sign(det A)) with A the 3x3 block of m; 0 where A t.xyz vanishes.
+glm::vec4 place_tangent(const glm::dmat4& m, const glm::vec4& t) {
+  const glm::dmat3 a(m);
+  const glm::dvec3 d = a * glm::dvec3(glm::vec3(t));
+  const double len = glm::length(d);
+  if (!(len > 0.0 && std::isfinite(len))) return glm::vec4(0.0f);
+  return glm::vec4(glm::vec3(d / len), glm::determinant(a) < 0.0 ? -t.w : t.w);
+}
+
+// A rigid part's tangent: xyz = normalize(W3 t_local) where that is finite and not 0; w kept
+// (the loader refuses animations that change the sign of det W3).
+void move_tangent(const glm::dmat4& world, const glm::vec3& local, glm::vec4& tangent) {
+  const glm::vec4 t = place_tangent(world, glm::vec4(local, tangent.w));
+  if (glm::vec3(t) != glm::vec3(0.0f)) tangent = glm::vec4(glm::vec3(t), tangent.w);
+}
+
 glm::dmat4 local_matrix(const Animation::Node& n) {
   if (n.has_matrix) return n.matrix;
   return glm::translate(glm::dmat4(1.0), n.translation) * glm::mat4_cast(n.rotation) *
@@ -95,16 +111,20 @@ std::vector<std::uint32_t> Animation::moving_vertices() const {
 
 void Animation::deform(const DeformedPart& part, const std::vector<glm::dmat4>& world,
                        const std::vector<double>& w, std::vector<glm::vec3>& positions,
-                       std::vector<glm::vec3>& normals) const {
+                       std::vector<glm::vec3>& normals, std::vector<glm::vec4>* tangents) const {
   const std::size_t n = part.vertices.size();
   positions.assign(part.positions.begin(), part.positions.end());
   normals.assign(part.normals.begin(), part.normals.end());
+  if (tangents) tangents->assign(part.tangents.begin(), part.tangents.end());
   for (std::size_t i = 0; i < part.position_targets.size() && i < w.size(); ++i) {
     const float wi = float(w[i]);
     if (wi == 0.0f) continue;
     for (std::size_t k = 0; k < n; ++k) positions[k] += wi * part.position_targets[i][k];
     if (i < part.normal_targets.size() && !normals.empty())
       for (std::size_t k = 0; k < n; ++k) normals[k] += wi * part.normal_targets[i][k];
+    if (tangents && i < part.tangent_targets.size() && !tangents->empty())
+      for (std::size_t k = 0; k < n; ++k)
+        (*tangents)[k] += glm::vec4(wi * part.tangent_targets[i][k], 0.0f);
   }
   std::vector<glm::dmat4> joint(part.joints.size());
   for (std::size_t j = 0; j < joint.size(); ++j)
@@ -130,6 +150,7 @@ void Animation::deform(const DeformedPart& part, const std::vector<glm::dmat4>& 
       const double len = glm::length(nn);
       normals[k] = len > 0.0 && std::isfinite(len) ? glm::vec3(nn / len) : glm::vec3(0.0f);
     }
+    if (tangents && !tangents->empty()) (*tangents)[k] = place_tangent(m, (*tangents)[k]);
   }
   if (!part.flat) return;
   normals.resize(n);
@@ -161,16 +182,22 @@ void Animation::pose(float t, Scene& scene) const {
       const glm::dvec3 n = nm * glm::dvec3(part.normals[k]);
       const double len = glm::length(n);
       if (len > 0.0 && std::isfinite(len)) scene.normals[v] = glm::vec3(n / len);
+      if (k < part.tangents.size() && v < scene.tangents.size())
+        move_tangent(w, part.tangents[k], scene.tangents[v]);
     }
   }
   if (!deformed.empty()) {
     const std::vector<std::vector<double>> w = weights(t);
     std::vector<glm::vec3> p, n;
+    std::vector<glm::vec4> tangents;
     for (const DeformedPart& part : deformed) {
-      deform(part, world, w[part.node], p, n);
+      deform(part, world, w[part.node], p, n, &tangents);
       for (std::size_t k = 0; k < part.vertices.size(); ++k) {
         scene.positions[part.vertices[k]] = p[k];
         if (n[k] != glm::vec3(0.0f)) scene.normals[part.vertices[k]] = n[k];
+        if (k < tangents.size() && part.vertices[k] < scene.tangents.size() &&
+            glm::vec3(tangents[k]) != glm::vec3(0.0f))
+          scene.tangents[part.vertices[k]] = tangents[k];
       }
     }
   }

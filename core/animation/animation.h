@@ -7,8 +7,9 @@
 //
 // Contracts:
 // - Only what moves is touched: the vertices of meshes whose node or an ancestor is animated
-//   (their positions p(t) = W(t) p_local and normals n(t) = normalize(cof(W3) n_local), as the
-//   loader placed them at rest), and the cameras and lights on such nodes.
+//   (their positions p(t) = W(t) p_local, normals n(t) = normalize(cof(W3) n_local) and
+//   tangents t(t) = normalize(W3 t_local), as the loader placed them at rest), and the cameras
+//   and lights on such nodes.
 // - Scene::bounds does not change with t: the loader sets it to the bounds over the whole
 //   animation, so every scale-relative tolerance (ray offsets, the clamp, near planes) stays
 //   the same from frame to frame.
@@ -50,20 +51,26 @@ public:
     std::vector<std::uint32_t> vertices; // indices into Scene::positions
     std::vector<glm::vec3> positions;    // node-local
     std::vector<glm::vec3> normals;      // node-local (not unit: n_local = W3^T n_world)
+    // Node-local tangent directions (t_local = W3^-1 t_world; Scene::tangents' w stays), or
+    // empty: the scene has no tangents.
+    std::vector<glm::vec3> tangents{};
   };
 
   // The scene vertices of one skinned or morphed mesh instance (glTF 3.7.2.2, 3.7.3), posed as
   //   p = S (p0 + sum_i w_i(t) dp_i),  S = sum_k a_k J_k(t) B_k  (skinned: joint world J,
   //   inverse bind matrix B, vertex weights a renormalised to sum 1), else S = W_node(t);
-  // normals alike (n0 + sum_i w_i dn_i) by the cofactor of S. flat: the vertices come in
-  // triples of one triangle each (the primitive had no NORMAL); their normal is the triangle's.
+  // normals alike (n0 + sum_i w_i dn_i) by the cofactor of S, tangents (t0 + sum_i w_i dt_i) by
+  // S's 3x3 block with w = w0 sign(det S). flat: the vertices come in triples of one triangle
+  // each (the primitive had no NORMAL); their normal is the triangle's.
   struct DeformedPart {
     std::uint32_t node = 0;
-    std::vector<std::uint32_t> vertices;                  // indices into Scene::positions
-    std::vector<glm::vec3> positions;                     // mesh frame, unmorphed
-    std::vector<glm::vec3> normals;                       // mesh frame, unmorphed; empty when flat
-    std::vector<std::vector<glm::vec3>> position_targets; // [target][vertex]
-    std::vector<std::vector<glm::vec3>> normal_targets;   // [target][vertex], or empty
+    std::vector<std::uint32_t> vertices;                   // indices into Scene::positions
+    std::vector<glm::vec3> positions;                      // mesh frame, unmorphed
+    std::vector<glm::vec3> normals;                        // mesh frame, unmorphed; empty when flat
+    std::vector<std::vector<glm::vec3>> position_targets;  // [target][vertex]
+    std::vector<std::vector<glm::vec3>> normal_targets;    // [target][vertex], or empty
+    std::vector<glm::vec4> tangents{};                     // mesh frame, unmorphed; or empty
+    std::vector<std::vector<glm::vec3>> tangent_targets{}; // [target][vertex], or empty
     // Skin: per joint the index into nodes (or kFixedJoint: a joint outside the loaded
     // scene, whose J B is the constant joint_matrix); empty when not skinned.
     std::vector<std::uint32_t> joints;
@@ -92,10 +99,12 @@ public:
   std::vector<glm::dmat4> world_matrices(float t) const;
   // Morph target weights of every node at time t (its rest weights, with the animated ones).
   std::vector<std::vector<double>> weights(float t) const;
-  // The positions and normals of a deformed part at a pose (world matrices, node weights).
+  // The positions and normals of a deformed part at a pose (world matrices, node weights), and
+  // its tangents into *tangents when given (empty when the part has none; unit, or 0 where S
+  // takes a tangent to zero).
   void deform(const DeformedPart& part, const std::vector<glm::dmat4>& world,
               const std::vector<double>& weights, std::vector<glm::vec3>& positions,
-              std::vector<glm::vec3>& normals) const;
+              std::vector<glm::vec3>& normals, std::vector<glm::vec4>* tangents = nullptr) const;
   // Moves the animated vertices, cameras and lights of `scene` (as loaded with this animation)
   // to time t.
   void pose(float t, Scene& scene) const;

@@ -134,14 +134,18 @@ private:
     }
   }
 
-  // Scene material and uv sets of a primitive.
+  // Scene material and uv sets of a primitive, with the uv slot of its normal map (whose
+  // tangents the primitive then carries).
   std::pair<std::uint32_t, gltf::UvSets> material_of(const json& p, const std::string& where,
                                                      const std::string& pointer) {
     if (!gltf::member(p, "material")) return {default_material(), {}};
     ctx_.use(pointer + "/material");
     const std::size_t m =
         *gltf::optional_index(ctx_, p, "material", ctx_.count("materials"), where);
-    return {std::uint32_t(m), uv_[m]};
+    gltf::UvSets uv = uv_[m];
+    const Material& material = scene_.materials[m];
+    if (material.normal_texture >= 0) uv.tangent_slot = material.normal_map.texcoord;
+    return {std::uint32_t(m), uv};
   }
 
   // glTF's default material (white, not emissive), added on first use.

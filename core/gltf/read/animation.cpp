@@ -264,7 +264,8 @@ void build_deformed(const Context& ctx, const std::vector<char>& dynamic,
   }
 }
 
-// The vertices of every moving node's meshes, taken back to the node's frame.
+// The vertices of every moving node's meshes, taken back to the node's frame (tangents by the
+// 3x3 block of the rest matrix's inverse, W3^-1, so that W3 t_local = t_world).
 void build_parts(const std::vector<char>& dynamic, const std::vector<glm::dmat4>& rest,
                  const std::map<std::size_t, std::uint32_t>& index, const ContentNodes& content,
                  const Scene& scene, Animation& out) {
@@ -283,6 +284,9 @@ void build_parts(const std::vector<char>& dynamic, const std::vector<glm::dmat4>
     part.positions.push_back(glm::vec3(inverse * glm::dvec4(glm::dvec3(scene.positions[v]), 1.0)));
     part.normals.push_back(
         glm::vec3(glm::transpose(glm::dmat3(rest[n])) * glm::dvec3(scene.normals[v])));
+    if (!scene.tangents.empty())
+      part.tangents.push_back(
+          glm::vec3(glm::dmat3(inverse) * glm::dvec3(glm::vec3(scene.tangents[v]))));
   }
   for (auto& [n, part] : parts) out.parts.push_back(std::move(part));
 }

@@ -3,6 +3,7 @@
 #include "core/gltf/decode/codecs.h"
 #include "core/gltf/read/accessors.h"
 #include "core/gltf/read/skins.h"
+#include "core/mesh/tangents.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,10 +19,11 @@ namespace {
 // A primitive's vertex attributes in its mesh's frame (morphed), or in the world when skinned.
 struct Attributes {
   std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals; // empty without NORMAL
-  std::vector<glm::vec2> uvs;     // empty without the set of uv slot 0
-  std::vector<glm::vec2> uvs1;    // empty without the set of uv slot 1
-  std::vector<glm::vec4> colors;  // empty without COLOR_0
+  std::vector<glm::vec3> normals;  // empty without NORMAL
+  std::vector<glm::vec2> uvs;      // empty without the set of uv slot 0
+  std::vector<glm::vec2> uvs1;     // empty without the set of uv slot 1
+  std::vector<glm::vec4> colors;   // empty without COLOR_0
+  std::vector<glm::vec4> tangents; // empty without tangents (TANGENT or generated)
 };
 
 constexpr int kTriangles = 4;
@@ -41,6 +43,16 @@ void require_count(const Context& ctx, const std::vector<T>& values, std::size_t
   }
 }
 
+// TANGENT: VEC4 of floats (normalized bytes or shorts with KHR_mesh_quantization).
+std::vector<glm::vec4> read_tangents(const Context& ctx, std::uint64_t accessor,
+                                     const std::string& use) {
+  const Values v = read_values(ctx, accessor, use, {"VEC4"}, {kFloat, kByte, kShort}, true);
+  std::vector<glm::vec4> out(v.count());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = {v.data[4 * i], v.data[4 * i + 1], v.data[4 * i + 2], v.data[4 * i + 3]};
+  return out;
+}
+
 std::vector<glm::vec2> read_uv_set(const Context& ctx, const json& attrs, int set, std::size_t n,
                                    const std::string& where) {
   if (set < 0) return {};
@@ -56,15 +68,16 @@ std::vector<glm::vec2> read_uv_set(const Context& ctx, const json& attrs, int se
   return uv;
 }
 
-// The morph targets' displacements (glTF 3.7.2.2), [target][vertex]; normals' empty when the
-// targets have none.
+// The morph targets' displacements (glTF 3.7.2.2), [target][vertex]; normals' and tangents'
+// empty when the primitive has none.
 struct Targets {
   std::vector<std::vector<glm::vec3>> positions;
   std::vector<std::vector<glm::vec3>> normals;
+  std::vector<std::vector<glm::vec3>> tangents;
 };
 
 Targets read_targets(const Context& ctx, const json& p, std::size_t n, bool with_normals,
-                     const std::string& where) {
+                     bool with_tangents, const std::string& where) {
   Targets out;
   const json* targets = member(p, "targets");
   if (!targets || !targets->is_array()) return out;
@@ -81,11 +94,12 @@ Targets read_targets(const Context& ctx, const json& p, std::size_t n, bool with
     };
     out.positions.push_back(read("POSITION"));
     if (with_normals) out.normals.push_back(read("NORMAL"));
+    if (with_tangents) out.tangents.push_back(read("TANGENT"));
   }
   return out;
 }
 
-// p += sum_i w_i dp_i (and normals alike).
+// p += sum_i w_i dp_i (and normals and tangents' xyz alike).
 void apply_morph(const Targets& t, const std::vector<double>& weights, Attributes& a) {
   for (std::size_t i = 0; i < t.positions.size() && i < weights.size(); ++i) {
     const float w = float(weights[i]);
@@ -93,6 +107,9 @@ void apply_morph(const Targets& t, const std::vector<double>& weights, Attribute
     for (std::size_t v = 0; v < a.positions.size(); ++v) a.positions[v] += w * t.positions[i][v];
     if (i < t.normals.size() && !a.normals.empty())
       for (std::size_t v = 0; v < a.normals.size(); ++v) a.normals[v] += w * t.normals[i][v];
+    if (i < t.tangents.size() && !a.tangents.empty())
+      for (std::size_t v = 0; v < a.tangents.size(); ++v)
+        a.tangents[v] += glm::vec4(w * t.tangents[i][v], 0.0f);
   }
 }
 
@@ -133,8 +150,9 @@ Influences read_influences(const Context& ctx, const json& attrs, std::size_t n,
 }
 
 // Linear blend skinning: p' = sum_k w_k M_{j_k} p with M = joint world x inverse bind matrix,
-// normals by the cofactor of the blended matrix (glTF 3.7.3). Weights are renormalised to sum 1;
-// a vertex without influence stays where it is.
+// normals by the cofactor of the blended matrix (glTF 3.7.3), tangents by its 3x3 block B
+// (t' = B t, w' = w sign(det B)). Weights are renormalised to sum 1; a vertex without influence
+// stays where it is.
 void apply_skin(const Influences& inf, const std::vector<glm::dmat4>& joints, Attributes& a) {
   for (std::size_t v = 0; v < inf.joints.size(); ++v) {
     glm::dmat4 m(0.0);
@@ -153,6 +171,11 @@ void apply_skin(const Influences& inf, const std::vector<glm::dmat4>& joints, At
       const glm::dmat3 cof(glm::cross(b[1], b[2]), glm::cross(b[2], b[0]), glm::cross(b[0], b[1]));
       a.normals[v] =
           glm::vec3((glm::determinant(b) < 0.0 ? -1.0 : 1.0) * (cof * glm::dvec3(a.normals[v])));
+    }
+    if (!a.tangents.empty()) {
+      const glm::dmat3 b(m);
+      const float w = glm::determinant(b) < 0.0 ? -a.tangents[v].w : a.tangents[v].w;
+      a.tangents[v] = glm::vec4(glm::vec3(b * glm::dvec3(glm::vec3(a.tangents[v]))), w);
     }
   }
 }
@@ -211,6 +234,11 @@ Attributes read_attributes(const Context& ctx, const json& p, UvSets uv, const s
     a.colors = read_colors(ctx, *color, where + ".attributes.COLOR_0");
     require_count(ctx, a.colors, n, where, "COLOR_0");
   }
+  const auto tangent = attribute(attrs, "TANGENT");
+  if (uv.tangent_slot >= 0 && tangent) {
+    a.tangents = read_tangents(ctx, *tangent, where + ".attributes.TANGENT");
+    require_count(ctx, a.tangents, n, where, "TANGENT");
+  }
   return a;
 }
 
@@ -220,11 +248,44 @@ RawPrimitive read_primitive(const Context& ctx, const json& p, const PrimitivePo
   raw.a = read_attributes(ctx, p, uv, where);
   const std::size_t n = raw.a.positions.size();
   if (!pose.morph_weights.empty())
-    raw.targets = read_targets(ctx, p, n, !raw.a.normals.empty(), where);
+    raw.targets = read_targets(ctx, p, n, !raw.a.normals.empty(), !raw.a.tangents.empty(), where);
   if (pose.skin)
     raw.influences =
         read_influences(ctx, *member(p, "attributes"), n, pose.skin->matrices.size(), where);
   return raw;
+}
+
+template <class T>
+void gather(std::vector<T>& values, const std::vector<std::uint32_t>& source) {
+  if (values.empty()) return;
+  std::vector<T> out;
+  out.reserve(source.size());
+  for (std::uint32_t v : source) out.push_back(values[v]);
+  values = std::move(out);
+}
+
+// The primitive's vertices replaced by source[0], source[1], ... (every per-vertex array:
+// attributes, morph targets, skin influences).
+void gather(RawPrimitive& raw, const std::vector<std::uint32_t>& source) {
+  for (auto* v : {&raw.a.positions, &raw.a.normals}) gather(*v, source);
+  for (auto* v : {&raw.a.uvs, &raw.a.uvs1}) gather(*v, source);
+  for (auto* v : {&raw.a.colors, &raw.a.tangents}) gather(*v, source);
+  for (auto* targets : {&raw.targets.positions, &raw.targets.normals, &raw.targets.tangents})
+    for (std::vector<glm::vec3>& t : *targets) gather(t, source);
+  gather(raw.influences.joints, source);
+  gather(raw.influences.weights, source);
+}
+
+// MikkTSpace tangents (core/mesh/tangents.h tangent_vertices) of the primitive as the file
+// stores it, following the texture coordinates of uv slot `slot`: its vertices become the ones
+// tangent_vertices gives (copies where corners disagree; one per corner without NORMAL), and
+// `triangles` is re-indexed.
+void generate_tangents(RawPrimitive& raw, int slot, std::vector<glm::uvec3>& triangles) {
+  TangentVertices tv = tangent_vertices(raw.a.positions, raw.a.normals,
+                                        slot == 0 ? raw.a.uvs : raw.a.uvs1, triangles);
+  gather(raw, tv.source);
+  raw.a.tangents = std::move(tv.tangents);
+  triangles = std::move(tv.triangles);
 }
 
 // The attributes at rest: morphed by the default weights, then skinned.
@@ -309,6 +370,16 @@ glm::vec3 place_normal(const Placement& pl, const glm::vec3& n) {
   return len > 0.0 && std::isfinite(len) ? glm::vec3(m / len) : glm::vec3(0.0f);
 }
 
+// (normalize(A t.xyz), sign(t.w) sign(det A)): a tangent follows the surface's points, and a
+// mirroring A flips the bitangent w cross(n, t) back onto A's image of the old one. 0 when A t.xyz
+// is zero or not finite.
+glm::vec4 place_tangent(const Placement& pl, const glm::vec4& t) {
+  const glm::dvec3 m = glm::dmat3(pl.world) * glm::dvec3(glm::vec3(t));
+  const double len = glm::length(m);
+  if (!(len > 0.0 && std::isfinite(len))) return glm::vec4(0.0f);
+  return glm::vec4(glm::vec3(m / len), (t.w < 0.0f) != pl.flip ? -1.0f : 1.0f);
+}
+
 // Appends one vertex of the primitive; returns its index in the soup.
 std::uint32_t push_vertex(const Context& ctx, const Attributes& a, std::size_t v,
                           const Placement& pl, Soup& soup) {
@@ -330,6 +401,11 @@ std::uint32_t push_vertex(const Context& ctx, const Attributes& a, std::size_t v
   if (!a.colors.empty() || !soup.colors.empty()) {
     soup.colors.resize(i, glm::vec4(1.0f));
     soup.colors.push_back(a.colors.empty() ? glm::vec4(1.0f) : a.colors[v]);
+  }
+  if (!a.tangents.empty() || !soup.tangents.empty()) {
+    soup.tangents.resize(i, glm::vec4(0.0f));
+    soup.tangents.push_back(a.tangents.empty() ? glm::vec4(0.0f)
+                                               : place_tangent(pl, a.tangents[v]));
   }
   return std::uint32_t(soup.positions.size() - 1);
 }
@@ -395,6 +471,7 @@ void reserve(Soup& soup, std::size_t vertices, std::size_t triangles, const Attr
   if (!a.uvs.empty() || !soup.uvs.empty()) grow(soup.uvs, n);
   if (!a.uvs1.empty() || !soup.uvs1.empty()) grow(soup.uvs1, n);
   if (!a.colors.empty() || !soup.colors.empty()) grow(soup.colors, n);
+  if (!a.tangents.empty() || !soup.tangents.empty()) grow(soup.tangents, n);
   grow(soup.triangles, soup.triangles.size() + triangles);
   grow(soup.triangle_material, soup.triangle_material.size() + triangles);
 }
@@ -411,6 +488,7 @@ Soup::Deform& start_deform(const RawPrimitive& raw, const PrimitivePose& pose, b
   d.part.flip = flip;
   d.part.position_targets.resize(raw.targets.positions.size());
   d.part.normal_targets.resize(raw.targets.normals.size());
+  d.part.tangent_targets.resize(raw.targets.tangents.size());
   soup.deforms.push_back(std::move(d));
   return soup.deforms.back();
 }
@@ -421,14 +499,47 @@ void record(const RawPrimitive& raw, std::size_t v, std::size_t index, Soup::Def
   p.vertices.push_back(std::uint32_t(index));
   p.positions.push_back(raw.a.positions[v]);
   if (!raw.a.normals.empty()) p.normals.push_back(raw.a.normals[v]);
+  if (!raw.a.tangents.empty()) p.tangents.push_back(raw.a.tangents[v]);
   for (std::size_t t = 0; t < p.position_targets.size(); ++t)
     p.position_targets[t].push_back(raw.targets.positions[t][v]);
   for (std::size_t t = 0; t < p.normal_targets.size(); ++t)
     p.normal_targets[t].push_back(raw.targets.normals[t][v]);
+  for (std::size_t t = 0; t < p.tangent_targets.size(); ++t)
+    p.tangent_targets[t].push_back(raw.targets.tangents[t][v]);
   if (!d.gltf_joints.empty()) {
     p.vertex_joints.push_back(raw.influences.joints[v]);
     p.vertex_weights.push_back(raw.influences.weights[v]);
   }
+}
+
+// Marks the parts of primitive `pp` (a JSON pointer) that the reader reads as used, so that the
+// validator's issues there are reported.
+void use_parts(const Context& ctx, const std::string& pp, const json& attrs, UvSets uv,
+               const PrimitivePose& pose) {
+  ctx.use_exact(pp);
+  ctx.use_exact(pp + "/attributes");
+  std::vector<std::string> read{"POSITION", "NORMAL", "COLOR_0"};
+  for (int set : {uv.slot0, uv.slot1})
+    if (set >= 0) read.push_back("TEXCOORD_" + std::to_string(set));
+  if (uv.tangent_slot >= 0) read.push_back("TANGENT");
+  if (pose.skin) read.insert(read.end(), {"JOINTS_0", "WEIGHTS_0"});
+  for (const std::string& name : read)
+    if (member(attrs, name.c_str())) ctx.use(pp + "/attributes/" + name);
+  for (const char* part : {"/indices", "/mode", "/extensions/KHR_draco_mesh_compression"})
+    ctx.use(pp + part);
+  if (!pose.morph_weights.empty()) ctx.use(pp + "/targets");
+}
+
+// The primitive's triangles over its n vertices, after the index and triangle-count checks; the
+// index list (`draco`'s, else the file's) is freed before the soup grows.
+std::vector<glm::uvec3> read_triangles(const Context& ctx, const json& p, int mode,
+                                       std::optional<std::vector<std::uint32_t>> draco,
+                                       std::size_t n, const Soup& soup, const std::string& where) {
+  const std::vector<std::uint32_t> indices =
+      draco ? std::move(*draco) : read_vertex_indices(ctx, p, n, where);
+  check_index_range(ctx, indices, n, where + ".indices");
+  check_triangle_limit(ctx, triangle_count(mode, indices.size()), soup, where);
+  return assemble(ctx, mode, indices, where);
 }
 
 } // namespace
@@ -448,36 +559,22 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
     ctx.warn(where + ": a primitive without POSITION draws nothing; skipped");
     return;
   }
-  const std::string pp =
-      "/meshes/" + std::to_string(mesh) + "/primitives/" + std::to_string(primitive);
-  ctx.use_exact(pp);
-  ctx.use_exact(pp + "/attributes");
-  std::vector<std::string> read{"POSITION", "NORMAL", "COLOR_0"};
-  for (int set : {uv.slot0, uv.slot1})
-    if (set >= 0) read.push_back("TEXCOORD_" + std::to_string(set));
-  if (pose.skin) read.insert(read.end(), {"JOINTS_0", "WEIGHTS_0"});
-  for (const std::string& name : read)
-    if (member(*attrs, name.c_str())) ctx.use(pp + "/attributes/" + name);
-  for (const char* part : {"/indices", "/mode", "/extensions/KHR_draco_mesh_compression"})
-    ctx.use(pp + part);
-  if (!pose.morph_weights.empty()) ctx.use(pp + "/targets");
+  use_parts(ctx, "/meshes/" + std::to_string(mesh) + "/primitives/" + std::to_string(primitive),
+            *attrs, uv, pose);
   std::optional<std::vector<std::uint32_t>> draco;
   if (const json* ext = extension(p, "KHR_draco_mesh_compression"))
     draco = decode_draco(ctx, *ext, *attrs, where);
   RawPrimitive raw = read_primitive(ctx, p, pose, uv, where);
+  std::vector<glm::uvec3> local =
+      read_triangles(ctx, p, mode, std::move(draco), raw.a.positions.size(), soup, where);
+  if (uv.tangent_slot >= 0 && raw.a.tangents.empty())
+    generate_tangents(raw, uv.tangent_slot, local);
   const bool skinned = pose.skin && !raw.influences.joints.empty();
   const bool deformed = skinned || !raw.targets.positions.empty();
   // The file's attributes are kept beside the posed ones only when an animation needs them.
   const Attributes a = deformed ? posed_attributes(raw, pose) : std::move(raw.a);
   const Placement pl = placement(skinned ? glm::dmat4(1.0) : pose.world);
-  std::vector<glm::uvec3> local;
-  { // the index list is freed before the soup grows
-    const std::vector<std::uint32_t> indices =
-        draco ? std::move(*draco) : read_vertex_indices(ctx, p, a.positions.size(), where);
-    check_index_range(ctx, indices, a.positions.size(), where + ".indices");
-    check_triangle_limit(ctx, triangle_count(mode, indices.size()), soup, where);
-    local = drop_non_finite(assemble(ctx, mode, indices, where), a, pl, where, soup);
-  }
+  local = drop_non_finite(std::move(local), a, pl, where, soup);
   const std::uint64_t vertices = a.normals.empty() ? 3 * local.size() : a.positions.size();
   if (soup.positions.size() + vertices > 3 * ctx.limits.max_triangles) {
     ctx.fail(where, fmt::format("the scene would have {} vertices, over the limit of 3 x {} "
@@ -488,6 +585,7 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
   soup.has_uvs = soup.has_uvs || !a.uvs.empty();
   soup.has_uvs1 = soup.has_uvs1 || !a.uvs1.empty();
   soup.has_colors = soup.has_colors || !a.colors.empty();
+  soup.has_tangents = soup.has_tangents || !a.tangents.empty();
   Soup::Deform* deform = nullptr;
   if (soup.record_deforms && deformed)
     deform = &start_deform(raw, pose, skinned, a.normals.empty() && pl.flip, soup);
@@ -555,6 +653,14 @@ void fill_normals(Soup& s) {
   }
 }
 
+// Vertices without a usable tangent (0: from a primitive without a normal map, or placed to
+// nothing) take a unit one orthogonal to their normal, w = 1.
+void fill_tangents(Soup& s) {
+  for (std::size_t v = 0; v < s.tangents.size(); ++v)
+    if (glm::vec3(s.tangents[v]) == glm::vec3(0.0f))
+      s.tangents[v] = glm::vec4(any_tangent(s.normals[v]), 1.0f);
+}
+
 // Removes vertices no triangle uses, keeping the order of the others.
 // Keeps the entries of a deformed part whose vertex survived compaction, renumbered. A flat part
 // loses whole triangles (triples) only, so its triples stay aligned.
@@ -566,8 +672,10 @@ void remap_deform(const std::vector<std::uint32_t>& remap, const std::vector<cha
     p.vertices[kept] = remap[p.vertices[k]];
     p.positions[kept] = p.positions[k];
     if (!p.normals.empty()) p.normals[kept] = p.normals[k];
+    if (!p.tangents.empty()) p.tangents[kept] = p.tangents[k];
     for (auto& t : p.position_targets) t[kept] = t[k];
     for (auto& t : p.normal_targets) t[kept] = t[k];
+    for (auto& t : p.tangent_targets) t[kept] = t[k];
     if (!p.vertex_joints.empty()) {
       p.vertex_joints[kept] = p.vertex_joints[k];
       p.vertex_weights[kept] = p.vertex_weights[k];
@@ -577,8 +685,10 @@ void remap_deform(const std::vector<std::uint32_t>& remap, const std::vector<cha
   p.vertices.resize(kept);
   p.positions.resize(kept);
   if (!p.normals.empty()) p.normals.resize(kept);
+  if (!p.tangents.empty()) p.tangents.resize(kept);
   for (auto& t : p.position_targets) t.resize(kept);
   for (auto& t : p.normal_targets) t.resize(kept);
+  for (auto& t : p.tangent_targets) t.resize(kept);
   if (!p.vertex_joints.empty()) {
     p.vertex_joints.resize(kept);
     p.vertex_weights.resize(kept);
@@ -599,6 +709,7 @@ void compact(Soup& s) {
     if (!s.uvs1.empty()) s.uvs1[next] = s.uvs1[v];
     if (!s.colors.empty()) s.colors[next] = s.colors[v];
     if (!s.uvs.empty()) s.uvs[next] = s.uvs[v];
+    if (!s.tangents.empty()) s.tangents[next] = s.tangents[v];
     ++next;
   }
   s.positions.resize(next);
@@ -606,6 +717,7 @@ void compact(Soup& s) {
   if (!s.uvs.empty()) s.uvs.resize(next);
   if (!s.uvs1.empty()) s.uvs1.resize(next);
   if (!s.colors.empty()) s.colors.resize(next);
+  if (!s.tangents.empty()) s.tangents.resize(next);
   if (!s.vertex_node.empty()) s.vertex_node.resize(next);
   for (glm::uvec3& t : s.triangles) t = {remap[t.x], remap[t.y], remap[t.z]};
   for (Soup::Deform& d : s.deforms) remap_deform(remap, used, d.part);
@@ -624,6 +736,7 @@ void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
     ctx.warn(std::to_string(dropped) + " degenerate (zero-area) triangles dropped");
   }
   fill_normals(soup);
+  fill_tangents(soup);
   compact(soup);
   scene.bounds = triangle_bounds(soup.positions, soup.triangles);
   scene.positions = std::move(soup.positions);
@@ -631,6 +744,7 @@ void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
   if (soup.has_uvs) scene.uvs = std::move(soup.uvs);
   if (soup.has_uvs1) scene.uvs1 = std::move(soup.uvs1);
   if (soup.has_colors) scene.colors = std::move(soup.colors);
+  if (soup.has_tangents) scene.tangents = std::move(soup.tangents);
   scene.triangles = std::move(soup.triangles);
   scene.triangle_material = std::move(soup.triangle_material);
   if (vertex_node) *vertex_node = std::move(soup.vertex_node);

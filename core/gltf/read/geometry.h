@@ -20,9 +20,13 @@ struct Soup {
   std::vector<glm::vec2> uvs;    // uv slot 0
   std::vector<glm::vec2> uvs1;   // uv slot 1
   std::vector<glm::vec4> colors; // COLOR_0, 1 for primitives without it
-  bool has_uvs = false;          // some primitive had the set of slot 0
+  // Placed tangents (xyz unit, w = +-1) of the primitives whose material has a normal map, 0 for
+  // the vertices of the others (filled by finish_geometry).
+  std::vector<glm::vec4> tangents;
+  bool has_uvs = false; // some primitive had the set of slot 0
   bool has_uvs1 = false;
   bool has_colors = false;
+  bool has_tangents = false;
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint32_t> triangle_material;
   std::vector<std::uint32_t> vertex_node; // glTF node per vertex, kept only for animated files
@@ -42,9 +46,12 @@ struct Soup {
 
 // The TEXCOORD sets a material's textures read, in the scene's two uv slots (Scene::uvs and
 // Scene::uvs1); -1: the slot is not used. core/gltf/read/materials.h assigns them.
+// tangent_slot: the uv slot (0 or 1) of the material's normal map, whose texture coordinates
+// MikkTSpace tangents follow; -1: the material has no normal map and its primitives no tangents.
 struct UvSets {
   int slot0 = -1;
   int slot1 = -1;
+  int tangent_slot = -1;
 };
 
 // Where a primitive's vertices go: by its node's world matrix, after the morph targets' weighted
@@ -66,6 +73,12 @@ struct PrimitivePose {
 // inverse. When det A < 0 the winding is reversed, so cross(p1 - p0, p2 - p0) keeps pointing to
 // the side N n points to (cross(Aa, Ab) = cofactor(A) cross(a, b)). Without NORMAL the primitive
 // is de-indexed (three vertices per triangle) and its normals are left for finish_geometry.
+// Tangents, for a primitive with uv.tangent_slot >= 0 only: its TANGENT (VEC4) where it has one,
+// else MikkTSpace tangents (core/mesh/tangents.h) of its positions, normals (without NORMAL, the
+// de-indexed triangles' own normals) and the slot's texture coordinates ((0, 0) without them),
+// computed in the file's frame before morphing and skinning; a vertex whose corners get
+// different tangents is copied. Placed as t' = normalize(A t.xyz), w' = w sign(det A) (skinned:
+// the blended joint matrix is A), morph targets' TANGENT displacements added first.
 // Triangles with a vertex whose placed position is NaN or Inf are dropped (counted in the soup;
 // finish_geometry warns once). Fails on missing POSITION, mismatched attribute counts, index
 // values >= the vertex count, and triangles or vertices beyond ctx.limits (3 vertices per allowed
@@ -76,11 +89,14 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
                       const PrimitivePose& pose, std::uint32_t material, UvSets uv, Soup& soup);
 
 // Moves the soup into scene (and soup.vertex_node, compacted like the vertices, into
-// *vertex_node when given) (positions, normals, uvs, triangles, triangle_material, bounds):
+// *vertex_node when given) (positions, normals, uvs, tangents, triangles, triangle_material,
+// bounds):
 // warns once when triangles with non-finite positions were dropped,
 // drops triangles with a repeated vertex or with area <= 1e-12 diagonal^2 (one warning with the
 // count), gives each vertex without a usable normal the geometric normal of the first triangle
-// that uses it, and drops vertices no triangle uses. uvs stay empty unless soup.has_uvs.
+// that uses it, gives each vertex without a usable tangent (when soup.has_tangents) a unit one
+// orthogonal to its normal with w = 1, and drops vertices no triangle uses. uvs stay empty
+// unless soup.has_uvs, tangents unless soup.has_tangents.
 // soup.deforms' vertices are mapped to scene vertices (those of dropped vertices removed) into
 // *deforms when given.
 void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
