@@ -28,8 +28,9 @@ Conventions
   non-planar wall). Quads are split along their 0-2 diagonal. If a published
   quad's vertex order winds the other way it is reversed; this is reported on
   stdout.
-* Materials are metallic-roughness with metallicFactor 0 and roughnessFactor 1
-  (i.e. Lambertian intent), baseColorFactor in linear RGB, single sided.
+* Materials are metallic-roughness with metallicFactor 0, roughnessFactor 1 and
+  KHR_materials_specular specularFactor 0: Lambertian by declaration (f_r =
+  baseColor/pi exactly), baseColorFactor in linear RGB, single sided.
   The light's radiance (17, 12, 4) is encoded as emissiveFactor
   (1, 12/17, 4/17) times KHR_materials_emissive_strength 17.
 * The light quad is moved from y = 548.8 mm (the ceiling) to 548.7 mm so the
@@ -241,9 +242,13 @@ def material(name, rgb, extra=None):
             "roughnessFactor": 1.0,
         },
         "doubleSided": False,
+        # Lambertian by declaration (design.md 1b): metallic 0 and specular 0 give f_r = rho/pi.
+        "extensions": {"KHR_materials_specular": {"specularFactor": 0.0}},
     }
     if extra:
+        extensions = dict(m["extensions"], **extra.pop("extensions", {}))
         m.update(extra)
+        m["extensions"] = extensions
     return m
 
 
@@ -347,7 +352,7 @@ def build_gltf(surfaces):
     uri = "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode("ascii")
     return {
         "asset": {"version": "2.0", "generator": "irad data/make_cornell_box.py"},
-        "extensionsUsed": ["KHR_materials_emissive_strength"],
+        "extensionsUsed": ["KHR_materials_emissive_strength", "KHR_materials_specular"],
         "scene": 0,
         "scenes": [{"name": "cornell_box", "nodes": list(range(len(nodes)))}],
         "nodes": nodes,
@@ -368,7 +373,7 @@ def validate(path):
         g = json.load(f)
 
     assert g["asset"]["version"] == "2.0"
-    assert g["extensionsUsed"] == ["KHR_materials_emissive_strength"]
+    assert g["extensionsUsed"] == ["KHR_materials_emissive_strength", "KHR_materials_specular"]
     assert len(g["buffers"]) == 1
     uri = g["buffers"][0]["uri"]
     prefix = "data:application/octet-stream;base64,"

@@ -24,10 +24,10 @@ using gltf::Context;
 using gltf::json;
 
 // Extensions whose meaning irad implements; any other required extension is an error.
-constexpr std::array<std::string_view, 7> kSupportedExtensions{
+constexpr std::array<std::string_view, 9> kSupportedExtensions{
     "KHR_lights_punctual",   "KHR_materials_emissive_strength", "KHR_texture_transform",
     "KHR_mesh_quantization", "KHR_draco_mesh_compression",      "EXT_meshopt_compression",
-    "EXT_texture_webp"};
+    "EXT_texture_webp",      "KHR_materials_ior",               "KHR_materials_specular"};
 
 bool supported(const std::string& extension) {
   return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), extension) !=
@@ -148,11 +148,15 @@ private:
     return {std::uint32_t(m), uv};
   }
 
-  // glTF's default material (white, not emissive), added on first use.
+  // glTF's default material (white, not emissive, metallic 1, roughness 1: the specification's
+  // defaults), added on first use.
   std::uint32_t default_material() {
     if (!default_material_) {
       Material m;
       m.name = "default";
+      m.metallic = 1.0f;
+      m.roughness = 1.0f;
+      m.specular_factor = 1.0f;
       scene_.materials.push_back(m);
       default_material_ = std::uint32_t(scene_.materials.size() - 1);
     }

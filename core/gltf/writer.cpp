@@ -173,21 +173,45 @@ json write_mesh(const Scene& scene, BufferBuilder& buffer) {
   return {{"name", "scene"}, {"primitives", primitives}};
 }
 
-// Material; sets `strength_used` when it needs KHR_materials_emissive_strength.
-json write_material(const Material& m, bool& strength_used) {
+// Which extensions the written materials need.
+struct MaterialExtensions {
+  bool strength = false; // KHR_materials_emissive_strength
+  bool specular = false; // KHR_materials_specular
+  bool ior = false;      // KHR_materials_ior
+};
+
+// The BRDF's factors: metallic, roughness, and KHR_materials_specular / _ior where they differ
+// from glTF's defaults (a mirror: metallic 1, roughness 0).
+void write_brdf(const Material& m, json& out, MaterialExtensions& used) {
+  json& pbr = out["pbrMetallicRoughness"];
+  pbr["metallicFactor"] = m.specular ? 1.0 : double(m.metallic);
+  pbr["roughnessFactor"] = m.specular ? 0.0 : double(m.roughness);
+  if (m.specular) return;
+  if (m.specular_factor != 1.0f || m.specular_color != glm::vec3(1.0f)) {
+    json spec = {{"specularFactor", double(m.specular_factor)}};
+    if (m.specular_color != glm::vec3(1.0f)) spec["specularColorFactor"] = vec(m.specular_color);
+    out["extensions"]["KHR_materials_specular"] = spec;
+    used.specular = true;
+  }
+  if (m.ior != 1.5f) {
+    out["extensions"]["KHR_materials_ior"] = {{"ior", double(m.ior)}};
+    used.ior = true;
+  }
+}
+
+json write_material(const Material& m, MaterialExtensions& used) {
   const glm::vec3& c = m.base_color;
   json out = {{"name", m.name},
               {"pbrMetallicRoughness",
-               {{"baseColorFactor", {double(c.x), double(c.y), double(c.z), 1.0}},
-                {"metallicFactor", m.specular ? 1.0 : 0.0},
-                {"roughnessFactor", m.specular ? 0.0 : 1.0}}},
+               {{"baseColorFactor", {double(c.x), double(c.y), double(c.z), 1.0}}}},
               {"doubleSided", m.double_sided}};
+  write_brdf(m, out, used);
   const double peak = std::max({m.emission.x, m.emission.y, m.emission.z});
   if (peak > 1.0) {
     const glm::dvec3 e(m.emission);
     out["emissiveFactor"] = {e.x / peak, e.y / peak, e.z / peak};
     out["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", peak}};
-    strength_used = true;
+    used.strength = true;
   } else if (peak > 0.0) {
     out["emissiveFactor"] = vec(m.emission);
   }
@@ -238,9 +262,9 @@ json document(const Scene& scene) {
     doc["meshes"] = json::array({write_mesh(scene, buffer)});
     nodes.push_back({{"name", "scene"}, {"mesh", 0}});
   }
-  bool strength_used = false;
+  MaterialExtensions material_extensions;
   json materials = json::array();
-  for (const Material& m : scene.materials) materials.push_back(write_material(m, strength_used));
+  for (const Material& m : scene.materials) materials.push_back(write_material(m, material_extensions));
   if (!materials.empty()) doc["materials"] = materials;
   json cameras = json::array();
   for (const Camera& c : scene.cameras) {
@@ -261,7 +285,9 @@ json document(const Scene& scene) {
     doc["extensions"]["KHR_lights_punctual"] = {{"lights", lights}};
     used.push_back("KHR_lights_punctual");
   }
-  if (strength_used) used.push_back("KHR_materials_emissive_strength");
+  if (material_extensions.strength) used.push_back("KHR_materials_emissive_strength");
+  if (material_extensions.specular) used.push_back("KHR_materials_specular");
+  if (material_extensions.ior) used.push_back("KHR_materials_ior");
   if (!used.empty()) doc["extensionsUsed"] = used;
   json roots = json::array();
   for (std::size_t i = 0; i < nodes.size(); ++i) roots.push_back(i);

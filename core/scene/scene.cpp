@@ -1,5 +1,7 @@
 #include "core/scene/scene.h"
 
+#include "core/material/surface_material.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -19,40 +21,23 @@ T interpolate(const std::vector<T>& a, const glm::uvec3& tri, glm::vec2 bary) {
   return (1.0f - bary.x - bary.y) * a[tri.x] + bary.x * a[tri.y] + bary.y * a[tri.z];
 }
 
-// The texel of `texture` that `map` selects at a point of triangle t: texture(M (uv_n, 1)) with
-// uv_n interpolated from the map's TEXCOORD set; nullopt when the texture or the set is absent.
-std::optional<glm::vec4> texel(const Scene& scene, std::size_t t, glm::vec2 bary, int texture,
-                               const TexCoordMap& map) {
-  const std::vector<glm::vec2>* uvs = uv_set(scene, map.texcoord);
-  if (texture < 0 || std::size_t(texture) >= scene.textures.size() || uvs == nullptr) {
-    return std::nullopt;
-  }
-  const glm::vec2 uv = map.apply(interpolate(*uvs, scene.triangles[t], bary));
-  return scene.textures[std::size_t(texture)].sample(uv);
-}
-
 // factor * texture(uv) when the texture exists and the scene has its texture coordinates, else
 // factor.
 glm::vec3 textured(const Scene& scene, std::size_t t, glm::vec2 bary, glm::vec3 factor, int texture,
                    const TexCoordMap& map) {
-  const std::optional<glm::vec4> c = texel(scene, t, bary, texture, map);
+  const std::optional<glm::vec4> c = texture_at(scene, t, bary, texture, map);
   return c ? factor * glm::vec3(*c) : factor;
 }
 
 // The same rule as textured(), with the texture replaced by its texel mean (a transform moves
-// texels around, so the mean stands for the transformed texture as well).
-glm::vec3 mean_textured(const Scene& scene, glm::vec3 factor, int texture, const TexCoordMap& map) {
-  if (texture < 0 || std::size_t(texture) >= scene.textures.size() ||
-      uv_set(scene, map.texcoord) == nullptr) {
+// texels around, so the mean stands for the transformed texture as well); `mean` computes it.
+template <class Mean>
+glm::vec3 mean_textured(const Scene& scene, glm::vec3 factor, int texture, const TexCoordMap& map,
+                        Mean&& mean) {
+  if (texture < 0 || std::size_t(texture) >= scene.textures.size() || !has_texcoords(scene, map)) {
     return factor;
   }
-  return factor * glm::vec3(scene.textures[std::size_t(texture)].mean());
-}
-
-// COLOR_0 at a point of triangle t, or 1 when the scene has no vertex colours.
-glm::vec4 vertex_color(const Scene& scene, std::size_t t, glm::vec2 bary) {
-  if (scene.colors.empty()) return glm::vec4(1.0f);
-  return interpolate(scene.colors, scene.triangles[t], bary);
+  return factor * glm::vec3(mean(std::size_t(texture)));
 }
 
 // Edge cross product (p1 - p0) x (p2 - p0): |c| = 2 A, direction = counter-clockwise normal.
@@ -64,6 +49,25 @@ glm::dvec3 edge_cross(const Scene& scene, std::size_t t) {
 }
 
 } // namespace
+
+bool has_texcoords(const Scene& scene, const TexCoordMap& map) {
+  return uv_set(scene, map.texcoord) != nullptr;
+}
+
+std::optional<glm::vec4> texture_at(const Scene& scene, std::size_t t, glm::vec2 bary, int texture,
+                                    const TexCoordMap& map) {
+  const std::vector<glm::vec2>* uvs = uv_set(scene, map.texcoord);
+  if (texture < 0 || std::size_t(texture) >= scene.textures.size() || uvs == nullptr) {
+    return std::nullopt;
+  }
+  const glm::vec2 uv = map.apply(interpolate(*uvs, scene.triangles[t], bary));
+  return scene.textures[std::size_t(texture)].sample(uv);
+}
+
+glm::vec4 vertex_color_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
+  if (scene.colors.empty()) return glm::vec4(1.0f);
+  return interpolate(scene.colors, scene.triangles[t], bary);
+}
 
 bool Scene::has_emitters() const {
   for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -95,10 +99,16 @@ bool Scene::has_specular() const {
   return false;
 }
 
+bool Scene::all_lambertian() const {
+  for (const Material& m : materials)
+    if (!m.specular && !m.lambertian()) return false;
+  return true;
+}
+
 glm::vec3 albedo_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
   const Material& m = scene.material_of(t);
   return textured(scene, t, bary, m.base_color, m.base_color_texture, m.base_color_map) *
-         glm::vec3(vertex_color(scene, t, bary));
+         glm::vec3(vertex_color_at(scene, t, bary));
 }
 
 glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
@@ -109,8 +119,8 @@ glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
 float coverage_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
   const Material& m = scene.material_of(t);
   if (m.alpha_mode == AlphaMode::Opaque) return 1.0f;
-  const std::optional<glm::vec4> c = texel(scene, t, bary, m.base_color_texture, m.base_color_map);
-  return m.base_alpha * (c ? c->w : 1.0f) * vertex_color(scene, t, bary).w;
+  const std::optional<glm::vec4> c = texture_at(scene, t, bary, m.base_color_texture, m.base_color_map);
+  return m.base_alpha * (c ? c->w : 1.0f) * vertex_color_at(scene, t, bary).w;
 }
 
 bool covered(const Material& material, float coverage, float u) {
@@ -126,12 +136,21 @@ bool covered(const Material& material, float coverage, float u) {
 }
 
 double mean_albedo(const Scene& scene) {
+  const std::vector<glm::vec4> means = texture_means(scene); // once per texture
+  auto mean = [&means](std::size_t texture) { return means[texture]; };
   double weighted = 0.0;
   double area = 0.0;
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const Material& m = scene.material_of(t);
-    glm::dvec3 rho(mean_textured(scene, m.base_color, m.base_color_texture, m.base_color_map));
-    if (!scene.colors.empty()) rho *= glm::dvec3(vertex_color(scene, t, glm::vec2(1.0f / 3.0f)));
+    glm::dvec3 rho;
+    if (m.lambertian() || m.specular) {
+      rho = glm::dvec3(
+          mean_textured(scene, m.base_color, m.base_color_texture, m.base_color_map, mean));
+      if (!scene.colors.empty())
+        rho *= glm::dvec3(vertex_color_at(scene, t, glm::vec2(1.0f / 3.0f)));
+    } else {
+      rho = glm::dvec3(hemispherical_albedo(mean_brdf_inputs(scene, t, means)));
+    }
     const double a = 0.5 * glm::length(edge_cross(scene, t));
     weighted += a * (rho.x + rho.y + rho.z) / 3.0;
     area += a;
@@ -141,7 +160,8 @@ double mean_albedo(const Scene& scene) {
 
 glm::vec3 mean_emission(const Scene& scene, std::size_t t) {
   const Material& m = scene.material_of(t);
-  return mean_textured(scene, m.emission, m.emissive_texture, m.emissive_map);
+  return mean_textured(scene, m.emission, m.emissive_texture, m.emissive_map,
+                       [&scene](std::size_t texture) { return scene.textures[texture].mean(); });
 }
 
 float triangle_area(const Scene& scene, std::size_t t) {
@@ -165,6 +185,7 @@ SurfacePoint surface_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
       b0 * scene.normals[tri.x] + bary.x * scene.normals[tri.y] + bary.y * scene.normals[tri.z];
   const float length = glm::length(n);
   p.shading_normal = length > 0.0f ? n / length : p.geometric_normal;
+  p.shading_normal = mapped_normal(scene, t, bary, p.shading_normal);
   return p;
 }
 

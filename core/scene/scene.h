@@ -30,9 +30,13 @@ struct TexCoordMap {
 // all pass through it). Blend: a is the probability that a ray or particle stops at the surface.
 enum class AlphaMode { Opaque, Mask, Blend };
 
-// Diffuse material: albedo rho(x) = base_color * texture(uv) (linear), emitted radiance
+// Material: the glTF 2.0 metallic-roughness BRDF (design.md section 1b; evaluated by
+// core/material/brdf.h) with base = base_color * texture(uv) * COLOR_0 (linear), emitted radiance
 // L_e(x) = emission * emissive_texture(uv), Lambertian, from the front face only unless
 // double_sided. The front face is the one whose vertices run counter-clockwise (glTF).
+// The defaults of this struct declare a Lambertian surface (metallic 0, specular_factor 0:
+// f_r = base/pi exactly); the glTF reader sets the file's values, whose defaults are metallic 1,
+// roughness 1, specular 1.
 // specular: a perfect mirror (seed section 5.1.2; core/scene/mirrors.h) on both faces, whose
 // reflectance is base_color * texture(uv); it reflects no light diffusely.
 struct Material {
@@ -49,6 +53,30 @@ struct Material {
   float alpha_cutoff = 0.5f; // Mask only
   float base_alpha = 1.0f;   // baseColorFactor's alpha
 
+  // Metallic m and perceptual roughness r (alpha = r^2): factor * metallicRoughnessTexture's B
+  // (m) and G (r) channels.
+  float metallic = 0.0f;
+  float roughness = 1.0f;
+  int metallic_roughness_texture = -1;
+  TexCoordMap metallic_roughness_map;
+  // Dielectric Fresnel: f0 = ((ior - 1)/(ior + 1))^2 (KHR_materials_ior), scaled by
+  // KHR_materials_specular: f0 = min(f0 * specular_color, 1) * s, f90 = s with s = specular_factor *
+  // specular_texture's alpha, specular_color = its factor * specular_color_texture's rgb.
+  float ior = 1.5f;
+  float specular_factor = 0.0f;
+  int specular_texture = -1;
+  TexCoordMap specular_map;
+  glm::vec3 specular_color{1.0f};
+  int specular_color_texture = -1;
+  TexCoordMap specular_color_map;
+  // Tangent-space normal map (linear texels, n = 2 t - 1, x and y scaled by normal_scale), or -1.
+  int normal_texture = -1;
+  TexCoordMap normal_map;
+  float normal_scale = 1.0f;
+
+  // Lambertian by declaration (design.md 1b): metallic 0 and specular 0 make F0 = F90 = 0, so
+  // f_r = base/pi whatever the textures say; the estimators take their diffuse paths for it.
+  bool lambertian() const { return metallic == 0.0f && specular_factor == 0.0f; }
   bool emissive() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
 
@@ -97,6 +125,9 @@ struct Scene {
   std::vector<glm::vec2> uvs1;   // TEXCOORD_1; empty unless some texture of a material uses it
   std::vector<glm::vec4> colors; // COLOR_0 (linear RGBA, 1 where a primitive has none); empty
                                  // when no primitive has it. albedo *= rgb, coverage *= alpha.
+  // TANGENT (xyz unit, w = +-1: bitangent = w cross(normal, tangent)), from the file or generated
+  // (core/mesh/tangents.h); empty unless some material has a normal map.
+  std::vector<glm::vec4> tangents;
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint32_t> triangle_material; // one per triangle
 
@@ -122,6 +153,7 @@ struct Scene {
   bool has_environment() const { return environment && !environment->black(); }
   bool has_textures() const { return !textures.empty(); }
   bool has_specular() const; // any material is a mirror
+  bool all_lambertian() const; // every material is a mirror or Material::lambertian()
 };
 
 // The camera_to_world of a camera on a node with world matrix `world`: the right-handed rotation
@@ -133,7 +165,8 @@ std::optional<glm::mat4> camera_frame_of(const glm::dmat4& world);
 struct SurfacePoint {
   glm::vec3 position;
   glm::vec3 geometric_normal; // unit, the front (counter-clockwise) side
-  glm::vec3 shading_normal;   // interpolated NORMAL, unit (the geometric one where it vanishes)
+  glm::vec3 shading_normal;   // interpolated NORMAL, unit (the geometric one where it vanishes),
+                              // after the material's normal map (core/material/surface_material.h)
 };
 SurfacePoint surface_at(const Scene& scene, std::size_t t, glm::vec2 bary);
 
@@ -141,6 +174,14 @@ SurfacePoint surface_at(const Scene& scene, std::size_t t, glm::vec2 bary);
 // texture(M (uv_n, 1)) with the material's TexCoordMap (set n, matrix M); the albedo also times
 // COLOR_0's rgb (glTF: vertex colours scale the base colour, not the emission).
 glm::vec3 albedo_at(const Scene& scene, std::size_t t, glm::vec2 bary);
+// The texel of `texture` that `map` selects at a point of triangle t: texture(M (uv_n, 1)) with
+// uv_n interpolated from the map's TEXCOORD set; nullopt when the texture or the set is absent.
+std::optional<glm::vec4> texture_at(const Scene& scene, std::size_t t, glm::vec2 bary, int texture,
+                                    const TexCoordMap& map);
+// Whether the scene has the TEXCOORD set `map` reads.
+bool has_texcoords(const Scene& scene, const TexCoordMap& map);
+// COLOR_0 at a point of triangle t, or 1 when the scene has no vertex colours.
+glm::vec4 vertex_color_at(const Scene& scene, std::size_t t, glm::vec2 bary);
 glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary);
 // Coverage a(x) = base_alpha * base texture alpha (through base_color_map) * COLOR_0 alpha at a
 // point of triangle t, for Mask and Blend materials; 1 for Opaque ones (glTF ignores alpha there).
@@ -150,7 +191,10 @@ float coverage_at(const Scene& scene, std::size_t t, glm::vec2 bary);
 // u in [0, 1): Opaque always; Mask iff a >= alpha_cutoff; Blend iff u < a (probability a).
 bool covered(const Material& material, float coverage, float u);
 // Area-weighted mean albedo: rho_bar = sum(mean(rho_k) A_k) / sum(A_k) over all triangles, with
-// textured albedos taken at their texel mean and COLOR_0 at the triangle's centroid.
+// textured albedos taken at their texel mean and COLOR_0 at the triangle's centroid. rho_k is the
+// base colour of a Lambertian material or a mirror, else the BRDF's hemispherical albedo
+// (core/material/brdf.h, specular lobe included). Time linear in triangles plus texels: each
+// texture's mean is taken once.
 double mean_albedo(const Scene& scene);
 // Triangle t's emission with its texture at the texel mean (emitter powers): emission_at's rule,
 // so a texture whose TEXCOORD set the scene lacks counts as absent in both.

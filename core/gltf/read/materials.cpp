@@ -255,13 +255,103 @@ AlphaMode alpha_mode(const Context& ctx, const json& m, const std::string& where
   ctx.fail(where, "unknown alphaMode '" + mode + "'");
 }
 
-// The glTF sets of the two uv slots of a material whose base colour and emissive textures read
-// sets `base` and `emissive` (-1: no such texture).
-UvSets uv_slots(int base, int emissive) {
-  UvSets out;
-  out.slot0 = base >= 0 ? base : emissive;
-  if (base >= 0 && emissive >= 0 && emissive != base) out.slot1 = emissive;
-  return out;
+// The glTF TEXCOORD sets of a material's textures, in the order they were read, and the two uv
+// slots they fill: the first set read takes slot 0, the next other set slot 1. A texture whose
+// set finds no slot is dropped with a warning.
+class SlotAssigner {
+public:
+  SlotAssigner(const Context& ctx, const std::string& where) : ctx_(ctx), where_(where) {}
+
+  // Puts the texture's set into map.texcoord (the slot), or returns -1 for the texture.
+  int assign(int texture, int set, TexCoordMap& map, const char* field) {
+    if (texture < 0) return -1;
+    if (uv_.slot0 < 0 || uv_.slot0 == set) {
+      uv_.slot0 = set;
+      map.texcoord = 0;
+    } else if (uv_.slot1 < 0 || uv_.slot1 == set) {
+      uv_.slot1 = set;
+      map.texcoord = 1;
+    } else {
+      ctx_.warn(where_ + "." + field + ": a third TEXCOORD set in one material; ignored");
+      return -1;
+    }
+    return texture;
+  }
+  UvSets sets() const { return uv_; }
+
+private:
+  const Context& ctx_;
+  const std::string& where_;
+  UvSets uv_;
+};
+
+// A factor in [0, 1] (metallicFactor, roughnessFactor, specularFactor).
+float unit_factor(const Context& ctx, const json& holder, const char* field, double fallback,
+                  const std::string& where) {
+  const double value = number_member(holder, field, fallback);
+  if (!std::isfinite(value) || value < 0.0 || value > 1.0)
+    ctx.fail(where, std::string(field) + " must be in [0, 1]");
+  return float(value);
+}
+
+// KHR_materials_ior and KHR_materials_specular into `out`; the glTF defaults (ior 1.5,
+// specular 1, colour 1) without them.
+void read_specular(const Context& ctx, const json& m, const std::string& where, TextureTable& textures,
+                   SlotAssigner& slots, Material& out) {
+  out.ior = 1.5f;
+  out.specular_factor = 1.0f;
+  out.specular_color = glm::vec3(1.0f);
+  if (const json* ior = extension(m, "KHR_materials_ior")) {
+    const double v = number_member(*ior, "ior", 1.5);
+    if (!std::isfinite(v) || (v < 1.0 && v != 0.0))
+      ctx.fail(where + ".extensions.KHR_materials_ior", "ior must be 0 or at least 1");
+    out.ior = float(v);
+  }
+  const json* spec = extension(m, "KHR_materials_specular");
+  if (spec == nullptr) return;
+  const std::string sw = where + ".extensions.KHR_materials_specular";
+  out.specular_factor = unit_factor(ctx, *spec, "specularFactor", 1.0, sw);
+  out.specular_color = glm::vec3(colour_factor(ctx, numbers_member(*spec, "specularColorFactor"), 3,
+                                               sw, "specularColorFactor", false));
+  if (numbers_member(*spec, "specularColorFactor").empty()) out.specular_color = glm::vec3(1.0f);
+  int set = 0;
+  if (const json* t = member(*spec, "specularTexture")) {
+    const int tex = textures.get(*t, sw + ".specularTexture", false, out.specular_map, set);
+    out.specular_texture = slots.assign(tex, set, out.specular_map, "specularTexture");
+  }
+  if (const json* t = member(*spec, "specularColorTexture")) {
+    const int tex = textures.get(*t, sw + ".specularColorTexture", true, out.specular_color_map, set);
+    out.specular_color_texture =
+        slots.assign(tex, set, out.specular_color_map, "specularColorTexture");
+  }
+}
+
+// metallicFactor, roughnessFactor and metallicRoughnessTexture (linear; B metallic, G roughness).
+void read_metallic_roughness(const Context& ctx, const json& pbr, const std::string& pw,
+                             TextureTable& textures, SlotAssigner& slots, Material& out) {
+  out.metallic = unit_factor(ctx, pbr, "metallicFactor", 1.0, pw);
+  out.roughness = unit_factor(ctx, pbr, "roughnessFactor", 1.0, pw);
+  out.specular = out.metallic >= mirror_min_metallic && out.roughness <= mirror_max_roughness;
+  if (const json* t = member(pbr, "metallicRoughnessTexture")) {
+    int set = 0;
+    const int tex =
+        textures.get(*t, pw + ".metallicRoughnessTexture", false, out.metallic_roughness_map, set);
+    out.metallic_roughness_texture =
+        slots.assign(tex, set, out.metallic_roughness_map, "metallicRoughnessTexture");
+  }
+}
+
+// normalTexture (linear) and its scale.
+void read_normal_map(const Context& ctx, const json& m, const std::string& where,
+                     TextureTable& textures, SlotAssigner& slots, Material& out) {
+  const json* t = member(m, "normalTexture");
+  if (t == nullptr) return;
+  const double scale = number_member(*t, "scale", 1.0);
+  if (!std::isfinite(scale)) ctx.fail(where + ".normalTexture", "scale must be finite");
+  out.normal_scale = float(scale);
+  int set = 0;
+  const int tex = textures.get(*t, where + ".normalTexture", false, out.normal_map, set);
+  out.normal_texture = slots.assign(tex, set, out.normal_map, "normalTexture");
 }
 
 Material convert(const Context& ctx, std::size_t index, TextureTable& textures, UvSets& uv) {
@@ -277,31 +367,24 @@ Material convert(const Context& ctx, std::size_t index, TextureTable& textures, 
       colour_factor(ctx, numbers_member(pbr, "baseColorFactor"), 4, pw, "baseColorFactor", true);
   out.base_color = glm::vec3(base);
   out.base_alpha = base.a;
-  int base_set = -1, emissive_set = -1;
+  SlotAssigner slots(ctx, where);
+  int set = 0;
   if (const json* t = member(pbr, "baseColorTexture")) {
-    out.base_color_texture =
-        textures.get(*t, pw + ".baseColorTexture", true, out.base_color_map, base_set);
-    if (out.base_color_texture < 0) base_set = -1;
+    const int tex = textures.get(*t, pw + ".baseColorTexture", true, out.base_color_map, set);
+    out.base_color_texture = slots.assign(tex, set, out.base_color_map, "baseColorTexture");
   }
   out.emission = emission(ctx, m, where);
   if (const json* t = member(m, "emissiveTexture")) {
-    out.emissive_texture =
-        textures.get(*t, where + ".emissiveTexture", true, out.emissive_map, emissive_set);
-    if (out.emissive_texture < 0) emissive_set = -1;
+    const int tex = textures.get(*t, where + ".emissiveTexture", true, out.emissive_map, set);
+    out.emissive_texture = slots.assign(tex, set, out.emissive_map, "emissiveTexture");
   }
-  uv = uv_slots(base_set, emissive_set);
-  out.base_color_map.texcoord = base_set == uv.slot1 && uv.slot1 >= 0 ? 1 : 0;
-  out.emissive_map.texcoord = emissive_set == uv.slot1 && uv.slot1 >= 0 ? 1 : 0;
   out.double_sided = bool_member(m, "doubleSided", false);
   out.alpha_mode = alpha_mode(ctx, m, where);
   out.alpha_cutoff = float(number_member(m, "alphaCutoff", 0.5));
-  const double metallic = number_member(pbr, "metallicFactor", 1.0);
-  const double roughness = number_member(pbr, "roughnessFactor", 1.0);
-  for (const auto& [value, field] :
-       {std::pair{metallic, "metallicFactor"}, std::pair{roughness, "roughnessFactor"}})
-    if (!std::isfinite(value) || value < 0.0 || value > 1.0)
-      ctx.fail(pw, std::string(field) + " must be in [0, 1]");
-  out.specular = metallic >= mirror_min_metallic && roughness <= mirror_max_roughness;
+  read_metallic_roughness(ctx, pbr, pw, textures, slots, out);
+  read_specular(ctx, m, where, textures, slots, out);
+  read_normal_map(ctx, m, where, textures, slots, out);
+  uv = slots.sets();
   return out;
 }
 
