@@ -1,6 +1,7 @@
 #include "walk/path_tracer.h"
 
 #include "core/lights/light_sampler.h"
+#include "core/material/surface_material.h"
 #include "core/lights/vpl.h"
 #include "core/sampling/rng.h"
 #include "core/util/error.h"
@@ -11,6 +12,7 @@
 #include <fmt/format.h>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace irad {
 
@@ -27,12 +29,21 @@ float max3(const glm::vec3& v) {
   return glm::max(v.x, glm::max(v.y, v.z));
 }
 
-// A surface hit, with normals turned toward the side the ray arrived from.
+// A surface hit, with normals turned toward the side the ray arrived from. A material that is
+// not Lambertian (Material::lambertian) carries its BRDF; a Lambertian one is albedo/pi.
 struct Hit {
   glm::vec3 position, ng, ns, albedo;
+  glm::vec3 wo; // unit, toward where the ray came from
   std::uint32_t triangle;
   glm::vec2 bary;
   bool front; // the ray hit the front (counter-clockwise) face
+  std::optional<Brdf> brdf;
+
+  // f_r(wo, w) and the solid-angle density with which scattering finds w.
+  glm::vec3 f(const glm::vec3& w) const { return brdf ? brdf->eval(wo, w) : albedo * inv_pi; }
+  float scatter_pdf(const glm::vec3& w, float cos_w) const {
+    return brdf ? brdf->pdf(wo, w) : cos_w * inv_pi;
+  }
 };
 
 Hit make_hit(const Scene& scene, const RayHit& h, const glm::vec3& origin, const glm::vec3& dir) {
@@ -45,6 +56,12 @@ Hit make_hit(const Scene& scene, const RayHit& h, const glm::vec3& origin, const
   hit.albedo = albedo_at(scene, h.triangle, h.bary);
   hit.triangle = h.triangle;
   hit.bary = h.bary;
+  hit.wo = -dir;
+  const Material& m = scene.material_of(h.triangle);
+  if (!m.lambertian() && !m.specular) {
+    const glm::vec3 ns = glm::dot(hit.ns, hit.ng) > 0.0f ? hit.ns : hit.ng;
+    hit.brdf.emplace(brdf_inputs_at(scene, h.triangle, h.bary), ns);
+  }
   return hit;
 }
 
@@ -54,6 +71,14 @@ glm::vec3 emitted(const Scene& scene, const Hit& hit) {
   if (!m.emissive() || (!hit.front && !m.double_sided)) return glm::vec3(0.0f);
   return emission_at(scene, hit.triangle, hit.bary);
 }
+
+struct Scatter {
+  glm::vec3 direction;
+  glm::vec3 weight; // f cos / pdf
+  double pdf;
+};
+
+std::optional<Scatter> scatter(const Hit& x, Pcg32& rng);
 
 class Tracer {
 public:
@@ -89,7 +114,8 @@ glm::vec3 Tracer::directional(const Hit& x, const LightStart& s, std::uint64_t s
   if (rays_.occluded(x.position + eps_ * x.ng, w, 0.0f, std::numeric_limits<float>::infinity(),
                      salt))
     return glm::vec3(0.0f);
-  const float weight = s.environment ? power_heuristic(s.pdf, cos_x * inv_pi) : 1.0f;
+  const float weight = s.environment ? power_heuristic(s.pdf, x.scatter_pdf(w, cos_x)) : 1.0f;
+  if (x.brdf) return s.beta * (cos_x * weight) * x.f(w);
   return s.beta * (cos_x * weight) * x.albedo * inv_pi;
 }
 
@@ -144,9 +170,25 @@ glm::vec3 Tracer::next_event(const Hit& x, Pcg32& rng, std::uint64_t salt) const
   float weight = 1.0f; // punctual lights cannot be hit by scattering
   if (s.triangle >= 0) {
     const double light_pdf = s.pdf * dist2 / profile; // solid angle at x
-    weight = power_heuristic(light_pdf, cos_x * inv_pi);
+    weight = power_heuristic(light_pdf, x.scatter_pdf(w, cos_x));
   }
+  if (x.brdf) return s.beta * (profile * cos_x / dist2 * weight) * x.f(w);
   return s.beta * (profile * cos_x / dist2 * weight) * x.albedo * inv_pi;
+}
+
+// The next direction from x: cosine-weighted on a Lambertian surface (f cos / pdf = rho), by the
+// BRDF's sampler otherwise; nullopt when it falls below the surface (shading or geometric).
+std::optional<Scatter> scatter(const Hit& x, Pcg32& rng) {
+  const double u = rng.next_double(), v = rng.next_double();
+  if (x.brdf) {
+    const std::optional<BrdfSample> s = x.brdf->sample(x.wo, float(u), float(v));
+    if (!s || glm::dot(s->wi, x.ng) <= 0.0f) return std::nullopt;
+    return Scatter{s->wi, s->weight, s->pdf};
+  }
+  const glm::vec3 next = cosine_direction(x.ns, u, v);
+  const float cos_n = glm::dot(next, x.ns);
+  if (glm::dot(next, x.ng) <= 0.0f || cos_n <= 0.0f) return std::nullopt;
+  return Scatter{next, x.albedo, cos_n * inv_pi};
 }
 
 // MIS weight of emission found by cosine sampling (solid-angle pdf bsdf_pdf at `from`).
@@ -188,24 +230,19 @@ glm::vec3 Tracer::radiance(const glm::vec3& eye, const glm::vec3& dir0, float tm
       continue;
     }
     specular = false;
-    if (max3(x.albedo) <= 0.0f) break;
+    if (!x.brdf && max3(x.albedo) <= 0.0f) break;
     sum += throughput * next_event(x, rng, salt);
-    // Cosine-weighted scattering: f cos / pdf = rho.
-    const glm::vec3 next = [&] {
-      const double u = rng.next_double(), v = rng.next_double();
-      return cosine_direction(x.ns, u, v);
-    }();
-    const float cos_n = glm::dot(next, x.ns);
-    if (glm::dot(next, x.ng) <= 0.0f || cos_n <= 0.0f) break; // below the surface
-    throughput *= x.albedo;
-    bsdf_pdf = cos_n * inv_pi;
+    const std::optional<Scatter> next = scatter(x, rng);
+    if (!next) break;
+    throughput *= next->weight;
+    bsdf_pdf = next->pdf;
     if (depth >= 3) { // Russian roulette
       const float q = glm::min(max3(throughput), 0.95f);
       if (rng.next_double() >= q) break;
       throughput /= q;
     }
     origin = x.position + eps_ * x.ng;
-    dir = next;
+    dir = next->direction;
   }
   return sum;
 }

@@ -1,6 +1,7 @@
 #include "walk/quasi_random_walk.h"
 
 #include "core/lights/light_sampler.h"
+#include "core/material/surface_material.h"
 #include "core/sampling/particle_counts.h"
 #include "core/sampling/radical_inverse.h"
 #include "core/util/error.h"
@@ -10,21 +11,21 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
+#include <optional>
 
 namespace irad {
 
-namespace {
-
-bool positive(const glm::vec3& v) {
-  return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
-}
-
-// The surface seen by a path vertex: position, normal facing the side the particle came from.
+// The surface seen by a path vertex: position, normals facing the side the particle came from,
+// and the BRDF's inputs where the material is not Lambertian.
 struct PathVertex {
   glm::vec3 position;
-  glm::vec3 normal;
+  glm::vec3 normal; // shading
   glm::vec3 albedo;
+  glm::vec3 geometric;
+  std::optional<BrdfInputs> glossy;
 };
+
+namespace {
 
 PathVertex vertex_at(const Scene& scene, const RayHit& hit, const glm::vec3& incoming) {
   const SurfacePoint sp = surface_at(scene, hit.triangle, hit.bary);
@@ -33,7 +34,14 @@ PathVertex vertex_at(const Scene& scene, const RayHit& hit, const glm::vec3& inc
   glm::vec3 ns = sp.shading_normal;
   if (glm::dot(ns, ng) < 0.0f) ns = -ns;  // same side as the geometric normal
   if (glm::dot(ns, ng) <= 1e-3f) ns = ng; // shading normal unusable near the tangent plane
-  return {sp.position, ns, albedo_at(scene, hit.triangle, hit.bary)};
+  PathVertex y{sp.position, ns, albedo_at(scene, hit.triangle, hit.bary), ng, std::nullopt};
+  const Material& m = scene.material_of(hit.triangle);
+  if (!m.lambertian() && !m.specular) y.glossy = brdf_inputs_at(scene, hit.triangle, hit.bary);
+  return y;
+}
+
+bool positive(const glm::vec3& v) {
+  return v.x > 0.0f || v.y > 0.0f || v.z > 0.0f;
 }
 
 Vpl light_vpl(const LightStart& start, float weight, std::uint32_t path) {
@@ -71,7 +79,8 @@ QuasiRandomWalk::QuasiRandomWalk(const Scene& scene, const RayScene& rays,
   warn_capped(counts_, log, options.depth_cap);
 }
 
-void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
+void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out,
+                            std::vector<VplLobe>* lobes) const {
   const Scene& scene = *scene_;
   const float eps = rays_->epsilon();
   const float far = std::numeric_limits<float>::infinity();
@@ -99,6 +108,12 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
                                       : trace_through_mirrors(scene, *rays_, from, dir, beta, eps);
     if (!hit) return; // the particle leaves the scene
     const PathVertex y = vertex_at(scene, *hit, dir);
+    if (y.glossy) {
+      if (!glossy_vertex(y, i, j, depth, beta, dir, out, lobes)) return;
+      origin = y.position;
+      offset_normal = y.normal;
+      continue;
+    }
     const glm::vec3 radiant =
         beta * y.albedo * std::numbers::inv_pi_v<float>; // beta_j rho(y_j) / pi
     if (!positive(radiant)) return;                      // absorbed: nothing further
@@ -119,6 +134,40 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out) const {
     origin = y.position;
     offset_normal = y.normal;
   }
+}
+
+bool QuasiRandomWalk::glossy_vertex(const PathVertex& y, std::uint32_t i, int j, int depth,
+                                    glm::vec3& beta, glm::vec3& dir, std::vector<Vpl>& out,
+                                    std::vector<VplLobe>* lobes) const {
+  const Brdf brdf(*y.glossy, y.normal);
+  const glm::vec3 incident = -dir;
+  const glm::vec3 a = brdf.albedo(incident);
+  const glm::vec3 radiant = beta * a * std::numbers::inv_pi_v<float>; // beta_j a(incident) / pi
+  if (!positive(radiant)) return false;
+  Vpl v;
+  v.position = y.position;
+  v.normal = y.normal;
+  v.intensity = radiant / static_cast<float>(counts_.reaching(j));
+  v.kind = VplKind::Surface;
+  v.depth = static_cast<std::uint16_t>(j);
+  v.path = i;
+  v.incident = incident;
+  if (lobes != nullptr) {
+    v.lobe = static_cast<std::int32_t>(lobes->size());
+    lobes->push_back({*y.glossy, a});
+  }
+  out.push_back(v);
+  if (!mirrors_.empty()) append_mirrored(v, mirrors_, out);
+  if (j == depth) return false;
+  // Scatter by the BRDF from the same Halton pair: beta_{j+1} = beta_j f_r cos / pdf.
+  const std::uint32_t h = halton_index(i);
+  const std::optional<BrdfSample> s =
+      brdf.sample(incident, static_cast<float>(halton_.sample(2 * j + 2, h)),
+                  static_cast<float>(halton_.sample(2 * j + 3, h)));
+  if (!s || glm::dot(s->wi, y.geometric) <= 0.0f) return false;
+  dir = s->wi;
+  beta *= s->weight;
+  return true;
 }
 
 VplSet QuasiRandomWalk::header() const {
@@ -142,7 +191,7 @@ VplSet quasi_random_walk(const Scene& scene, const RayScene& rays, const WalkOpt
     throw Error("", "--path-range",
                 fmt::format("{}:{} is not a non-empty range within 0:{}", options.first_path, end,
                             set.paths));
-  for (std::uint32_t i = options.first_path; i < end; ++i) walk.trace(i, set.vpls);
+  for (std::uint32_t i = options.first_path; i < end; ++i) walk.trace(i, set.vpls, &set.lobes);
   return set;
 }
 

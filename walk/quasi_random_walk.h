@@ -2,7 +2,8 @@
 // Keller's quasi-random walk (design.md section 1): N particles leave the lights, particle i
 // reflects D(i) times (n_j = floor(rho_bar^j N) particles reach reflection j), and every vertex
 // y_j of a path leaves a VPL of weight 1/n_j. Halton dimensions: (0, 1) start on a light,
-// (2j+2, 2j+3) scatter at reflection j (cosine-distributed).
+// (2j+2, 2j+3) scatter at reflection j: cosine-distributed on a Lambertian surface, by the BRDF's
+// sampler (core/material/brdf.h) elsewhere, the seed's "each surface decides by its BRDF".
 // Particle i (i = 0..N-1, the index that decides its depth D(i)) takes Halton point x_{i+1}: the
 // point x_0 = (0, 0, ...) is degenerate (a light's corner, then every bounce along the normal, so
 // that path never leaves the scene) and, carrying the deepest terms alone, it biased the Cornell
@@ -47,19 +48,29 @@ struct WalkOptions {
   std::uint32_t end_path = 0;
 };
 
+struct PathVertex; // a surface the particle meets (quasi_random_walk.cpp)
+
 // The walk for a fixed scene and N: particles can be traced one at a time (the real-time ring of
 // section 5.1.3 traces one path per frame). Throws irad::Error when the scene has no light or the
 // options are impossible. Holds references to the scene and rays.
 class QuasiRandomWalk {
 public:
   QuasiRandomWalk(const Scene& scene, const RayScene& rays, const WalkOptions& options, Log& log);
-  // Appends particle i's VPLs (depths 0..D(i), fewer if it leaves the scene or is absorbed).
-  void trace(std::uint32_t i, std::vector<Vpl>& out) const;
+  // Appends particle i's VPLs (depths 0..D(i), fewer if it leaves the scene or is absorbed), and
+  // the lobes of its glossy VPLs to *lobes (core/lights/vpl.h; null: the VPLs keep lobe -1 and
+  // their Lambertian intensity, all the raster draws).
+  void trace(std::uint32_t i, std::vector<Vpl>& out, std::vector<VplLobe>* lobes = nullptr) const;
   // N, rho_bar, l_max, ... with no VPLs.
   VplSet header() const;
   const ParticleCounts& counts() const { return counts_; }
 
 private:
+  // The VPL at a glossy vertex y_j and the particle's next direction and throughput; false when
+  // the path ends there.
+  bool glossy_vertex(const PathVertex& y, std::uint32_t i, int j, int depth,
+                     glm::vec3& beta, glm::vec3& dir, std::vector<Vpl>& out,
+                     std::vector<VplLobe>* lobes) const;
+
   const Scene* scene_;
   const RayScene* rays_;
   LightSampler lights_;

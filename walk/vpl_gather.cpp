@@ -1,5 +1,6 @@
 #include "walk/vpl_gather.h"
 
+#include "core/material/surface_material.h"
 #include "walk/mirror_walk.h"
 
 #include <algorithm>
@@ -29,6 +30,11 @@ ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec
   x.albedo = albedo_at(scene, hit.triangle, hit.bary);
   x.emission =
       (front || m.double_sided) ? emission_at(scene, hit.triangle, hit.bary) : glm::vec3(0.0f);
+  x.wo = -dir;
+  if (!m.lambertian() && !m.specular) {
+    const glm::vec3 n = glm::dot(x.normal, x.geometric) > 0.0f ? x.normal : x.geometric;
+    x.brdf.emplace(brdf_inputs_at(scene, hit.triangle, hit.bary), n);
+  }
   return x;
 }
 
@@ -67,7 +73,8 @@ struct Unshadowed {
   float tmax = 0.0f;
 };
 
-Unshadowed unshadowed(const ShadingPoint& x, const Vpl& v, float dmin, float eps) {
+Unshadowed unshadowed(const ShadingPoint& x, const Vpl& v, const VplSet& set, float dmin,
+                      float eps) {
   const glm::vec3 d = x.position - v.position;
   const float dist2 = glm::dot(d, d);
   if (!(dist2 > eps * eps)) return {};
@@ -77,20 +84,23 @@ Unshadowed unshadowed(const ShadingPoint& x, const Vpl& v, float dmin, float eps
   if (cos_x <= 0.0f) return {};
   const float e = emission_profile(v, glm::dot(v.normal, w));
   if (e <= 0.0f) return {};
-  return {v.intensity * (e * cos_x / glm::max(dist2, clamp_distance2(v, dmin))), -w, dist - eps};
+  const float g = e * cos_x / glm::max(dist2, clamp_distance2(v, dmin));
+  if (v.lobe >= 0) return {v.intensity * vpl_lobe_shape(set.lobes[std::size_t(v.lobe)], v, w) * g, -w, dist - eps};
+  return {v.intensity * g, -w, dist - eps};
 }
 
 } // namespace
 
 glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl& v,
-                         const std::vector<MirrorPolygon>& mirrors, float dmin, float eps) {
+                         const VplSet& set, float dmin, float eps) {
   if (v.kind == VplKind::Directional) return gather_directional(rays, x, v, eps);
-  const Unshadowed u = unshadowed(x, v, dmin, eps);
+  const Unshadowed u = unshadowed(x, v, set, dmin, eps);
   if (u.term == glm::vec3(0.0f)) return u.term;
   // Shadow ray from the receiver toward the VPL, stopping short of both ends; a mirrored VPL
   // (core/scene/mirrors.h) by way of its mirror polygon.
   if (v.mirror >= 0
-          ? !mirrored_visible(rays, v, mirrors[static_cast<std::size_t>(v.mirror)], x.position, eps)
+          ? !mirrored_visible(rays, v, set.mirrors[static_cast<std::size_t>(v.mirror)], x.position,
+                              eps)
           : rays.occluded(x.position, u.toward, eps, u.tmax))
     return glm::vec3(0.0f);
   return u.term;
@@ -106,10 +116,10 @@ void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const Vpl
   for (std::size_t i = 0; i < n; ++i) {
     const Vpl& v = vpls.vpls[first + i];
     if (v.kind == VplKind::Directional || v.mirror >= 0) { // their own visibility tests
-      out[i] = vpl_irradiance(rays, x, v, vpls.mirrors, dmin, eps);
+      out[i] = vpl_irradiance(rays, x, v, vpls, dmin, eps);
       continue;
     }
-    const Unshadowed u = unshadowed(x, v, dmin, eps);
+    const Unshadowed u = unshadowed(x, v, vpls, dmin, eps);
     out[i] = u.term;
     if (u.term == glm::vec3(0.0f)) continue;
     toward[rays_n] = u.toward;
@@ -124,6 +134,17 @@ void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const Vpl
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps) {
   glm::vec3 sum(0.0f);
+  if (x.brdf) { // f_r,x per VPL, from the direction its light arrives from
+    for_each_vpl_irradiance(rays, x, vpls, dmin, eps, [&](std::size_t j, const glm::vec3& term) {
+      if (term == glm::vec3(0.0f)) return;
+      const Vpl& v = vpls.vpls[j];
+      const glm::vec3 toward = v.kind == VplKind::Directional
+                                   ? -v.normal
+                                   : glm::normalize(v.position - x.position);
+      sum += term * x.brdf->eval(x.wo, toward);
+    });
+    return sum;
+  }
   for_each_vpl_irradiance(rays, x, vpls, dmin, eps,
                           [&sum](std::size_t, const glm::vec3& term) { sum += term; });
   return sum * x.albedo * std::numbers::inv_pi_v<float>;

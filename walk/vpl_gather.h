@@ -21,6 +21,8 @@ struct ShadingPoint {
   glm::vec3 geometric; // geometric normal on that side
   glm::vec3 albedo;
   glm::vec3 emission; // L_e toward the ray's origin (front face only unless double-sided)
+  glm::vec3 wo;       // unit, toward the ray's origin
+  std::optional<Brdf> brdf; // the material's BRDF where it is not Lambertian (about `normal`)
 };
 
 ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec3& origin,
@@ -32,6 +34,7 @@ std::optional<ShadingPoint> visible_point(const Scene& scene, const RayScene& ra
 
 // The VPLs' reflected radiance at x toward the viewer:
 //   rho(x)/pi * sum_k I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)   (core/lights/vpl.h),
+// with f_r,x(toward y_k, x.wo) in place of rho(x)/pi inside the sum where x has a BRDF,
 // with V from shadow rays (for a mirrored VPL, V through its mirror polygon: walk/mirror_walk.h).
 // x must not lie on a mirror (a mirror reflects nothing diffusely: walk/mirror_pass.h). d_min: the
 // VPL's own clamp_distance, else dmin (the global clamp, world units; core/lights/vpl.h
@@ -40,9 +43,10 @@ glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet&
                       float eps);
 
 // One VPL's term of that sum without rho(x)/pi: I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)
-// (for a directional VPL, gather_directional's); mirrors: the set's mirror polygons.
+// (for a directional VPL, gather_directional's), E_k times the lobe's shape for a glossy VPL
+// (core/lights/vpl.h vpl_lobe_shape); the set's mirror polygons and lobes.
 glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl& v,
-                         const std::vector<MirrorPolygon>& mirrors, float dmin, float eps);
+                         const VplSet& set, float dmin, float eps);
 
 // vpl_irradiance of vpls.vpls[first, first + n) at x into out[0, n), n <= kVplChunk: the same
 // terms, the plain VPLs' shadow rays traced together (RayScene's packets; mirrored and

@@ -14,9 +14,16 @@
 //   clamp).
 // `intensity` already folds in the weight w = 1/n_j, the path throughput beta_j and, for depth >=
 // 1, rho(y_j)/pi, so an estimator adds C(x) of every VPL and nothing else.
+// A glossy VPL (lobe >= 0: its point's material is not Lambertian, design.md 1b) sends
+// w beta_j f_r,y(incident, w_out) instead of w beta_j rho/pi: its intensity is that of the
+// Lambertian VPL of the same reflected power, w beta_j a(incident)/pi with a the directional
+// albedo (what the raster draws), and the CPU estimators multiply its E by the lobe's shape
+// pi f_r,y(incident, w_out) / a(incident) (vpl_lobe_shape), per channel. A receiver x weighs the
+// arriving light by f_r,x(toward y, toward the eye) where the text above says rho(x)/pi.
 // A mirrored VPL (mirror >= 0, core/scene/mirrors.h) is the image of a VPL in a planar mirror: it
 // lights only the x on the positive side of mirror_plane whose segment from it crosses the plane
 // inside the polygon VplSet::mirrors[mirror], with V = free segments y -> m and m -> x.
+#include "core/material/brdf.h"
 #include "core/scene/mirror_polygon.h"
 
 #include <cstdint>
@@ -44,6 +51,10 @@ struct Vpl {
   // d_min of this VPL in world units (core/lights/clamp_field.h, the local clamp); 0: the
   // estimator's global clamp (a fraction of the bounding diagonal). Unused for unclamped kinds.
   float clamp_distance = 0.0f;
+  // Glossy VPL: index into VplSet::lobes, and the unit direction its particle arrived from
+  // (away from the point; mirrored with the VPL); -1: Lambertian.
+  std::int32_t lobe = -1;
+  glm::vec3 incident{0.0f};
 
   bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
   // Whether any channel of the intensity is positive (a black VPL draws no pass).
@@ -67,6 +78,16 @@ inline float spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
   return t * t;
 }
 
+// The material at a glossy VPL's point and its directional albedo a(incident).
+struct VplLobe {
+  BrdfInputs material;
+  glm::vec3 albedo{0.0f};
+};
+
+// pi f_r,y(v.incident, w) / a(v.incident) per channel (0 where a is 0), the glossy VPL v's
+// emission toward unit w relative to a Lambertian VPL's; v.normal is the normal of the lobe.
+glm::vec3 vpl_lobe_shape(const VplLobe& lobe, const Vpl& v, const glm::vec3& w);
+
 struct VplSet {
   std::vector<Vpl> vpls;
   std::uint32_t paths = 0; // N
@@ -81,6 +102,8 @@ struct VplSet {
   // estimators that need d(y) away from the VPLs (the clamp's residual); null with the global
   // clamp.
   std::shared_ptr<const ClampField> clamp_field;
+  // The glossy VPLs' lobes (Vpl::lobe); empty when every surface is Lambertian.
+  std::vector<VplLobe> lobes;
 };
 
 } // namespace irad
