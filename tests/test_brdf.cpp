@@ -3,8 +3,8 @@
 // integrated by a quadrature of this file's own over half vectors. Checked: the directional and
 // hemispherical albedos (its table, core/material/albedo_table.h), reciprocity, the sampler
 // (its density integrates to what it keeps, its weights average to the albedo, its samples
-// follow pdf()), and Lambertian by declaration. The two DISABLED_ tests hold smooth lobes
-// (roughness <= 0.1), whose D in float loses its peak (measured there).
+// follow pdf()), and Lambertian by declaration, down to smooth lobes (roughness 0.0316, the
+// smallest alpha).
 #include "core/material/brdf.h"
 
 #include <algorithm>
@@ -313,12 +313,12 @@ TEST(BrdfEval, PeakOfTheLobe) {
   }
 }
 
-// Smooth lobes: D = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2) in float from n.h loses the
-// peak to cancellation once alpha^2 nears the float spacing of (n.h)^2 at 1 (6e-8).
-// Measured: 3.1 (r 0.0316, alpha = kMinAlpha), 0.18 (r 0.05), 9.7e-3 (r 0.1). With D from the
-// tangential part of the unnormalised local half vector, d = (hx^2 + hy^2 + alpha^2 hz^2) / |h|^2:
-// 2.9e-3, 2.6e-4, 6.6e-5.
-TEST(BrdfEval, DISABLED_PeakOfSmoothLobes) {
+// Smooth lobes: D = alpha^2 / (pi ((n.h)^2 (alpha^2 - 1) + 1)^2) in float from n.h would lose
+// the peak to cancellation once alpha^2 nears the float spacing of (n.h)^2 at 1 (6e-8): 3.1x off
+// at r 0.0316. The code takes D from the unnormalised local half vector,
+// d = (hx^2 + hy^2 + alpha^2 hz^2) / |h|^2. Measured worst relative error near the peak: 2.9e-3
+// (r 0.0316), 2.6e-4 (r 0.05), 6.6e-5 (r 0.1).
+TEST(BrdfEval, PeakOfSmoothLobes) {
   for (float r : {0.0316f, 0.05f, 0.1f}) {
     const double e = peak_error(r);
     std::printf("r %.4f: worst relative error of f_r near the peak %.2e\n", r, e);
@@ -420,7 +420,7 @@ CodeIntegrals code_integrals(const SamplerCase& c, const Frame& f) {
 
 // The integral of eval (n.l) is the albedo of the formulas, and the integral of pdf(wo, .) over
 // the hemisphere is the share of samples that stay above it (1 for a lobe that never reflects
-// below the horizon). Roughness >= 0.3 here; smoother lobes in DISABLED_SmoothLobesKeepTheirEnergy.
+// below the horizon). Roughness >= 0.3 here; smoother lobes in SmoothLobesKeepTheirEnergy.
 TEST(BrdfSampler, EvalAndPdfIntegrateToTheTruth) {
   const Frame f(kNormal);
   for (const SamplerCase& c : kSamplerCases) {
@@ -451,18 +451,16 @@ TEST(BrdfSampler, PdfAtNormalIncidenceIntegratesToTheClosedForm) {
     const double code = code_integrals(c, f).pdf, quad = truth_kept(c);
     std::printf("r %.1f: 1 / (1 + alpha^2) = %.7f, integral of pdf %+.1e, quadrature %+.1e\n", r,
                 closed, code - closed, quad - closed);
-    // Measured: -1.3e-5 (the code at r 0.3: D in float, see DISABLED_SmoothLobesKeepTheirEnergy;
-    // -2.3e-7 with D from the tangential part of h), -1.4e-7 (quadrature).
+    // Measured: -2.3e-7 (the code), -1.4e-7 (quadrature).
     EXPECT_NEAR(code, closed, 3e-5) << "r " << r;
     EXPECT_NEAR(quad, closed, 1e-6) << "r " << r;
   }
 }
 
-// Smooth lobes lose energy to D in float (BrdfEval.DISABLED_PeakOfSmoothLobes): integrals of
-// eval (n.l) and of pdf for a white metal against the truth. Measured relative errors of f cos:
-// -13% (r 0.0316, alpha = kMinAlpha), -2.4% (r 0.05), -1.6e-3 (r 0.1); of pdf the same. With D
-// from the tangential part of the half vector: below 1e-5 (both).
-TEST(BrdfSampler, DISABLED_SmoothLobesKeepTheirEnergy) {
+// Smooth lobes keep their energy (BrdfEval.PeakOfSmoothLobes): integrals of eval (n.l) and of pdf
+// for a white metal against the truth. Measured relative errors below 1e-5 (both) at r 0.0316,
+// 0.05 and 0.1.
+TEST(BrdfSampler, SmoothLobesKeepTheirEnergy) {
   const Frame f(kNormal);
   for (float r : {0.0316f, 0.05f, 0.1f})
     for (double mu : {0.1, 0.6, 1.0}) {
