@@ -1,20 +1,22 @@
 #pragma once
-// The converged reference ("pt"): a unidirectional path tracer for the same scene model (diffuse
-// surfaces, Lambertian emitters, punctual lights), independent of the walk's estimator. Camera
-// rays go through pixel centres (the raster's sampling), so the two integrate the same function.
-// Next-event estimation toward emitters (chosen by power) and cosine-weighted scattering are
-// combined with multiple importance sampling (power heuristic); punctual lights (point, spot,
-// directional: delta lights) are reached by next-event estimation only, without MIS weight. The
-// environment (core/environment/environment.h) is sampled by its luminance density as one more
-// light and weighted against cosine sampling, which finds it when a scattered ray leaves the scene;
-// a camera ray that leaves shows core/scene/scene.h background_radiance (0 when the environment is
-// not visible). Russian roulette after three bounces. No clamp: unbiased. Mirrors
+// The converged reference ("pt"): a unidirectional path tracer for the same scene model (the glTF
+// BRDF of core/material/brdf.h, Lambertian emitters, punctual lights), independent of the walk's
+// estimator. Camera rays go through pixel centres (the raster's sampling), so the two integrate
+// the same function. Next-event estimation toward emitters (chosen by power) and BRDF sampling
+// (cosine-weighted on a Lambertian material; elsewhere visible-normal GGX or the cosine lobe, one
+// per sample, chosen by the specular lobe's share of the directional albedo, with the mixture's
+// pdf) are combined with multiple importance sampling (power heuristic); punctual lights (point,
+// spot, directional: delta lights) are reached by next-event estimation only, without MIS weight.
+// The environment (core/environment/environment.h) is sampled by its luminance density as one
+// more light and weighted against BRDF sampling, which finds it when a scattered ray leaves the
+// scene; a camera ray that leaves shows core/scene/scene.h background_radiance (0 when the
+// environment is not visible). Russian roulette after three bounces. No clamp: unbiased. Mirrors
 // (Material::specular) reflect perfectly: no next-event estimation there, and an emitter found
 // right after a mirror counts with weight 1 (light samples cannot reach it through the mirror). So
-// light that reaches a diffuse point by way of a mirror is found by scattering only (noisier), and
-// a punctual light seen through a mirror is never found (delta light and delta mirror): compare
-// mirror scenes with area lights only. Deterministic for a given seed whatever the thread count
-// (one RNG stream per pixel and sample).
+// light that reaches a non-mirror point by way of a mirror is found by scattering only (noisier),
+// and a punctual light seen through a mirror is never found (delta light and delta mirror):
+// compare mirror scenes with area lights only. Deterministic for a given seed whatever the thread
+// count (one RNG stream per pixel and sample).
 #include "core/camera/view.h"
 #include "core/image/image.h"
 #include "core/scene/scene.h"

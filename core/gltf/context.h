@@ -49,7 +49,8 @@ struct Context {
   void warn(const std::string& message) const { log.warn(file + ": " + message); }
 
   // Marks the element at JSON pointer `pointer` as used: a validator issue there becomes the
-  // error (or a repair warning) now, before its data are read.
+  // error now, before its data are read, or a warning when the loader repairs it or only an
+  // extension irad ignores raises it (core/gltf/issue_book.h).
   void use(const std::string& pointer) const { issues.use(pointer, log); }
   // Only the issues at `pointer` itself (an element irad reads part of).
   void use_exact(const std::string& pointer) const { issues.use(pointer, log, true); }
