@@ -4,9 +4,9 @@
 //   a uniform sky of radiance L reflects L a(mu) at every point, a(mu) the GGX directional albedo
 //   at the cosine mu between its facet and the eye, here from the test's own quadrature;
 // - a glossy plane under a point light: L_o = f_r(wo, wi) I cos_x / d^2 per pixel (pt, rt-vpl);
-//   under a small square light: the same integrated over the light by a fine grid (pt's MIS);
-// - the Lambertian declaration takes the estimators' diffuse paths: its images equal those of
-//   the Material defaults bit for bit.
+//   under a small square light: the same integrated over the light by a fine grid (pt's MIS).
+// pt against rt-vpl on glossy Cornell boxes, and the Lambertian declaration's diffuse code:
+// tests/test_glossy_cornell.cpp.
 #include "core/camera/view.h"
 #include "core/environment/environment.h"
 #include "core/scene/scene_builder.h"

@@ -151,10 +151,9 @@ bool QuasiRandomWalk::glossy_vertex(const PathVertex& y, std::uint32_t i, int j,
   v.kind = VplKind::Surface;
   v.depth = static_cast<std::uint16_t>(j);
   v.path = i;
-  v.incident = incident;
   if (lobes != nullptr) {
     v.lobe = static_cast<std::int32_t>(lobes->size());
-    lobes->push_back({*y.glossy, a});
+    lobes->push_back({*y.glossy, incident, a});
   }
   out.push_back(v);
   if (!mirrors_.empty()) append_mirrored(v, mirrors_, out);

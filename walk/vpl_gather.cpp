@@ -30,10 +30,10 @@ ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec
   x.albedo = albedo_at(scene, hit.triangle, hit.bary);
   x.emission =
       (front || m.double_sided) ? emission_at(scene, hit.triangle, hit.bary) : glm::vec3(0.0f);
-  x.wo = -dir;
   if (!m.lambertian() && !m.specular) {
     const glm::vec3 n = glm::dot(x.normal, x.geometric) > 0.0f ? x.normal : x.geometric;
-    x.brdf.emplace(brdf_inputs_at(scene, hit.triangle, hit.bary), n);
+    x.glossy = std::make_shared<const GlossyView>(
+        GlossyView{Brdf(brdf_inputs_at(scene, hit.triangle, hit.bary), n), -dir});
   }
   return x;
 }
@@ -134,14 +134,14 @@ void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const Vpl
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps) {
   glm::vec3 sum(0.0f);
-  if (x.brdf) { // f_r,x per VPL, from the direction its light arrives from
+  if (x.glossy) { // f_r,x per VPL, from the direction its light arrives from
     for_each_vpl_irradiance(rays, x, vpls, dmin, eps, [&](std::size_t j, const glm::vec3& term) {
       if (term == glm::vec3(0.0f)) return;
       const Vpl& v = vpls.vpls[j];
       const glm::vec3 toward = v.kind == VplKind::Directional
                                    ? -v.normal
                                    : glm::normalize(v.position - x.position);
-      sum += term * x.brdf->eval(x.wo, toward);
+      sum += term * x.glossy->brdf.eval(x.glossy->wo, toward);
     });
     return sum;
   }

@@ -9,10 +9,17 @@
 #include <algorithm>
 #include <cstddef>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <vector>
 
 namespace irad {
+
+// A glossy point's BRDF and the direction it is seen from.
+struct GlossyView {
+  Brdf brdf;
+  glm::vec3 wo;
+};
 
 // A surface point seen along a ray, with its normals turned toward the ray's origin.
 struct ShadingPoint {
@@ -21,8 +28,9 @@ struct ShadingPoint {
   glm::vec3 geometric; // geometric normal on that side
   glm::vec3 albedo;
   glm::vec3 emission; // L_e toward the ray's origin (front face only unless double-sided)
-  glm::vec3 wo;       // unit, toward the ray's origin
-  std::optional<Brdf> brdf; // the material's BRDF where it is not Lambertian (about `normal`)
+  // Where the material is not Lambertian: its BRDF (about `normal`) and the unit direction
+  // toward the ray's origin; null otherwise (a Lambertian point stays this small).
+  std::shared_ptr<const GlossyView> glossy;
 };
 
 ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec3& origin,

@@ -51,10 +51,8 @@ struct Vpl {
   // d_min of this VPL in world units (core/lights/clamp_field.h, the local clamp); 0: the
   // estimator's global clamp (a fraction of the bounding diagonal). Unused for unclamped kinds.
   float clamp_distance = 0.0f;
-  // Glossy VPL: index into VplSet::lobes, and the unit direction its particle arrived from
-  // (away from the point; mirrored with the VPL); -1: Lambertian.
+  // Glossy VPL: index into VplSet::lobes; -1: Lambertian.
   std::int32_t lobe = -1;
-  glm::vec3 incident{0.0f};
 
   bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
   // Whether any channel of the intensity is positive (a black VPL draws no pass).
@@ -78,14 +76,17 @@ inline float spot_falloff(float cos_angle, float cos_inner, float cos_outer) {
   return t * t;
 }
 
-// The material at a glossy VPL's point and its directional albedo a(incident).
+// The material at a glossy VPL's point, the unit direction its particle arrived from (away from
+// the point) and the directional albedo a(incident).
 struct VplLobe {
   BrdfInputs material;
+  glm::vec3 incident{0.0f};
   glm::vec3 albedo{0.0f};
 };
 
-// pi f_r,y(v.incident, w) / a(v.incident) per channel (0 where a is 0), the glossy VPL v's
-// emission toward unit w relative to a Lambertian VPL's; v.normal is the normal of the lobe.
+// pi f_r,y(incident, w) / a(incident) per channel (0 where a is 0), the glossy VPL v's emission
+// toward unit w relative to a Lambertian VPL's, about v.normal; a mirrored copy (v.mirror >= 0)
+// reflects the lobe's incident direction in its mirror plane, as it reflects its normal.
 glm::vec3 vpl_lobe_shape(const VplLobe& lobe, const Vpl& v, const glm::vec3& w);
 
 struct VplSet {
