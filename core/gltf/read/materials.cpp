@@ -260,10 +260,11 @@ AlphaMode alpha_mode(const Context& ctx, const json& m, const std::string& where
 // set finds no slot is dropped with a warning.
 class SlotAssigner {
 public:
-  SlotAssigner(const Context& ctx, const std::string& where) : ctx_(ctx), where_(where) {}
+  explicit SlotAssigner(const Context& ctx) : ctx_(ctx) {}
 
-  // Puts the texture's set into map.texcoord (the slot), or returns -1 for the texture.
-  int assign(int texture, int set, TexCoordMap& map, const char* field) {
+  // Puts the texture's set into map.texcoord (the slot), or returns -1 for the texture (the
+  // textureInfo at element `where`).
+  int assign(int texture, int set, TexCoordMap& map, const std::string& where) {
     if (texture < 0) return -1;
     if (uv_.slot0 < 0 || uv_.slot0 == set) {
       uv_.slot0 = set;
@@ -272,7 +273,7 @@ public:
       uv_.slot1 = set;
       map.texcoord = 1;
     } else {
-      ctx_.warn(where_ + "." + field + ": a third TEXCOORD set in one material; ignored");
+      ctx_.warn(where + ": a third TEXCOORD set in one material; ignored");
       return -1;
     }
     return texture;
@@ -281,7 +282,6 @@ public:
 
 private:
   const Context& ctx_;
-  const std::string& where_;
   UvSets uv_;
 };
 
@@ -316,13 +316,14 @@ void read_specular(const Context& ctx, const json& m, const std::string& where, 
   if (numbers_member(*spec, "specularColorFactor").empty()) out.specular_color = glm::vec3(1.0f);
   int set = 0;
   if (const json* t = member(*spec, "specularTexture")) {
-    const int tex = textures.get(*t, sw + ".specularTexture", false, out.specular_map, set);
-    out.specular_texture = slots.assign(tex, set, out.specular_map, "specularTexture");
+    const std::string at = sw + ".specularTexture";
+    const int tex = textures.get(*t, at, false, out.specular_map, set);
+    out.specular_texture = slots.assign(tex, set, out.specular_map, at);
   }
   if (const json* t = member(*spec, "specularColorTexture")) {
-    const int tex = textures.get(*t, sw + ".specularColorTexture", true, out.specular_color_map, set);
-    out.specular_color_texture =
-        slots.assign(tex, set, out.specular_color_map, "specularColorTexture");
+    const std::string at = sw + ".specularColorTexture";
+    const int tex = textures.get(*t, at, true, out.specular_color_map, set);
+    out.specular_color_texture = slots.assign(tex, set, out.specular_color_map, at);
   }
 }
 
@@ -334,10 +335,9 @@ void read_metallic_roughness(const Context& ctx, const json& pbr, const std::str
   out.specular = out.metallic >= mirror_min_metallic && out.roughness <= mirror_max_roughness;
   if (const json* t = member(pbr, "metallicRoughnessTexture")) {
     int set = 0;
-    const int tex =
-        textures.get(*t, pw + ".metallicRoughnessTexture", false, out.metallic_roughness_map, set);
-    out.metallic_roughness_texture =
-        slots.assign(tex, set, out.metallic_roughness_map, "metallicRoughnessTexture");
+    const std::string at = pw + ".metallicRoughnessTexture";
+    const int tex = textures.get(*t, at, false, out.metallic_roughness_map, set);
+    out.metallic_roughness_texture = slots.assign(tex, set, out.metallic_roughness_map, at);
   }
 }
 
@@ -350,8 +350,9 @@ void read_normal_map(const Context& ctx, const json& m, const std::string& where
   if (!std::isfinite(scale)) ctx.fail(where + ".normalTexture", "scale must be finite");
   out.normal_scale = float(scale);
   int set = 0;
-  const int tex = textures.get(*t, where + ".normalTexture", false, out.normal_map, set);
-  out.normal_texture = slots.assign(tex, set, out.normal_map, "normalTexture");
+  const std::string at = where + ".normalTexture";
+  const int tex = textures.get(*t, at, false, out.normal_map, set);
+  out.normal_texture = slots.assign(tex, set, out.normal_map, at);
 }
 
 Material convert(const Context& ctx, std::size_t index, TextureTable& textures, UvSets& uv) {
@@ -367,16 +368,18 @@ Material convert(const Context& ctx, std::size_t index, TextureTable& textures, 
       colour_factor(ctx, numbers_member(pbr, "baseColorFactor"), 4, pw, "baseColorFactor", true);
   out.base_color = glm::vec3(base);
   out.base_alpha = base.a;
-  SlotAssigner slots(ctx, where);
+  SlotAssigner slots(ctx);
   int set = 0;
   if (const json* t = member(pbr, "baseColorTexture")) {
-    const int tex = textures.get(*t, pw + ".baseColorTexture", true, out.base_color_map, set);
-    out.base_color_texture = slots.assign(tex, set, out.base_color_map, "baseColorTexture");
+    const std::string at = pw + ".baseColorTexture";
+    const int tex = textures.get(*t, at, true, out.base_color_map, set);
+    out.base_color_texture = slots.assign(tex, set, out.base_color_map, at);
   }
   out.emission = emission(ctx, m, where);
   if (const json* t = member(m, "emissiveTexture")) {
-    const int tex = textures.get(*t, where + ".emissiveTexture", true, out.emissive_map, set);
-    out.emissive_texture = slots.assign(tex, set, out.emissive_map, "emissiveTexture");
+    const std::string at = where + ".emissiveTexture";
+    const int tex = textures.get(*t, at, true, out.emissive_map, set);
+    out.emissive_texture = slots.assign(tex, set, out.emissive_map, at);
   }
   out.double_sided = bool_member(m, "doubleSided", false);
   out.alpha_mode = alpha_mode(ctx, m, where);
