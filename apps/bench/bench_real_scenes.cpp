@@ -57,6 +57,10 @@ bool is_real_scene(const std::string& name) {
 Scene load_real_scene(const std::string& name, const std::string& shared_dir, Log& log) {
   const RealScene& r = find(name);
   Scene s = load_gltf(shared_dir + "/" + r.file, log);
+  for (Material& m : s.materials) { // Lambertian by declaration (bench_real_scenes.h)
+    m.metallic = 0.0f;
+    m.specular_factor = 0.0f;
+  }
   s.cameras = {look_at(r.look_from, r.look_at, {0.0f, 1.0f, 0.0f}, glm::radians(60.0f))};
   s.cameras[0].name = "bench camera";
   PunctualLight light;

@@ -1,7 +1,10 @@
 #pragma once
 // The bench's real scenes: third-party levels of ../shared/scenes (README.md there), which carry
 // no light and no camera. The bench adds one point light and one camera inside a room of each,
-// placed by hand from test renders, and writes that lit copy next to its results.
+// placed by hand from test renders, and writes that lit copy next to its results. Their
+// materials are declared Lambertian (metallic 0, specular 0: albedo = base colour): the bench
+// compares estimators on the model all of them render, and the raster's receivers are
+// Lambertian (docs/materials.md).
 #include "core/scene/scene.h"
 #include "core/util/log.h"
 
@@ -9,7 +12,7 @@
 
 namespace irad::apps {
 
-// Whether `name` is one: zdm2 (zdm2/zdm2.glb, 58k triangles, no materials: albedo 1) or godot
+// Whether `name` is one: zdm2 (zdm2/zdm2.glb, 58k triangles, no materials: albedo 1 here) or godot
 // (godot_occlusion_room/room.glb, 64k triangles, 17 meshes).
 bool is_real_scene(const std::string& name);
 
