@@ -14,7 +14,7 @@
 #include <vector>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 // ---------------------------------------------------------------------------------------------
 // 7. The accumulation itself: 1e5 additive passes into the raster's RGBA32F target, against a
 // double-precision sum of the same float values.

@@ -23,7 +23,7 @@
 #include <vector>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 enum class Cut { Removed, BaseAlpha, Texture };
 

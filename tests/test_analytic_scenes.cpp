@@ -30,7 +30,7 @@
 namespace fs = std::filesystem;
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr double pi = std::numbers::pi;
 

@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 const std::string kData = std::string(IRAD_SOURCE_DIR) + "/data/";
 

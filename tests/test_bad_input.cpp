@@ -18,7 +18,7 @@
 #include <unistd.h>
 #include <vector>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 using namespace gltf_test;
 

@@ -23,7 +23,7 @@
 #include <string>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 Log quiet_log() {
   return Log([](const std::string&) {});

@@ -10,7 +10,7 @@
 #include <string>
 
 namespace irad::apps {
-namespace {
+namespace IRAD_UNITY_ID {
 
 // On a power law the log-log line is exact: y = 3 x^-1.5 through x = 1, 4, 16.
 TEST(BenchVersus, LogLogLineFollowsAPowerLaw) {

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 struct Means {
   double clamped, compensated, fraction;

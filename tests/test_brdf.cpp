@@ -17,7 +17,7 @@
 #include <vector>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr double kPi = std::numbers::pi;
 

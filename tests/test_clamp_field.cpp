@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 // An n x n grid of surface VPLs in the plane z = 0 with spacing h, from the origin.
 VplSet grid_vpls(int n, float h) {

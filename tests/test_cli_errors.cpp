@@ -22,7 +22,7 @@
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -20,7 +20,7 @@
 #include "core/gltf/decode/codecs.h"
 #include "core/gltf/decode/image_decode.h"
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 using irad::gltf::CodecError;
 using irad::gltf::decode_image;

@@ -35,7 +35,7 @@
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 const fs::path kSuite = fs::path(IRAD_SOURCE_DIR) / "../shared/conformance/gltf-validator/test";
 

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 namespace fs = std::filesystem;
 const fs::path cornell = fs::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf";

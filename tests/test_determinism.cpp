@@ -12,7 +12,7 @@
 #include <unistd.h>
 #include <vector>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 namespace fs = std::filesystem;
 

@@ -19,7 +19,7 @@
 #include <vector>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 using namespace env_test;
 

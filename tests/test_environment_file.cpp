@@ -30,7 +30,7 @@
 namespace fs = std::filesystem;
 using irad::Image;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 // Each test gets an empty folder of its own, removed afterwards.
 class EnvironmentFile : public ::testing::Test {
@@ -93,7 +93,6 @@ void expect_message(const fs::path& path, const std::string& message) {
   EXPECT_EQ(what.find('\n'), std::string::npos) << what;
 }
 
-} // namespace
 
 TEST_F(EnvironmentFile, ExrRoundTripsWithRowZeroAtTheTopAndAlphaOne) {
   const Image map = test_map(8, 4);
@@ -247,3 +246,5 @@ TEST(EnvColor, ParsesThreeNonNegativeNumbers) {
   EXPECT_EQ(error("nan,1,1"), "--env-color: 'nan,1,1' " + syntax);
   EXPECT_EQ(error("1,inf,1"), "--env-color: '1,inf,1' " + syntax);
 }
+
+} // namespace

@@ -21,7 +21,7 @@
 #include <memory>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 // Adds triangle (a, b, c), counter-clockwise seen from outside, with its flat normal.
 void add_facet(Scene& s, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {

@@ -25,7 +25,7 @@
 #include <string>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr float pi = std::numbers::pi_v<float>;
 constexpr int kSize = 64;

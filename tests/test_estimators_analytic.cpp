@@ -14,7 +14,7 @@
 #include <numbers>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 enum class Estimator { RasterReference, RasterInterleaved, RtVpl };
 

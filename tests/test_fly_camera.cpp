@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr float kPi = 3.14159265358979f;
 

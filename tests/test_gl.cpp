@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 const char* good_vertex = "#version 330 core\nvoid main() { gl_Position = vec4(0.0); }\n";
 

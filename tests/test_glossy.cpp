@@ -21,7 +21,7 @@
 #include <numbers>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr double pi = std::numbers::pi;
 

@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 bool inside(const glm::vec3& c, glm::vec3 lo, glm::vec3 hi) {
   return glm::all(glm::greaterThanEqual(c, lo)) && glm::all(glm::lessThanEqual(c, hi));

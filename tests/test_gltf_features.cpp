@@ -21,7 +21,7 @@
 #include <gtest/gtest.h>
 #include <webp/encode.h>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 using namespace gltf_test;
 using irad::Scene;

@@ -24,7 +24,7 @@
 #include <unistd.h>
 #include <vector>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 using namespace gltf_test;
 using irad::Scene;

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -234,7 +234,7 @@ TEST(GltfValidateSchema, NonObjectDocuments) {
 
 } // namespace
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 // The issues of a document given as JSON text, as "CODE pointer" lines.
 std::vector<std::string> issues_of(const char* text) {

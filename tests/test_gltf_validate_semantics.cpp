@@ -10,7 +10,7 @@
 #include <iostream>
 #include <set>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 using irad::test::ConformanceFile;
 

@@ -30,7 +30,7 @@
 #include <vector>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr double pi = std::numbers::pi;
 

@@ -39,7 +39,7 @@
 namespace fs = std::filesystem;
 using irad::Image;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
@@ -88,7 +88,6 @@ std::vector<unsigned char> load_png(const fs::path& path, int& width, int& heigh
   return bytes;
 }
 
-} // namespace
 
 TEST_F(ImageIo, ExrRoundTripIsBitExact) {
   const float values[] = {0.0f,
@@ -314,3 +313,5 @@ TEST_F(ImageIo, NonFiniteCountCountsPixels) {
   EXPECT_EQ(image.non_finite_count(), 3u);
   EXPECT_EQ(Image().non_finite_count(), 0u);
 }
+
+} // namespace

@@ -25,7 +25,7 @@ using irad::Image;
 using irad::ImageMetrics;
 using nlohmann::json;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();

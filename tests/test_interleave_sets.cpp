@@ -7,7 +7,7 @@
 #include <vector>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 std::vector<int> counts(const InterleaveSets& s, std::uint32_t paths) {
   std::vector<int> n(static_cast<std::size_t>(s.sets()), 0);

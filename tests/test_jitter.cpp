@@ -23,7 +23,7 @@
 #include <vector>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 namespace fs = std::filesystem;
 const fs::path cornell = fs::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf";
@@ -255,7 +255,7 @@ TEST_F(JitterEdges, KeptShadowMapsJitterAsTheFreshRender) {
 } // namespace irad
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 // The same edges against the path tracer sampling each pixel's footprint (box filter, 1024 spp):
 // the ground truth the jittered raster converges to, independent of the raster.

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <string>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 const std::string kBox = std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf";
 

@@ -19,7 +19,7 @@
 #include <set>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 // Columns j < n lit only rows [0, 4), columns j >= n only rows [4, 8), with norms 1 + j.
 ReducedMatrix two_groups(std::size_t n) {

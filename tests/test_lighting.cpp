@@ -13,7 +13,7 @@
 #include <vector>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 Scene plane(bool emissive) {
   Scene s;

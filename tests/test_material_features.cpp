@@ -16,7 +16,7 @@
 #include <numbers>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 // A 4x4 texture with a distinct colour (and alpha) per texel, clamped at the edges.
 Texture checker4() {

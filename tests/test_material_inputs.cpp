@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 using namespace gltf_test;
 using glm::vec2;

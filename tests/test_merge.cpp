@@ -19,7 +19,7 @@
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 struct Difference {
   double max_abs = 0.0;                    // over R, G, B, A

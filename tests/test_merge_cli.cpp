@@ -14,7 +14,7 @@
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 struct CliRun {
   int code;

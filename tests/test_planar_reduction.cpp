@@ -12,7 +12,7 @@
 #include <random>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 struct Mesh {
   std::vector<glm::vec3> positions;

@@ -25,7 +25,7 @@
 #include <string>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr float inv_pi = std::numbers::inv_pi_v<float>;
 

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 // A 1 m square light of radiance 1 at 1 m over a 6 m grey plane (albedo 0.5), seen obliquely.
 // Expected pixel: rho E(x) / pi, with E from Lambert's formula; the light's albedo is 0, so only

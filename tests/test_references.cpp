@@ -15,7 +15,7 @@
 #include <numbers>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 double mean_red(const Image& image) {
   double sum = 0.0;

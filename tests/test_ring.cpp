@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 struct Fixture {
   Log log{[](const std::string&) {}};
@@ -97,7 +97,7 @@ TEST(Ring, MemoryLimitIsAnError) {
 } // namespace irad
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 namespace fs = std::filesystem;
 

@@ -10,7 +10,7 @@
 #include <limits>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 TEST(RadicalInverse, ExactValues) {
   EXPECT_EQ(radical_inverse(2, 0), 0.0);
@@ -125,7 +125,7 @@ TEST(ParticleCounts, ZeroAlbedoIsDirectLightOnly) {
 } // namespace irad
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 // The first b^k radical inverses fall one into each interval [m b^-k, (m+1) b^-k); a digit
 // permutation keeps that (it permutes the intervals).

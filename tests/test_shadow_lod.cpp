@@ -26,7 +26,7 @@
 #include <utility>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 Log quiet_log() {
   return Log([](const std::string&) {});

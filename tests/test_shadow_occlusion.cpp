@@ -16,7 +16,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 Log quiet_log() {
   return Log([](const std::string&) {});

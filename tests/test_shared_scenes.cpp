@@ -19,7 +19,7 @@
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 const fs::path kScenes = fs::path(IRAD_SOURCE_DIR) / "../shared/scenes";
 

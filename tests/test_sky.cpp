@@ -15,7 +15,7 @@
 
 using irad::SkyOptions;
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kLuxPerIrad = 1e5 / kPi;       // irradiance: irad units -> lux
@@ -55,7 +55,6 @@ glm::dvec3 horizontal_illuminance(const irad::Image& map) {
   return e * kLuxPerIrad;
 }
 
-} // namespace
 
 TEST(Sky, ParsesOneToThreeFields) {
   const SkyOptions a = irad::parse_sky("30", "--sky");
@@ -276,3 +275,5 @@ TEST(Sky, SkyIlluminanceRisesWithTheSun) {
     previous = sky_lux;
   }
 }
+
+} // namespace

@@ -24,7 +24,7 @@
 #include <numbers>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 namespace fs = std::filesystem;
 const fs::path cornell = fs::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf";

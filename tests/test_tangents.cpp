@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 using glm::vec2;
 using glm::vec3;

@@ -19,7 +19,7 @@
 #include <gtest/gtest.h>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 constexpr glm::vec3 kRed(0.8f, 0.05f, 0.05f), kBlue(0.05f, 0.05f, 0.8f);
 

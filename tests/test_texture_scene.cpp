@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-namespace {
+namespace IRAD_UNITY_ID {
 
 using namespace gltf_test;
 using irad::Scene;

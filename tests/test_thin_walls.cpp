@@ -16,7 +16,7 @@
 #include <string>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 using test_support::add_room;
 

@@ -16,7 +16,7 @@
 #include <string>
 
 namespace irad {
-namespace {
+namespace IRAD_UNITY_ID {
 
 namespace fs = std::filesystem;
 

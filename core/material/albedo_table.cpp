@@ -11,7 +11,7 @@ namespace irad {
 namespace {
 
 constexpr int kGrid = 64; // quadrature points per axis
-constexpr float pi = std::numbers::pi_v<float>;
+constexpr float kPi = std::numbers::pi_v<float>;
 
 float mu_node(int i) {
   return glm::max(1e-3f, float(i) / float(AlbedoTable::kMu - 1));
@@ -34,7 +34,7 @@ void specular_terms(float mu, float alpha, AlbedoTable::Terms& out) {
     const float c2 = (1.0f - xi) / (1.0f + xi * (a2 - 1.0f));
     const float ch = std::sqrt(c2), sh = std::sqrt(glm::max(0.0f, 1.0f - c2));
     for (int k = 0; k < kGrid; ++k) {
-      const float phi = 2.0f * pi * (float(k) + 0.5f) / kGrid;
+      const float phi = 2.0f * kPi * (float(k) + 0.5f) / kGrid;
       const glm::vec3 h(sh * std::cos(phi), sh * std::sin(phi), ch);
       const float vh = glm::dot(v, h);
       if (vh <= 0.0f) continue;
@@ -56,7 +56,7 @@ float diffuse_loss(float mu) {
   for (int i = 0; i < kGrid; ++i) {
     const float sin_l = std::sqrt((float(i) + 0.5f) / kGrid), cos_l = std::sqrt(1.0f - sin_l * sin_l);
     for (int k = 0; k < kGrid; ++k) {
-      const float phi = 2.0f * pi * (float(k) + 0.5f) / kGrid;
+      const float phi = 2.0f * kPi * (float(k) + 0.5f) / kGrid;
       const glm::vec3 l(sin_l * std::cos(phi), sin_l * std::sin(phi), cos_l);
       q += ggx::schlick_weight(glm::dot(v, glm::normalize(v + l)));
     }

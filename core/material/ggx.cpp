@@ -6,14 +6,14 @@
 namespace irad::ggx {
 
 namespace {
-constexpr float pi = std::numbers::pi_v<float>;
+constexpr float kPi = std::numbers::pi_v<float>;
 } // namespace
 
 float distribution(float cos_h, float alpha) {
   if (cos_h <= 0.0f) return 0.0f;
   const float a2 = alpha * alpha;
   const float d = cos_h * cos_h * (a2 - 1.0f) + 1.0f;
-  return a2 / (pi * d * d);
+  return a2 / (kPi * d * d);
 }
 
 float distribution_of(const glm::vec3& h, float alpha) {
@@ -21,7 +21,7 @@ float distribution_of(const glm::vec3& h, float alpha) {
   const float a2 = alpha * alpha;
   const float t2 = h.x * h.x + h.y * h.y, z2 = h.z * h.z;
   const float d = (t2 + a2 * z2) / (t2 + z2);
-  return a2 / (pi * d * d);
+  return a2 / (kPi * d * d);
 }
 
 float visibility(float cos_l, float cos_v, float alpha) {
@@ -58,7 +58,7 @@ glm::vec3 sample_visible_normal(const glm::vec3& v, float alpha, float u0, float
       len2 > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 t2 = glm::cross(vh, t1);
   const float r = std::sqrt(u0);
-  const float phi = 2.0f * pi * u1;
+  const float phi = 2.0f * kPi * u1;
   const float p1 = r * std::cos(phi);
   const float s = 0.5f * (1.0f + vh.z);
   const float p2 = (1.0f - s) * std::sqrt(glm::max(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);

@@ -15,7 +15,7 @@ namespace irad {
 
 namespace {
 
-constexpr std::uint32_t kNone = ~0u;
+constexpr std::uint32_t kNoIndex = ~0u;
 
 // The reference's test for a usable magnitude: |x| > the smallest normal float.
 bool not_zero(float x) {
@@ -39,8 +39,8 @@ struct Face {
   glm::vec3 os{0.0f}, ot{0.0f};     // unit dp/du and dp/dv times the orientation sign
   bool orient = false;              // the uv map preserves orientation
   bool any = true;                  // no usable derivative: joins any group
-  std::array<std::uint32_t, 3> neighbour{kNone, kNone, kNone}; // across edge (c, c + 1)
-  std::array<std::uint32_t, 3> group{kNone, kNone, kNone};     // per corner
+  std::array<std::uint32_t, 3> neighbour{kNoIndex, kNoIndex, kNoIndex}; // across edge (c, c + 1)
+  std::array<std::uint32_t, 3> group{kNoIndex, kNoIndex, kNoIndex};     // per corner
 };
 
 // The faces around one welded vertex that share a tangent frame: Groups::faces[begin, end), in
@@ -156,13 +156,13 @@ void link_neighbours(std::vector<Face>& faces) {
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const Entry& a = entries[i];
     Face& fa = faces[a.face];
-    if (fa.neighbour[a.edge] != kNone) continue;
+    if (fa.neighbour[a.edge] != kNoIndex) continue;
     const std::uint32_t from = fa.v[a.edge];
     for (std::size_t j = i + 1; j < entries.size(); ++j) {
       const Entry& b = entries[j];
       if (b.lo != a.lo || b.hi != a.hi) break;
       Face& fb = faces[b.face];
-      if (fb.v[b.edge] == from || fb.neighbour[b.edge] != kNone) continue; // same direction
+      if (fb.v[b.edge] == from || fb.neighbour[b.edge] != kNoIndex) continue; // same direction
       fa.neighbour[a.edge] = b.face;
       fb.neighbour[b.edge] = a.face;
       break;
@@ -186,15 +186,15 @@ void grow(std::vector<Face>& faces, std::uint32_t gi, const Group& g, std::uint3
     stack.pop_back();
     Face& f = faces[fi];
     const int c = corner_of(f, g.vertex);
-    if (f.group[c] != kNone) continue;
-    if (f.any && f.group[0] == kNone && f.group[1] == kNone && f.group[2] == kNone)
+    if (f.group[c] != kNoIndex) continue;
+    if (f.any && f.group[0] == kNoIndex && f.group[1] == kNoIndex && f.group[2] == kNoIndex)
       f.orient = g.orient;
     if (f.orient != g.orient) continue;
     members.push_back(fi);
     f.group[c] = gi;
     const std::uint32_t left = f.neighbour[c], right = f.neighbour[(c + 2) % 3];
-    if (right != kNone) stack.push_back(right);
-    if (left != kNone) stack.push_back(left);
+    if (right != kNoIndex) stack.push_back(right);
+    if (left != kNoIndex) stack.push_back(left);
   }
 }
 
@@ -205,7 +205,7 @@ Groups build_groups(std::vector<Face>& faces) {
   std::vector<std::uint32_t> stack;
   for (std::uint32_t f = 0; f < faces.size(); ++f)
     for (int c = 0; c < 3; ++c) {
-      if (faces[f].any || faces[f].group[c] != kNone) continue;
+      if (faces[f].any || faces[f].group[c] != kNoIndex) continue;
       Group g{faces[f].v[c], faces[f].orient, std::uint32_t(out.faces.size()), 0};
       grow(faces, std::uint32_t(out.groups.size()), g, f, out.faces, stack);
       g.end = std::uint32_t(out.faces.size());
@@ -305,14 +305,14 @@ void copy_to_degenerate(const std::vector<Face>& faces,
                         const std::vector<std::uint32_t>& degenerate, const Mesh& m,
                         const std::vector<glm::uvec3>& triangles, std::vector<Frame>& frames) {
   if (degenerate.empty()) return;
-  std::vector<std::uint32_t> first(m.weld.size(), kNone);
+  std::vector<std::uint32_t> first(m.weld.size(), kNoIndex);
   for (const Face& f : faces)
     for (int c = 0; c < 3; ++c)
-      if (first[f.v[c]] == kNone) first[f.v[c]] = 3 * f.triangle + std::uint32_t(c);
+      if (first[f.v[c]] == kNoIndex) first[f.v[c]] = 3 * f.triangle + std::uint32_t(c);
   for (std::uint32_t t : degenerate)
     for (int c = 0; c < 3; ++c) {
       const std::uint32_t source = first[m.weld[triangles[t][c]]];
-      if (source != kNone) frames[3 * std::size_t(t) + std::size_t(c)] = frames[source];
+      if (source != kNoIndex) frames[3 * std::size_t(t) + std::size_t(c)] = frames[source];
     }
 }
 
@@ -376,7 +376,7 @@ TangentVertices split_by_tangent(std::size_t vertex_count, const std::vector<glm
   out.tangents.assign(vertex_count, glm::vec4(0.0f));
   out.triangles = triangles;
   std::vector<char> used(vertex_count, 0);
-  std::vector<std::uint32_t> next(vertex_count, kNone); // chain of a vertex's copies
+  std::vector<std::uint32_t> next(vertex_count, kNoIndex); // chain of a vertex's copies
   for (std::size_t k = 0; k < corner_tangents.size(); ++k) {
     std::uint32_t& index = out.triangles[k / 3][int(k % 3)];
     if (index >= vertex_count) throw std::invalid_argument("split_by_tangent: index out of range");
@@ -387,13 +387,13 @@ TangentVertices split_by_tangent(std::size_t vertex_count, const std::vector<glm
       out.tangents[v] = t;
       continue;
     }
-    while (out.tangents[v] != t && next[v] != kNone) v = next[v];
+    while (out.tangents[v] != t && next[v] != kNoIndex) v = next[v];
     if (out.tangents[v] != t) { // a new copy at the end of the chain
       next[v] = std::uint32_t(out.source.size());
       v = next[v];
       out.source.push_back(index);
       out.tangents.push_back(t);
-      next.push_back(kNone);
+      next.push_back(kNoIndex);
     }
     index = v;
   }
