@@ -9,6 +9,7 @@
 // tests/test_glossy_cornell.cpp.
 #include "core/camera/view.h"
 #include "core/environment/environment.h"
+#include "core/material/brdf.h"
 #include "core/scene/scene_builder.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
@@ -140,6 +141,23 @@ FurnaceErrors furnace_errors(const Scene& scene, const RayScene& rays, const Vie
   e.mean /= e.pixels;
   e.rms = std::sqrt(e.rms / e.pixels);
   return e;
+}
+
+// An interpolated normal that faces away from the eye (a silhouette) is bent toward it just
+// enough (n.wo = 1e-3), so a glossy point there is not black; a normal that faces it is kept.
+TEST(Glossy, FacingNormalBendsOnlyANormalThatFacesAway) {
+  const glm::vec3 n = glm::normalize(glm::vec3(0.3f, 0.0f, 1.0f));
+  const glm::vec3 seen = glm::normalize(glm::vec3(0.0f, 0.2f, 1.0f));
+  EXPECT_EQ(facing_normal(n, seen), n);
+  const glm::vec3 grazing = glm::normalize(glm::vec3(-1.0f, 0.0f, 0.1f)); // n.wo < 0
+  const glm::vec3 bent = facing_normal(n, grazing);
+  EXPECT_NEAR(glm::length(bent), 1.0f, 1e-6f);
+  EXPECT_GT(glm::dot(bent, grazing), 0.0f);
+  EXPECT_NEAR(glm::dot(bent, grazing), 1e-3f / glm::length(n + (1e-3f - glm::dot(n, grazing)) *
+                                                                   grazing),
+              1e-6f);
+  const BrdfInputs plastic{glm::vec3(0.5f), 0.0f, 0.3f, glm::vec3(0.04f), 1.0f};
+  EXPECT_GT(Brdf(plastic, bent).eval(grazing, n).x, 0.0f);
 }
 
 TEST(Glossy, IndependentAlbedoQuadratureConverges) {

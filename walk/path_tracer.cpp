@@ -60,7 +60,7 @@ Hit make_hit(const Scene& scene, const RayHit& h, const glm::vec3& origin, const
   const Material& m = scene.material_of(h.triangle);
   if (!m.lambertian() && !m.specular) {
     const glm::vec3 ns = glm::dot(hit.ns, hit.ng) > 0.0f ? hit.ns : hit.ng;
-    hit.brdf.emplace(brdf_inputs_at(scene, h.triangle, h.bary), ns);
+    hit.brdf.emplace(brdf_inputs_at(scene, h.triangle, h.bary), facing_normal(ns, hit.wo));
   }
   return hit;
 }

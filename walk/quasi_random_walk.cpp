@@ -139,14 +139,14 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out,
 bool QuasiRandomWalk::glossy_vertex(const PathVertex& y, std::uint32_t i, int j, int depth,
                                     glm::vec3& beta, glm::vec3& dir, std::vector<Vpl>& out,
                                     std::vector<VplLobe>* lobes) const {
-  const Brdf brdf(*y.glossy, y.normal);
   const glm::vec3 incident = -dir;
+  const Brdf brdf(*y.glossy, facing_normal(y.normal, incident));
   const glm::vec3 a = brdf.albedo(incident);
   const glm::vec3 radiant = beta * a * std::numbers::inv_pi_v<float>; // beta_j a(incident) / pi
   if (!positive(radiant)) return false;
   Vpl v;
   v.position = y.position;
-  v.normal = y.normal;
+  v.normal = brdf.normal(); // the lobe's normal
   v.intensity = radiant / static_cast<float>(counts_.reaching(j));
   v.kind = VplKind::Surface;
   v.depth = static_cast<std::uint16_t>(j);

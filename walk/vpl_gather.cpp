@@ -33,7 +33,8 @@ ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec
   if (!m.lambertian() && !m.specular) {
     const glm::vec3 n = glm::dot(x.normal, x.geometric) > 0.0f ? x.normal : x.geometric;
     x.glossy = std::make_shared<const GlossyView>(
-        GlossyView{Brdf(brdf_inputs_at(scene, hit.triangle, hit.bary), n), -dir});
+        GlossyView{Brdf(brdf_inputs_at(scene, hit.triangle, hit.bary), facing_normal(n, -dir)),
+                   -dir});
   }
   return x;
 }

@@ -33,6 +33,13 @@ Lobes lobes(const BrdfInputs& in, const AlbedoTable::Terms& t) {
 
 } // namespace
 
+glm::vec3 facing_normal(const glm::vec3& n, const glm::vec3& wo) {
+  constexpr float kMinCos = 1e-3f;
+  const float c = glm::dot(n, wo);
+  if (c >= kMinCos) return n;
+  return glm::normalize(n + (kMinCos - c) * wo);
+}
+
 glm::vec3 directional_albedo(const BrdfInputs& in, float cos_o) {
   if (in.lambertian()) return in.base;
   const Lobes l = lobes(in, AlbedoTable::get().at(cos_o, in.roughness));

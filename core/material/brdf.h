@@ -59,6 +59,11 @@ private:
   glm::vec3 n_, t_, b_;
 };
 
+// The shading normal n bent just enough toward wo that wo lies above it: n itself when n.wo >=
+// 1e-3, else normalize(n + (1e-3 - n.wo) wo). Interpolated and mapped normals can face away from
+// a direction that sees the surface (at silhouettes); f_r would be 0 there and the point black.
+glm::vec3 facing_normal(const glm::vec3& n, const glm::vec3& wo);
+
 // The directional albedo of `inputs` at n.wo = cos_o, per channel (the lobes' split included).
 glm::vec3 directional_albedo(const BrdfInputs& inputs, float cos_o);
 // Its cosine-weighted mean over incident directions (the hemispherical albedo): the walk's mean
