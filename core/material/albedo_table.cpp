@@ -2,6 +2,7 @@
 
 #include "core/material/ggx.h"
 
+#include <array>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <numbers>
@@ -21,11 +22,23 @@ glm::vec3 view_at(float mu) {
   return {std::sqrt(glm::max(0.0f, 1.0f - mu * mu)), 0.0f, mu};
 }
 
+// The quadrature's azimuths (k + 1/2) 2 pi / kGrid as (cos, sin).
+struct Azimuths {
+  std::array<float, kGrid> c{}, s{};
+  Azimuths() {
+    for (int k = 0; k < kGrid; ++k) {
+      const float phi = 2.0f * kPi * (float(k) + 0.5f) / kGrid;
+      c[std::size_t(k)] = std::cos(phi);
+      s[std::size_t(k)] = std::sin(phi);
+    }
+  }
+};
+
 // S and W at one node: midpoint quadrature over half vectors drawn by the density D(h) (n.h)
 // through its inverse CDF, (n.h)^2 = (1 - xi) / (1 + xi (alpha^2 - 1)). With l the reflection of v
 // about h (dl = 4 (v.h) dh), V D (n.l) dl / (D (n.h) dh) = 4 V (v.h) (n.l) / (n.h): the peak of D
 // cancels, so the grid integrates a smooth function at every roughness.
-void specular_terms(float mu, float alpha, AlbedoTable::Terms& out) {
+void specular_terms(float mu, float alpha, const Azimuths& phi, AlbedoTable::Terms& out) {
   const glm::vec3 v = view_at(mu);
   const float a2 = alpha * alpha;
   double s = 0.0, w = 0.0;
@@ -33,9 +46,8 @@ void specular_terms(float mu, float alpha, AlbedoTable::Terms& out) {
     const float xi = (float(i) + 0.5f) / kGrid;
     const float c2 = (1.0f - xi) / (1.0f + xi * (a2 - 1.0f));
     const float ch = std::sqrt(c2), sh = std::sqrt(glm::max(0.0f, 1.0f - c2));
-    for (int k = 0; k < kGrid; ++k) {
-      const float phi = 2.0f * kPi * (float(k) + 0.5f) / kGrid;
-      const glm::vec3 h(sh * std::cos(phi), sh * std::sin(phi), ch);
+    for (std::size_t k = 0; k < kGrid; ++k) {
+      const glm::vec3 h(sh * phi.c[k], sh * phi.s[k], ch);
       const float vh = glm::dot(v, h);
       if (vh <= 0.0f) continue;
       const glm::vec3 l = 2.0f * vh * h - v;
@@ -50,14 +62,13 @@ void specular_terms(float mu, float alpha, AlbedoTable::Terms& out) {
 }
 
 // Q at one mu: midpoint quadrature over cosine-distributed l (density (n.l)/pi).
-float diffuse_loss(float mu) {
+float diffuse_loss(float mu, const Azimuths& phi) {
   const glm::vec3 v = view_at(mu);
   double q = 0.0;
   for (int i = 0; i < kGrid; ++i) {
     const float sin_l = std::sqrt((float(i) + 0.5f) / kGrid), cos_l = std::sqrt(1.0f - sin_l * sin_l);
-    for (int k = 0; k < kGrid; ++k) {
-      const float phi = 2.0f * kPi * (float(k) + 0.5f) / kGrid;
-      const glm::vec3 l(sin_l * std::cos(phi), sin_l * std::sin(phi), cos_l);
+    for (std::size_t k = 0; k < kGrid; ++k) {
+      const glm::vec3 l(sin_l * phi.c[k], sin_l * phi.s[k], cos_l);
       q += ggx::schlick_weight(glm::dot(v, glm::normalize(v + l)));
     }
   }
@@ -67,11 +78,12 @@ float diffuse_loss(float mu) {
 } // namespace
 
 AlbedoTable::AlbedoTable() {
+  const Azimuths phi;
   for (int i = 0; i < kMu; ++i) {
-    const float q = diffuse_loss(mu_node(i));
+    const float q = diffuse_loss(mu_node(i), phi);
     for (int j = 0; j < kRough; ++j) {
       Terms& t = cells_[std::size_t(i * kRough + j)];
-      specular_terms(mu_node(i), alpha_of(float(j) / float(kRough - 1)), t);
+      specular_terms(mu_node(i), alpha_of(float(j) / float(kRough - 1)), phi, t);
       t.q = q;
     }
   }
