@@ -185,11 +185,11 @@ TEST(BrdfAlbedo, MetalWithFresnelOneMatchesQuadrature) {
       sum += std::abs(err);
       ++count;
       // The table's own quadrature and interpolation (core/material/albedo_table.cpp): measured
-      // up to 1.23e-2 (r 0.3, cos 0.1).
-      EXPECT_NEAR(code.x, truth, 1.5e-2) << "r " << r << " cos " << mu;
+      // up to 1.78e-3 (r 0.3, cos 0.1).
+      EXPECT_NEAR(code.x, truth, 3e-3) << "r " << r << " cos " << mu;
     }
   std::printf("metal F = 1: worst |error| %.2e, mean %.2e\n", worst, sum / count);
-  EXPECT_LT(sum / count, 4e-3); // measured 2.56e-3
+  EXPECT_LT(sum / count, 6e-4); // measured 2.88e-4
 }
 
 // The dielectric of the default ior (f0 0.04, f90 1) over a coloured base: both lobes, per
@@ -208,7 +208,7 @@ TEST(BrdfAlbedo, DielectricMatchesQuadrature) {
     std::printf("dielectric r %.1f cos %.1f: truth %.6f %.6f %.6f, |error| %.1e\n", r, mu, truth.x,
                 truth.y, truth.z, err);
     worst = std::max(worst, err);
-    EXPECT_LT(err, 1e-3) << "r " << r << " cos " << mu; // measured 4.3e-4 (r 0.8, cos 0.1)
+    EXPECT_LT(err, 5e-4) << "r " << r << " cos " << mu; // measured 1.6e-4 (r 0.1, cos 0.6)
   }
   std::printf("dielectric: worst |error| %.2e\n", worst);
 }
@@ -509,7 +509,7 @@ TEST(BrdfSampler, MeanWeightIsTheAlbedo) {
     EXPECT_EQ(worst_pdf, 0.0);
     EXPECT_EQ(worst_weight, 0.0);
     EXPECT_LT(worst_unit, 1e-6);
-    // Measured: up to 1.4e-3 (the mixes: u0 < p_s picks the lobe, so a lobe of share p_s gets
+    // Measured: up to 1.7e-3 (the mixes: u0 < p_s picks the lobe, so a lobe of share p_s gets
     // p_s 256 strata), and the failed share within 1.3e-3.
     EXPECT_LT(max_abs(mean - truth), 3e-3);
     EXPECT_NEAR(failed_share, truth_failed, 2.5e-3);
@@ -634,7 +634,7 @@ TEST(BrdfAlbedo, HemisphericalIsTheCosineWeightedMean) {
       std::printf("hemispherical r %.1f m %.0f: truth %.6f %.6f %.6f, |error| %.1e\n", r,
                   in.metallic, truth.x, truth.y, truth.z, err);
       worst = std::max(worst, err);
-      EXPECT_LT(err, 1e-3) << "r " << r << " m " << in.metallic; // measured 4.4e-4 (r 0.5, metal)
+      EXPECT_LT(err, 5e-4) << "r " << r << " m " << in.metallic; // measured 2.4e-4 (r 0.5, metal)
     }
   std::printf("hemispherical: worst |error| %.2e\n", worst);
 }

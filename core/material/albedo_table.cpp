@@ -2,10 +2,13 @@
 
 #include "core/material/ggx.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
 namespace irad {
 
@@ -34,31 +37,66 @@ struct Azimuths {
   }
 };
 
+// The azimuths phi of a half vector h = (sh cos phi, sh sin phi, ch) (phi from v's plane) that
+// reflect v = (st, 0, mu) above the horizon with v.h > 0: |phi| < the returned half-width.
+// With v.h = st sh cos phi + mu ch, l.z = 2 (v.h) ch - mu > 0 and v.h > 0 hold where cos phi
+// exceeds both mu (1 - 2 ch^2) / (2 st sh ch) and -mu ch / (st sh).
+double reflecting_arc(double mu, double st, double ch, double sh) {
+  const double pi = std::numbers::pi;
+  if (st * sh <= 0.0) return mu * ch > 0.0 && mu * (2.0 * ch * ch - 1.0) > 0.0 ? pi : 0.0;
+  const double c = std::max(mu * (1.0 - 2.0 * ch * ch) / (2.0 * st * sh * ch), -mu * ch / (st * sh));
+  return c >= 1.0 ? 0.0 : c <= -1.0 ? pi : std::acos(c);
+}
+
+// (n.h)^2 at the GGX CDF value xi of the density D(h) (n.h): (1 - xi) / (1 + xi (alpha^2 - 1)).
+double half_cos2(double xi, double a2) {
+  return (1.0 - xi) / (1.0 + xi * (a2 - 1.0));
+}
+
 // S and W at one node: midpoint quadrature over half vectors drawn by the density D(h) (n.h)
-// through its inverse CDF, (n.h)^2 = (1 - xi) / (1 + xi (alpha^2 - 1)). With l the reflection of v
-// about h (dl = 4 (v.h) dh), V D (n.l) dl / (D (n.h) dh) = 4 V (v.h) (n.l) / (n.h): the peak of D
-// cancels, so the grid integrates a smooth function at every roughness.
-void specular_terms(float mu, float alpha, const Azimuths& phi, AlbedoTable::Terms& out) {
-  const glm::vec3 v = view_at(mu);
-  const float a2 = alpha * alpha;
+// through its inverse CDF. With l the reflection of v about h (dl = 4 (v.h) dh),
+// V D (n.l) dl / (D (n.h) dh) = 4 V (v.h) (n.l) / (n.h): the peak of D cancels, so the grid
+// integrates a smooth function at every roughness. The grid covers only the half vectors that
+// reflect above the horizon (reflecting_arc, and xi below the largest such n.h, found by
+// bisection): the horizon never cuts a cell, and the integrand goes to 0 at the arc's ends.
+void specular_terms(float mu, float alpha, AlbedoTable::Terms& out) {
+  const double m = mu, st = std::sqrt(std::max(0.0, 1.0 - m * m)), a2 = double(alpha) * alpha;
+  auto arc_at = [&](double xi) {
+    const double c2 = half_cos2(xi, a2);
+    return reflecting_arc(m, st, std::sqrt(c2), std::sqrt(std::max(0.0, 1.0 - c2)));
+  };
+  double lo = 0.0, hi = 1.0; // the arc is open at lo; find where it closes
+  if (arc_at(1.0 - 1e-12) > 0.0) {
+    lo = 1.0;
+  } else {
+    for (int k = 0; k < 50; ++k) (arc_at(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  }
+  const double xi_max = lo;
   double s = 0.0, w = 0.0;
   for (int i = 0; i < kGrid; ++i) {
-    const float xi = (float(i) + 0.5f) / kGrid;
-    const float c2 = (1.0f - xi) / (1.0f + xi * (a2 - 1.0f));
-    const float ch = std::sqrt(c2), sh = std::sqrt(glm::max(0.0f, 1.0f - c2));
-    for (std::size_t k = 0; k < kGrid; ++k) {
-      const glm::vec3 h(sh * phi.c[k], sh * phi.s[k], ch);
-      const float vh = glm::dot(v, h);
-      if (vh <= 0.0f) continue;
-      const glm::vec3 l = 2.0f * vh * h - v;
-      if (l.z <= 0.0f) continue;
-      const double term = 4.0 * ggx::visibility(l.z, v.z, alpha) * vh * l.z / ch;
-      s += term;
-      w += term * ggx::schlick_weight(vh);
+    // xi = xi_max (1 - t^2), dxi = 2 xi_max t dt: points gather toward xi_max, where the
+    // horizon's half vectors crowd into a width of about alpha^2.
+    const double t = (i + 0.5) / kGrid, xi = xi_max * (1.0 - t * t), dxi = 2.0 * t;
+    const double c2 = half_cos2(xi, a2), ch = std::sqrt(c2), sh = std::sqrt(std::max(0.0, 1.0 - c2));
+    const double half_width = reflecting_arc(m, st, ch, sh);
+    double row_s = 0.0, row_w = 0.0;
+    // cos phi at phi_k = -half_width + (k + 1/2) step, by rotating through the step.
+    const double step = 2.0 * half_width / kGrid, cs = std::cos(step), ss = std::sin(step);
+    double c = std::cos(0.5 * step - half_width), sn = std::sin(0.5 * step - half_width);
+    for (int k = 0; k < kGrid; ++k, std::tie(c, sn) = std::pair{c * cs - sn * ss, sn * cs + c * ss}) {
+      const double vh = st * sh * c + m * ch;
+      const double lz = 2.0 * vh * ch - m;
+      if (vh <= 0.0 || lz <= 0.0) continue;
+      const double term = 4.0 * ggx::visibility(float(lz), mu, alpha) * vh * lz / ch;
+      row_s += term;
+      row_w += term * ggx::schlick_weight(float(vh));
     }
+    const double share = 2.0 * half_width / (2.0 * std::numbers::pi) / kGrid; // dphi / (2 pi)
+    s += row_s * share * dxi;
+    w += row_w * share * dxi;
   }
-  out.s = float(s / (kGrid * kGrid));
-  out.w = float(w / (kGrid * kGrid));
+  out.s = float(s * xi_max / kGrid);
+  out.w = float(w * xi_max / kGrid);
 }
 
 // Q at one mu: midpoint quadrature over cosine-distributed l (density (n.l)/pi).
@@ -83,7 +121,7 @@ AlbedoTable::AlbedoTable() {
     const float q = diffuse_loss(mu_node(i), phi);
     for (int j = 0; j < kRough; ++j) {
       Terms& t = cells_[std::size_t(i * kRough + j)];
-      specular_terms(mu_node(i), alpha_of(float(j) / float(kRough - 1)), phi, t);
+      specular_terms(mu_node(i), alpha_of(float(j) / float(kRough - 1)), t);
       t.q = q;
     }
   }

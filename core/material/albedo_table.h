@@ -8,7 +8,7 @@
 // so that with Schlick's F = f0 + (f90 - f0) w, integral F V D (n.l) = f0 (S - W) + f90 W and
 // integral (1 - F) (n.l)/pi = 1 - f0 (1 - Q) - f90 Q. The hemispherical means (2 integral of
 // x(mu) mu dmu) give the cosine-weighted average over incident directions.
-// Computed once per process, on first use (about 30 ms on this machine): a scene whose
+// Computed once per process, on first use (about 60 ms on this machine): a scene whose
 // materials are all Lambertian never builds it.
 #include <array>
 
