@@ -9,6 +9,7 @@
 #include "core/camera/view.h"
 #include "core/environment/environment.h"
 #include "core/scene/scene_builder.h"
+#include "tests/convex_polyhedron.h"
 #include "raster/raster_renderer.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
@@ -23,48 +24,6 @@
 namespace irad {
 namespace IRAD_UNITY_ID {
 
-// Adds triangle (a, b, c), counter-clockwise seen from outside, with its flat normal.
-void add_facet(Scene& s, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-  const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-  const auto base = static_cast<std::uint32_t>(s.positions.size());
-  for (const glm::vec3& p : {a, b, c}) {
-    s.positions.push_back(p);
-    s.normals.push_back(n);
-  }
-  s.triangles.emplace_back(base, base + 1, base + 2);
-  s.triangle_material.push_back(0);
-}
-
-// An octahedron whose faces are split `levels` times into four, the new vertices pushed onto
-// the unit sphere: convex, 8 * 4^levels flat facets.
-void add_polyhedron(Scene& s, int levels) {
-  struct Tri {
-    glm::vec3 a, b, c;
-  };
-  std::vector<Tri> tris;
-  const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
-  for (const float sx : {1.0f, -1.0f})
-    for (const float sy : {1.0f, -1.0f})
-      for (const float sz : {1.0f, -1.0f}) {
-        Tri t{sx * x, sy * y, sz * z};
-        if (sx * sy * sz < 0.0f) std::swap(t.b, t.c); // counter-clockwise from outside
-        tris.push_back(t);
-      }
-  for (int l = 0; l < levels; ++l) {
-    std::vector<Tri> finer;
-    for (const Tri& t : tris) {
-      const glm::vec3 ab = glm::normalize(t.a + t.b), bc = glm::normalize(t.b + t.c),
-                      ca = glm::normalize(t.c + t.a);
-      finer.push_back({t.a, ab, ca});
-      finer.push_back({ab, t.b, bc});
-      finer.push_back({ca, bc, t.c});
-      finer.push_back({ab, bc, ca});
-    }
-    tris = std::move(finer);
-  }
-  for (const Tri& t : tris) add_facet(s, t.a, t.b, t.c);
-}
-
 constexpr float kAlbedo = 0.5f;
 constexpr float kSky = 2.0f;
 
@@ -72,7 +31,7 @@ Scene furnace_scene() {
   Scene s;
   s.source = "white-furnace";
   add_material(s, glm::vec3(kAlbedo));
-  add_polyhedron(s, 2);
+  test::add_polyhedron(s, 2);
   finish(s);
   s.environment = std::make_shared<Environment>(Environment::uniform(glm::vec3(kSky), "uniform"));
   s.cameras.push_back(look_at({0.3f, 0.6f, 3.5f}, {0, 0, 0}, {0, 1, 0}, 0.7f));

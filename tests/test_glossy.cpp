@@ -11,6 +11,7 @@
 #include "core/environment/environment.h"
 #include "core/material/brdf.h"
 #include "core/scene/scene_builder.h"
+#include "tests/convex_polyhedron.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
@@ -54,42 +55,6 @@ double metal_albedo(double mu, double alpha, int n = 600) {
   return sum * 2.0 * pi / (double(n) * n);
 }
 
-void add_facet(Scene& s, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-  const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-  const auto base = static_cast<std::uint32_t>(s.positions.size());
-  for (const glm::vec3& p : {a, b, c}) {
-    s.positions.push_back(p);
-    s.normals.push_back(n);
-  }
-  s.triangles.emplace_back(base, base + 1, base + 2);
-  s.triangle_material.push_back(0);
-}
-
-// A convex polyhedron: an octahedron split twice into four, pushed onto the unit sphere.
-void add_polyhedron(Scene& s) {
-  struct Tri {
-    glm::vec3 a, b, c;
-  };
-  std::vector<Tri> tris;
-  for (const float sx : {1.0f, -1.0f})
-    for (const float sy : {1.0f, -1.0f})
-      for (const float sz : {1.0f, -1.0f}) {
-        Tri t{{sx, 0, 0}, {0, sy, 0}, {0, 0, sz}};
-        if (sx * sy * sz < 0.0f) std::swap(t.b, t.c);
-        tris.push_back(t);
-      }
-  for (int l = 0; l < 2; ++l) {
-    std::vector<Tri> finer;
-    for (const Tri& t : tris) {
-      const glm::vec3 ab = glm::normalize(t.a + t.b), bc = glm::normalize(t.b + t.c),
-                      ca = glm::normalize(t.c + t.a);
-      finer.insert(finer.end(), {{t.a, ab, ca}, {ab, t.b, bc}, {ca, bc, t.c}, {ab, bc, ca}});
-    }
-    tris = std::move(finer);
-  }
-  for (const Tri& t : tris) add_facet(s, t.a, t.b, t.c);
-}
-
 constexpr float kRoughness = 0.5f; // alpha 0.25
 constexpr float kSky = 2.0f;
 
@@ -99,7 +64,7 @@ Scene metal_furnace() {
   add_material(s, glm::vec3(1.0f));
   s.materials[0].metallic = 1.0f;
   s.materials[0].roughness = kRoughness;
-  add_polyhedron(s);
+  test::add_polyhedron(s, 2);
   finish(s);
   s.environment = std::make_shared<Environment>(Environment::uniform(glm::vec3(kSky), "uniform"));
   s.cameras.push_back(look_at({0.3f, 0.6f, 3.5f}, {0, 0, 0}, {0, 1, 0}, 0.7f));

@@ -57,6 +57,19 @@ Vpl light_vpl(const LightStart& start, float weight, std::uint32_t path) {
   return v;
 }
 
+// The VPL at reflection j of particle i: a one-sided surface point.
+Vpl surface_vpl(const glm::vec3& position, const glm::vec3& normal, const glm::vec3& intensity,
+                int j, std::uint32_t i) {
+  Vpl v;
+  v.position = position;
+  v.normal = normal;
+  v.intensity = intensity;
+  v.kind = VplKind::Surface;
+  v.depth = static_cast<std::uint16_t>(j);
+  v.path = i;
+  return v;
+}
+
 void warn_capped(const ParticleCounts& counts, Log& log, int cap) {
   if (counts.capped())
     log.warn(fmt::format("mean albedo rho_bar = {:.4f} is close to or above 1: the walk is capped "
@@ -117,13 +130,7 @@ void QuasiRandomWalk::trace(std::uint32_t i, std::vector<Vpl>& out,
     const glm::vec3 radiant =
         beta * y.albedo * std::numbers::inv_pi_v<float>; // beta_j rho(y_j) / pi
     if (!positive(radiant)) return;                      // absorbed: nothing further
-    Vpl v;
-    v.position = y.position;
-    v.normal = y.normal;
-    v.intensity = radiant / static_cast<float>(counts_.reaching(j));
-    v.kind = VplKind::Surface;
-    v.depth = static_cast<std::uint16_t>(j);
-    v.path = i;
+    const Vpl v = surface_vpl(y.position, y.normal, radiant / float(counts_.reaching(j)), j, i);
     out.push_back(v);
     if (!mirrors_.empty()) append_mirrored(v, mirrors_, out);
     if (j == depth) return;
@@ -144,13 +151,8 @@ bool QuasiRandomWalk::glossy_vertex(const PathVertex& y, std::uint32_t i, int j,
   const glm::vec3 a = brdf.albedo(incident);
   const glm::vec3 radiant = beta * a * std::numbers::inv_pi_v<float>; // beta_j a(incident) / pi
   if (!positive(radiant)) return false;
-  Vpl v;
-  v.position = y.position;
-  v.normal = brdf.normal(); // the lobe's normal
-  v.intensity = radiant / static_cast<float>(counts_.reaching(j));
-  v.kind = VplKind::Surface;
-  v.depth = static_cast<std::uint16_t>(j);
-  v.path = i;
+  // The VPL's normal is the lobe's.
+  Vpl v = surface_vpl(y.position, brdf.normal(), radiant / float(counts_.reaching(j)), j, i);
   if (lobes != nullptr) {
     v.lobe = static_cast<std::int32_t>(lobes->size());
     lobes->push_back({*y.glossy, incident, a});

@@ -25,9 +25,11 @@ using gltf::json;
 
 // Extensions whose meaning irad implements; any other required extension is an error.
 constexpr std::array<std::string_view, 9> kSupportedExtensions{
-    "KHR_lights_punctual",   "KHR_materials_emissive_strength", "KHR_texture_transform",
-    "KHR_mesh_quantization", "KHR_draco_mesh_compression",      "EXT_meshopt_compression",
-    "EXT_texture_webp",      "KHR_materials_ior",               "KHR_materials_specular"};
+    "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+    "KHR_texture_transform",      "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+    "EXT_texture_webp",           "KHR_materials_ior",
+    "KHR_materials_specular"};
 
 bool supported(const std::string& extension) {
   return std::find(kSupportedExtensions.begin(), kSupportedExtensions.end(), extension) !=

@@ -201,10 +201,10 @@ void write_brdf(const Material& m, json& out, MaterialExtensions& used) {
 
 json write_material(const Material& m, MaterialExtensions& used) {
   const glm::vec3& c = m.base_color;
-  json out = {{"name", m.name},
-              {"pbrMetallicRoughness",
-               {{"baseColorFactor", {double(c.x), double(c.y), double(c.z), 1.0}}}},
-              {"doubleSided", m.double_sided}};
+  json out = {
+      {"name", m.name},
+      {"pbrMetallicRoughness", {{"baseColorFactor", {double(c.x), double(c.y), double(c.z), 1.0}}}},
+      {"doubleSided", m.double_sided}};
   write_brdf(m, out, used);
   const double peak = std::max({m.emission.x, m.emission.y, m.emission.z});
   if (peak > 1.0) {
@@ -264,7 +264,8 @@ json document(const Scene& scene) {
   }
   MaterialExtensions material_extensions;
   json materials = json::array();
-  for (const Material& m : scene.materials) materials.push_back(write_material(m, material_extensions));
+  for (const Material& m : scene.materials)
+    materials.push_back(write_material(m, material_extensions));
   if (!materials.empty()) doc["materials"] = materials;
   json cameras = json::array();
   for (const Camera& c : scene.cameras) {

@@ -12,9 +12,9 @@
 // - every material: name, pbrMetallicRoughness.baseColorFactor = (albedo, 1), metallicFactor and
 //   roughnessFactor (a mirror, Material::specular: 1 and 0), KHR_materials_specular's factor and
 //   colour where they differ from 1 (a Lambertian material: specularFactor 0), KHR_materials_ior
-//   where ior differs from 1.5, doubleSided, and the emission as emissiveFactor; when a component exceeds 1 the factor is divided by the
-//   largest component, which becomes KHR_materials_emissive_strength.emissiveStrength (listed in
-//   extensionsUsed);
+//   where ior differs from 1.5, doubleSided, and the emission as emissiveFactor; when a component
+//   exceeds 1 the factor is divided by the largest component, which becomes
+//   KHR_materials_emissive_strength.emissiveStrength (listed in extensionsUsed);
 // - every camera: perspective, yfov, aspectRatio when set, zfar when set, and znear = the
 //   camera's znear when positive, else the near plane make_view (core/camera/view.h) fits for this
 //   scene (glTF requires znear > 0; loaded back, make_view then gives the same near plane); placed

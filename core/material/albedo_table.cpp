@@ -44,7 +44,8 @@ struct Azimuths {
 double reflecting_arc(double mu, double st, double ch, double sh) {
   const double pi = std::numbers::pi;
   if (st * sh <= 0.0) return mu * ch > 0.0 && mu * (2.0 * ch * ch - 1.0) > 0.0 ? pi : 0.0;
-  const double c = std::max(mu * (1.0 - 2.0 * ch * ch) / (2.0 * st * sh * ch), -mu * ch / (st * sh));
+  const double c =
+      std::max(mu * (1.0 - 2.0 * ch * ch) / (2.0 * st * sh * ch), -mu * ch / (st * sh));
   return c >= 1.0 ? 0.0 : c <= -1.0 ? pi : std::acos(c);
 }
 
@@ -77,13 +78,15 @@ void specular_terms(float mu, float alpha, AlbedoTable::Terms& out) {
     // xi = xi_max (1 - t^2), dxi = 2 xi_max t dt: points gather toward xi_max, where the
     // horizon's half vectors crowd into a width of about alpha^2.
     const double t = (i + 0.5) / kGrid, xi = xi_max * (1.0 - t * t), dxi = 2.0 * t;
-    const double c2 = half_cos2(xi, a2), ch = std::sqrt(c2), sh = std::sqrt(std::max(0.0, 1.0 - c2));
+    const double c2 = half_cos2(xi, a2), ch = std::sqrt(c2),
+                 sh = std::sqrt(std::max(0.0, 1.0 - c2));
     const double half_width = reflecting_arc(m, st, ch, sh);
     double row_s = 0.0, row_w = 0.0;
     // cos phi at phi_k = -half_width + (k + 1/2) step, by rotating through the step.
     const double step = 2.0 * half_width / kGrid, cs = std::cos(step), ss = std::sin(step);
     double c = std::cos(0.5 * step - half_width), sn = std::sin(0.5 * step - half_width);
-    for (int k = 0; k < kGrid; ++k, std::tie(c, sn) = std::pair{c * cs - sn * ss, sn * cs + c * ss}) {
+    for (int k = 0; k < kGrid;
+         ++k, std::tie(c, sn) = std::pair{c * cs - sn * ss, sn * cs + c * ss}) {
       const double vh = st * sh * c + m * ch;
       const double lz = 2.0 * vh * ch - m;
       if (vh <= 0.0 || lz <= 0.0) continue;
@@ -104,7 +107,8 @@ float diffuse_loss(float mu, const Azimuths& phi) {
   const glm::vec3 v = view_at(mu);
   double q = 0.0;
   for (int i = 0; i < kGrid; ++i) {
-    const float sin_l = std::sqrt((float(i) + 0.5f) / kGrid), cos_l = std::sqrt(1.0f - sin_l * sin_l);
+    const float sin_l = std::sqrt((float(i) + 0.5f) / kGrid),
+                cos_l = std::sqrt(1.0f - sin_l * sin_l);
     for (std::size_t k = 0; k < kGrid; ++k) {
       const glm::vec3 l(sin_l * phi.c[k], sin_l * phi.s[k], cos_l);
       q += ggx::schlick_weight(glm::dot(v, glm::normalize(v + l)));

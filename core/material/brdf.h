@@ -50,7 +50,9 @@ public:
   const glm::vec3& normal() const { return n_; }
 
 private:
-  glm::vec3 local(const glm::vec3& w) const { return {glm::dot(w, t_), glm::dot(w, b_), glm::dot(w, n_)}; }
+  glm::vec3 local(const glm::vec3& w) const {
+    return {glm::dot(w, t_), glm::dot(w, b_), glm::dot(w, n_)};
+  }
   glm::vec3 world(const glm::vec3& w) const { return w.x * t_ + w.y * b_ + w.z * n_; }
   float specular_share(float cos_o) const;
 

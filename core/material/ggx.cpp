@@ -62,8 +62,7 @@ glm::vec3 sample_visible_normal(const glm::vec3& v, float alpha, float u0, float
   const float p1 = r * std::cos(phi);
   const float s = 0.5f * (1.0f + vh.z);
   const float p2 = (1.0f - s) * std::sqrt(glm::max(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
-  const glm::vec3 nh =
-      p1 * t1 + p2 * t2 + std::sqrt(glm::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+  const glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(glm::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
   return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, glm::max(1e-7f, nh.z)));
 }
 

@@ -296,8 +296,8 @@ float unit_factor(const Context& ctx, const json& holder, const char* field, dou
 
 // KHR_materials_ior and KHR_materials_specular into `out`; the glTF defaults (ior 1.5,
 // specular 1, colour 1) without them.
-void read_specular(const Context& ctx, const json& m, const std::string& where, TextureTable& textures,
-                   SlotAssigner& slots, Material& out) {
+void read_specular(const Context& ctx, const json& m, const std::string& where,
+                   TextureTable& textures, SlotAssigner& slots, Material& out) {
   out.ior = 1.5f;
   out.specular_factor = 1.0f;
   out.specular_color = glm::vec3(1.0f);
@@ -311,9 +311,9 @@ void read_specular(const Context& ctx, const json& m, const std::string& where, 
   if (spec == nullptr) return;
   const std::string sw = where + ".extensions.KHR_materials_specular";
   out.specular_factor = unit_factor(ctx, *spec, "specularFactor", 1.0, sw);
-  out.specular_color = glm::vec3(colour_factor(ctx, numbers_member(*spec, "specularColorFactor"), 3,
-                                               sw, "specularColorFactor", false));
-  if (numbers_member(*spec, "specularColorFactor").empty()) out.specular_color = glm::vec3(1.0f);
+  const std::vector<double> colour = numbers_member(*spec, "specularColorFactor");
+  if (!colour.empty())
+    out.specular_color = glm::vec3(colour_factor(ctx, colour, 3, sw, "specularColorFactor", false));
   int set = 0;
   if (const json* t = member(*spec, "specularTexture")) {
     const std::string at = sw + ".specularTexture";

@@ -23,11 +23,11 @@ inline constexpr double mirror_max_roughness = 0.1;
 // Materials no drawn primitive uses (referenced[i] == 0) are placeholders without textures.
 // Returns, per material, the TEXCOORD sets of its two uv slots (Material::*_map.texcoord is the
 // slot: a material whose textures read sets 0 and 2 gets TEXCOORD_0 in Scene::uvs and
-// TEXCOORD_2 in Scene::uvs1; a texture reading a third set is dropped with a warning). Also read: alphaMode, alphaCutoff and baseColorFactor's alpha,
-// KHR_texture_transform and texCoord of each textureInfo, EXT_texture_webp's source.
-// Images no used texture decoded: each one's bytes are read and its header checked (no pixel is
-// decoded); a problem is a validator issue of "/images/i" (so the one warning for unused parts
-// counts it). `decoded[i]` marks the images the materials decoded.
+// TEXCOORD_2 in Scene::uvs1; a texture reading a third set is dropped with a warning). Also read:
+// alphaMode, alphaCutoff and baseColorFactor's alpha, KHR_texture_transform and texCoord of each
+// textureInfo, EXT_texture_webp's source. Images no used texture decoded: each one's bytes are read
+// and its header checked (no pixel is decoded); a problem is a validator issue of "/images/i" (so
+// the one warning for unused parts counts it). `decoded[i]` marks the images the materials decoded.
 void check_unused_images(const Context& ctx, const std::vector<char>& decoded);
 
 std::vector<UvSets> convert_materials(const Context& ctx, const std::vector<char>& referenced,
