@@ -67,7 +67,8 @@ void RasterRenderer::Impl::prepare(const View& view) {
     target = std::make_unique<gl::Target>(api, view.width, view.height);
   }
   if ((batched || options.interleave > 1) && !gbuffer)
-    gbuffer = std::make_unique<gl::GBuffer>(api, view.width, view.height, target->depth());
+    gbuffer = std::make_unique<gl::GBuffer>(api, view.width, view.height, target->depth(),
+                                            gpu.features().glossy);
   shadow_res = resolution;
   if (options.interleave > 1 && !interleaved)
     interleaved = std::make_unique<gl::Interleaved>(api, options.interleave, *gbuffer,
@@ -186,8 +187,7 @@ void RasterRenderer::Impl::begin_image(const View& view) {
   api.DepthMask(GL_TRUE);
   if (gbuffer) {
     // The full-resolution G-buffer; its depth is the target's.
-    gbuffer->bind();
-    camera.gbuffer(vp, gpu);
+    camera.gbuffer(*gbuffer, vp, gl::eye_uniform(view), gpu);
     if (jitter) jitter->average_albedo(camera, view, gpu);
     if (interleaved) interleaved->find_edges();
   }
@@ -307,6 +307,10 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   im.deal_paths(paths);
   std::optional<gl::PassTimer> timer;
   if (im.options.gpu_timers) timer.emplace(im.api);
+  // The glossy VPLs' lobes, for this image's passes only.
+  im.vpl_shader.set_eye(gl::eye_uniform(view));
+  im.vpl_shader.set_lobes(&vpls.lobes);
+  if (im.batched) im.batched->set_lobes(&vpls.lobes);
   std::vector<const Vpl*> list;
   list.reserve(vpls.vpls.size());
   for (const Vpl& v : vpls.vpls) list.push_back(&v);
@@ -317,6 +321,8 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
       im.batched ? im.batched_passes(view, list, timer ? &*timer : nullptr, progress)
                  : im.vpl_passes(view, list, draw_now, im.texel_angle(), timer ? &*timer : nullptr,
                                  progress);
+  im.vpl_shader.set_lobes(nullptr);
+  if (im.batched) im.batched->set_lobes(nullptr);
   Image image = im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
   if (timings && im.batched) timings->shadow_triangles = im.batched->shadow_triangles();
   return image;

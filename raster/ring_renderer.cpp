@@ -91,7 +91,9 @@ struct RingRenderer::Impl {
         api, s, o.raster.clamp, o.raster.batch,
         shadow_resolution_for(o.raster.shadow_resolution, o.width, o.height),
         directional ? ortho : 0, o.raster.shadow_lod, false);
-    if (batched) gbuffer = std::make_unique<gl::GBuffer>(api, o.width, o.height, target.depth());
+    if (batched)
+      gbuffer = std::make_unique<gl::GBuffer>(api, o.width, o.height, target.depth(),
+                                              gpu.features().glossy);
     context->check("ring set-up");
   }
 
@@ -173,8 +175,7 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
   im.api.ClearDepth(1.0);
   im.api.DepthMask(GL_TRUE);
   if (im.gbuffer) {
-    im.gbuffer->bind();
-    im.camera.gbuffer(vp, im.gpu); // its depth is the slot's
+    im.camera.gbuffer(*im.gbuffer, vp, gl::eye_uniform(view), im.gpu); // its depth: the slot's
     bind_slot();
     im.api.Clear(GL_COLOR_BUFFER_BIT);
   } else {

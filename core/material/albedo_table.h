@@ -27,6 +27,9 @@ public:
   // Cosine-weighted means over mu, linear in r.
   Terms hemispherical(float roughness) const;
 
+  // Node (mu_i, r_j) at cells()[i * kRough + j] (what the raster uploads as a texture).
+  const std::array<Terms, kMu * kRough>& cells() const { return cells_; }
+
   // The process's table (built on the first call; thread-safe).
   static const AlbedoTable& get();
 

@@ -8,6 +8,12 @@
 //
 // D is taken from the unnormalised half vector wo + wi (no cancellation at the peak of a narrow
 // lobe); a Lambertian material (m = 0, f0 = f90 = 0) returns base/pi exactly.
+//
+// brdf_albedo_glsl adds the directional albedo a(wo) from core's AlbedoTable uploaded as a
+// texture (GpuScene::albedo_table), inserted at "#pragma irad_brdf_albedo" after the BRDF.
+#include "raster/context/shader_program.h"
+
+#include <string>
 
 namespace irad::gl::shaders {
 
@@ -55,6 +61,68 @@ vec3 brdf_eval(vec3 base, float metallic, float roughness, vec3 f0, float f90, v
   vec3 dielectric = (1.0 - fd) * base * (1.0 / kBrdfPi) + fd * vd;
   return (1.0 - metallic) * dielectric + metallic * fm * vd;
 }
+
+// The unit direction from x toward the camera: u_eye = (its position, 1), or (the direction
+// toward it, 0) for an orthographic camera (raster/passes/camera_passes.h eye_uniform).
+uniform vec4 u_eye;
+vec3 toward_eye(vec3 x) {
+  return u_eye.w > 0.0 ? normalize(u_eye.xyz - x) : u_eye.xyz;
+}
+
+// The shading normal n bent toward wo just enough that wo lies above it (core/material/brdf.h
+// facing_normal).
+vec3 brdf_facing_normal(vec3 n, vec3 wo) {
+  float c = dot(n, wo);
+  if (c >= 1e-3) return n;
+  return normalize(n + (1e-3 - c) * wo);
+}
+
+// A glossy VPL's lobe shape pi f_r,y(incident, w) / a(incident) per channel (0 where a is 0):
+// core/lights/vpl.h vpl_lobe_shape, about the VPL's normal ny.
+vec3 brdf_lobe_shape(vec3 base, float metallic, float roughness, vec3 f0, float f90, vec3 ny,
+                     vec3 incident, vec3 w, vec3 albedo) {
+  vec3 f = brdf_eval(base, metallic, roughness, f0, f90, ny, incident, w);
+  return vec3(albedo.r > 0.0 ? kBrdfPi * f.r / albedo.r : 0.0,
+              albedo.g > 0.0 ? kBrdfPi * f.g / albedo.g : 0.0,
+              albedo.b > 0.0 ? kBrdfPi * f.b / albedo.b : 0.0);
+}
 )";
+
+// The directional albedo (core/material/brdf.h directional_albedo): the table's S, W, Q at
+// (mu, r) bilinear between its nodes as AlbedoTable::at, texel (j, i) holding node (mu_i, r_j).
+inline constexpr const char* brdf_albedo_glsl = R"(
+uniform sampler2D u_albedo_table;
+vec3 brdf_table_terms(float mu, float roughness) {
+  ivec2 size = textureSize(u_albedo_table, 0); // (r nodes, mu nodes)
+  float x = clamp(mu, 0.0, 1.0) * float(size.y - 1);
+  float y = clamp(roughness, 0.0, 1.0) * float(size.x - 1);
+  int i = min(int(x), size.y - 2), j = min(int(y), size.x - 2);
+  float fx = x - float(i), fy = y - float(j);
+  vec3 c00 = texelFetch(u_albedo_table, ivec2(j, i), 0).rgb;
+  vec3 c01 = texelFetch(u_albedo_table, ivec2(j + 1, i), 0).rgb;
+  vec3 c10 = texelFetch(u_albedo_table, ivec2(j, i + 1), 0).rgb;
+  vec3 c11 = texelFetch(u_albedo_table, ivec2(j + 1, i + 1), 0).rgb;
+  vec3 a = c00 + (c01 - c00) * fy, b = c10 + (c11 - c10) * fy;
+  return a + (b - a) * fx;
+}
+// a(wo) at n.wo = cos_o: the specular lobe (1 - m)(f0 (S - W) + f90 W) + m (base (S - W) + W)
+// plus the diffuse one (1 - m) base (1 - f0 (1 - Q) - f90 Q); base for a Lambertian material.
+vec3 brdf_albedo(vec3 base, float metallic, float roughness, vec3 f0, float f90, float cos_o) {
+  if (metallic == 0.0 && f90 == 0.0 && f0 == vec3(0.0)) return base;
+  vec3 t = brdf_table_terms(cos_o, roughness);
+  vec3 dielectric = f0 * (t.x - t.y) + f90 * t.y;
+  vec3 metal = base * (t.x - t.y) + t.y;
+  vec3 kept = 1.0 - f0 * (1.0 - t.z) - f90 * t.z;
+  return ((1.0 - metallic) * dielectric + metallic * metal) + (1.0 - metallic) * base * kept;
+}
+)";
+
+// `source` with its "#pragma irad_brdf" and "#pragma irad_brdf_albedo" lines (where it has them)
+// replaced by brdf_glsl and brdf_albedo_glsl.
+inline std::string with_brdf(std::string source) {
+  insert_glsl(source, "#pragma irad_brdf\n", brdf_glsl);
+  insert_glsl(source, "#pragma irad_brdf_albedo\n", brdf_albedo_glsl);
+  return source;
+}
 
 } // namespace irad::gl::shaders

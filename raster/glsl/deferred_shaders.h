@@ -8,8 +8,10 @@
 // batched_source (raster/glsl/batched_shaders.h).
 namespace irad::gl::shaders {
 
-// Bytes of the shading block per VPL (std140 BatchVpl below).
-inline constexpr int kShadingBytesPerVpl = 10 * 16;
+// Bytes of the shading block per VPL (std140 BatchVpl below): 4 vec4 more with IRAD_GLOSSY.
+inline constexpr int shading_bytes_per_vpl(bool glossy) {
+  return (glossy ? 14 : 10) * 16;
+}
 
 inline constexpr const char* deferred_vpl_vertex = R"(
 struct BatchVpl {
@@ -24,6 +26,10 @@ struct BatchVpl {
                    // its tile's first texel (xy)
   vec4 frame[3];   // columns of world -> cube frame; directional: rows of world -> (u, v, depth)
   vec4 mirror;     // a mirrored VPL's plane (n, w), n toward the lit side
+#ifdef IRAD_GLOSSY
+  vec4 lobe[4];    // a glossy VPL's (core/lights/vpl.h VplLobe): (base, metallic), (f0, f90),
+                   // (incident, roughness) (mirrored: reflected), (a(incident), 1); else 0
+#endif
 };
 layout(std140) uniform VplBatch { BatchVpl u_vpl[MAX_BATCH]; };
 uniform int u_first;
@@ -38,8 +44,14 @@ flat out vec3 v_vpl_normal;
 flat out vec3 v_vpl_intensity;
 flat out vec4 v_cone;
 flat out vec4 v_frame[3];
+#ifdef IRAD_GLOSSY
+flat out vec4 v_lobe[4];
+#endif
 void main() {
   BatchVpl vpl = u_vpl[u_first + gl_InstanceID];
+#ifdef IRAD_GLOSSY
+  v_lobe = vpl.lobe;
+#endif
   v_kind = vpl.info.x;
 #ifdef IRAD_MIRRORS
   v_mirror = vpl.info.yz;
@@ -88,7 +100,13 @@ uniform sampler2D u_ortho_atlas;   // orthographic maps (raster/shadow/ortho_atl
 uniform int u_ortho_res;           // M, texels per tile edge
 uniform sampler2D u_position;    // G-buffer: xyz, w = 1 on a surface
 uniform sampler2D u_normal;      // towards the camera
-uniform sampler2D u_albedo;
+uniform sampler2D u_albedo;      // with IRAD_GLOSSY the directional albedo toward the camera
+#ifdef IRAD_GLOSSY
+flat in vec4 v_lobe[4];
+uniform sampler2D u_base;        // G-buffer: base, f90
+uniform sampler2D u_specular;    // f0, metallic
+#pragma irad_brdf
+#endif
 uniform ivec2 u_tile_origin;     // the viewport's lower-left pixel
 uniform ivec3 u_pixel;           // k, dx, dy
 uniform ivec2 u_size;            // the image
@@ -97,7 +115,8 @@ uniform int u_shadow_half;       // h = R / 2 + 1 (no integer division per fragm
 uniform float u_min_dist2;       // below this the receiver coincides with the VPL
 uniform float u_bias_constant;   // scale-relative
 uniform float u_bias_texel;      // angular size of a shadow texel
-uniform bool u_apply_albedo;     // false: irradiance / pi only (the resolve multiplies)
+uniform bool u_apply_albedo;     // false: irradiance / pi only (the resolve multiplies by the
+                                 // albedo; glossy: pi f_r / the albedo)
 uniform bool u_listed;           // the pixels from a list instead (TilePixels::list):
 uniform isampler2D u_pixel_list; // at texel t - u_tile_origin, none where x < 0
 out vec4 o_color;
@@ -208,9 +227,30 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
   bool hidden = shadowed(frame * dp, length(dp) - u_bias_constant, frame * n, lookup_unsure);
   float g = e * cos_x / max(dist2, v_cone.z);
   vec3 light = v_vpl_intensity * (g * INV_PI);
+#ifdef IRAD_GLOSSY
+  if (v_lobe[3].w > 0.0)
+    light *= brdf_lobe_shape(v_lobe[0].rgb, v_lobe[0].a, v_lobe[2].w, v_lobe[1].rgb, v_lobe[1].a,
+                             v_vpl_normal, v_lobe[2].xyz, w, v_lobe[3].rgb);
+#endif
   if (lookup_unsure) unsure = dot(light, LUMINANCE);
   return hidden ? vec3(0.0) : light;
 }
+
+#ifdef IRAD_GLOSSY
+// What multiplies vpl_light at pixel p (point x, normal n, roughness r) for light arriving from
+// unit wi: pi f_r,x(wo, wi) with u_apply_albedo, else that over the G-buffer's albedo (the
+// resolve multiplies by it again); a Lambertian pixel's base, or 1, exactly as without IRAD_GLOSSY.
+vec3 receiver_weight(ivec2 p, vec3 x, vec3 n, float r, vec3 wi) {
+  vec4 b = texelFetch(u_base, p, 0), s = texelFetch(u_specular, p, 0);
+  vec3 albedo = texelFetch(u_albedo, p, 0).rgb;
+  if (s.a == 0.0 && b.a == 0.0 && s.rgb == vec3(0.0)) return u_apply_albedo ? albedo : vec3(1.0);
+  vec3 wo = toward_eye(x);
+  vec3 f = kBrdfPi * brdf_eval(b.rgb, s.a, r, s.rgb, b.a, brdf_facing_normal(n, wo), wo, wi);
+  if (u_apply_albedo) return f;
+  return vec3(albedo.r > 0.0 ? f.r / albedo.r : 0.0, albedo.g > 0.0 ? f.g / albedo.g : 0.0,
+              albedo.b > 0.0 ? f.b / albedo.b : 0.0);
+}
+#endif
 
 void main() {
   ivec2 t = ivec2(gl_FragCoord.xy) - u_tile_origin;
@@ -219,9 +259,17 @@ void main() {
   vec4 x = texelFetch(u_position, p, 0);
   if (x.w <= 0.0) discard;
   float unsure;
-  vec3 light = vpl_light(x.xyz, texelFetch(u_normal, p, 0).xyz, unsure);
+  vec4 n = texelFetch(u_normal, p, 0);
+  vec3 light = vpl_light(x.xyz, n.xyz, unsure);
   if (light == vec3(0.0) && unsure == 0.0) discard;
+#ifdef IRAD_GLOSSY
+  vec3 wi = v_kind == 4 ? -v_vpl_normal : normalize(v_vpl_position - x.xyz);
+  vec3 weight = receiver_weight(p, x.xyz, n.xyz, n.w, wi);
+  light *= weight;
+  unsure *= dot(weight, LUMINANCE); // the unsure light's scale, per luminance
+#else
   if (u_apply_albedo) light *= texelFetch(u_albedo, p, 0).rgb;
+#endif
   o_color = vec4(light, unsure);
 }
 )";

@@ -67,6 +67,13 @@ uniform float u_bias_constant;   // scale-relative
 uniform float u_bias_texel;      // angular size of a shadow texel
 uniform bool u_planes;           // the occluder planes' test (else the receiver's plane)
 uniform bool u_apply_albedo;     // false: irradiance / pi only (interleaved mode multiplies later)
+#ifdef IRAD_GLOSSY
+// The glTF BRDF at both ends (raster/glsl/deferred_shaders.h's maths): the VPL's lobe as
+// BatchVpl's lobe[4] (w of [3]: 1 for a glossy VPL), the receiver's material from its uniforms.
+uniform vec4 u_lobe[4];
+#pragma irad_brdf
+#pragma irad_brdf_albedo
+#endif
 out vec4 o_color;
 const float INV_PI = 0.31830988618379067;
 #pragma irad_cube_lookup
@@ -98,7 +105,7 @@ void main() {
 #ifdef IRAD_ALPHA
   if (material_absent(camera_alpha_key())) discard;
 #endif
-  vec3 n = normalize(v_normal);
+  vec3 n = material_normal(normalize(v_normal));
   if (!gl_FrontFacing) n = -n;
   vec3 d = v_position - u_vpl_position;
   float dist2 = dot(d, d);
@@ -119,9 +126,32 @@ void main() {
   // Normal-offset lookup (raster/glsl/cube_glsl.h).
   vec3 dp = lookup_offset(v_position, n, dist, cos_x, u_bias_texel, u_vpl_position);
   if (shadowed(u_shadow_frame * dp, length(dp) - u_bias_constant, u_shadow_frame * n)) discard;
-  vec3 albedo = u_apply_albedo ? material_albedo() : vec3(1.0);
   float g = e * cos_x / max(dist2, u_dmin2);
+#ifdef IRAD_GLOSSY
+  vec3 light = u_vpl_intensity * (g * INV_PI);
+  if (u_lobe[3].w > 0.0)
+    light *= brdf_lobe_shape(u_lobe[0].rgb, u_lobe[0].a, u_lobe[2].w, u_lobe[1].rgb, u_lobe[1].a,
+                             u_vpl_normal, u_lobe[2].xyz, w, u_lobe[3].rgb);
+  vec3 base = material_albedo();
+  float metallic, roughness, f90;
+  vec3 f0;
+  material_brdf(metallic, roughness, f0, f90);
+  vec3 weight = u_apply_albedo ? base : vec3(1.0);
+  if (!(metallic == 0.0 && f90 == 0.0 && f0 == vec3(0.0))) { // as deferred receiver_weight
+    vec3 wo = toward_eye(v_position);
+    vec3 nf = brdf_facing_normal(n, wo);
+    weight = kBrdfPi * brdf_eval(base, metallic, roughness, f0, f90, nf, wo, -w);
+    if (!u_apply_albedo) {
+      vec3 a = brdf_albedo(base, metallic, roughness, f0, f90, dot(nf, wo));
+      weight = vec3(a.r > 0.0 ? weight.r / a.r : 0.0, a.g > 0.0 ? weight.g / a.g : 0.0,
+                    a.b > 0.0 ? weight.b / a.b : 0.0);
+    }
+  }
+  o_color = vec4(light * weight, 0.0);
+#else
+  vec3 albedo = u_apply_albedo ? material_albedo() : vec3(1.0);
   o_color = vec4(u_vpl_intensity * (g * INV_PI) * albedo, 0.0);
+#endif
 }
 )";
 
@@ -159,8 +189,11 @@ void main() {
 }
 )";
 
-// G-buffer for interleaved sampling: the world position (w = 1 where there is a surface) and the
-// normal facing the camera (w = albedo's mean is not needed: albedo has its own target).
+// G-buffer (raster/image/gbuffer.h): the world position (w = 1 where there is a surface), the
+// shading normal facing the camera and the albedo. With IRAD_GLOSSY the normal's w holds the
+// roughness, the albedo is the directional albedo a(wo) toward the camera (the interleaved
+// resolve's demodulation; base for a Lambertian material), and two more targets hold (base, f90)
+// and (f0, metallic).
 inline constexpr const char* gbuffer_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;
@@ -168,15 +201,34 @@ in vec3 v_normal;
 layout(location = 0) out vec4 o_position;
 layout(location = 1) out vec4 o_normal;
 layout(location = 2) out vec4 o_albedo;
+#ifdef IRAD_GLOSSY
+#pragma irad_brdf
+#pragma irad_brdf_albedo
+layout(location = 3) out vec4 o_base;
+layout(location = 4) out vec4 o_specular;
+#endif
 void main() {
 #ifdef IRAD_ALPHA
   if (material_absent(camera_alpha_key())) discard;
 #endif
-  vec3 n = normalize(v_normal);
+  vec3 n = material_normal(normalize(v_normal));
   if (!gl_FrontFacing) n = -n;
   o_position = vec4(v_position, 1.0);
+#ifdef IRAD_GLOSSY
+  vec3 base = material_albedo();
+  float metallic, roughness, f90;
+  vec3 f0;
+  material_brdf(metallic, roughness, f0, f90);
+  vec3 wo = toward_eye(v_position);
+  float cos_o = dot(brdf_facing_normal(n, wo), wo);
+  o_normal = vec4(n, roughness);
+  o_albedo = vec4(brdf_albedo(base, metallic, roughness, f0, f90, cos_o), 1.0);
+  o_base = vec4(base, f90);
+  o_specular = vec4(f0, metallic);
+#else
   o_normal = vec4(n, 0.0);
   o_albedo = vec4(material_albedo(), 1.0);
+#endif
 }
 )";
 

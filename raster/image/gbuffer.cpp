@@ -2,17 +2,24 @@
 
 namespace irad::gl {
 
-GBuffer::GBuffer(const GladGLContext& api, int width, int height, GLuint depth)
+GBuffer::GBuffer(const GladGLContext& api, int width, int height, GLuint depth, bool glossy)
     : api_(&api), width_(width), height_(height), position_(make_float_texture(api, width, height)),
       normal_(make_float_texture(api, width, height)),
       albedo_(make_float_texture(api, width, height)), fbo_(make_framebuffer(api)) {
+  if (glossy) {
+    base_ = make_float_texture(api, width, height);
+    specular_ = make_float_texture(api, width, height);
+  }
   api.BindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
-  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, position_.get(), 0);
-  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, normal_.get(), 0);
-  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT2, GL_TEXTURE_2D, albedo_.get(), 0);
+  const GLuint textures[5] = {position_.get(), normal_.get(), albedo_.get(), base_.get(),
+                              specular_.get()};
+  const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                             GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+  const int count = glossy ? 5 : 3;
+  for (int i = 0; i < count; ++i)
+    api.FramebufferTexture2D(GL_FRAMEBUFFER, buffers[i], GL_TEXTURE_2D, textures[i], 0);
   api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  api.DrawBuffers(3, buffers);
+  api.DrawBuffers(count, buffers);
   check_framebuffer(api, "G-buffer framebuffer");
 }
 
@@ -24,6 +31,14 @@ void GBuffer::bind() const {
 void GBuffer::bind_textures(GLint first) const {
   const GLuint textures[3] = {position_.get(), normal_.get(), albedo_.get()};
   for (GLint i = 0; i < 3; ++i) {
+    api_->ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + i));
+    api_->BindTexture(GL_TEXTURE_2D, textures[i]);
+  }
+}
+
+void GBuffer::bind_brdf_textures(GLint first) const {
+  const GLuint textures[2] = {base_.get(), specular_.get()};
+  for (GLint i = 0; i < 2; ++i) {
     api_->ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + i));
     api_->BindTexture(GL_TEXTURE_2D, textures[i]);
   }

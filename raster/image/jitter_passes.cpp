@@ -1,5 +1,6 @@
 #include "raster/image/jitter_passes.h"
 
+#include "raster/glsl/brdf_glsl.h"
 #include "raster/glsl/shaders.h"
 #include "raster/image/pixel_jitter.h"
 #include "raster/passes/vpl_shader.h"
@@ -27,9 +28,11 @@ void set_weighted_add(const GladGLContext& api, float weight) {
 } // namespace
 
 JitterPasses::JitterPasses(const GladGLContext& api, const MaterialFeatures& features)
-    : api_(&api), gbuffer_(api, "jitter albedo", material_source(shaders::camera_vertex, features),
-                           material_source(shaders::gbuffer_fragment, features)),
-      material_(gbuffer_), vp_(gbuffer_.uniform("u_view_projection")) {}
+    : api_(&api),
+      gbuffer_(api, "jitter albedo", material_source(shaders::camera_vertex, features),
+               shaders::with_brdf(material_source(shaders::gbuffer_fragment, features))),
+      material_(gbuffer_), vp_(gbuffer_.uniform("u_view_projection")),
+      eye_(gbuffer_.optional_uniform("u_eye")) {}
 
 void JitterPasses::redraw_depth(const CameraPasses& camera, const glm::mat4& view_projection,
                                 const GpuScene& gpu) const {
@@ -66,15 +69,15 @@ const GBuffer& JitterPasses::stratum_gbuffer(const CameraPasses& camera, const V
     stratum_depth_ = make_renderbuffer(api);
     api.BindRenderbuffer(GL_RENDERBUFFER, stratum_depth_.get());
     api.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, view.width, view.height);
-    stratum_gbuffer_ =
-        std::make_unique<GBuffer>(api, view.width, view.height, stratum_depth_.get());
+    stratum_gbuffer_ = std::make_unique<GBuffer>(api, view.width, view.height, stratum_depth_.get(),
+                                                 gpu.features().glossy);
   }
-  stratum_gbuffer_->bind();
   api.DepthMask(GL_TRUE);
   camera.gbuffer(
+      *stratum_gbuffer_,
       jittered_projection(view.projection, stratum_offset(stratum), view.width, view.height) *
           view.view,
-      gpu);
+      eye_uniform(view), gpu);
   return *stratum_gbuffer_;
 }
 
@@ -89,10 +92,15 @@ void JitterPasses::average_albedo(const CameraPasses& camera, const View& view,
     // Only the albedo attachment; camera.depth() re-enabled every colour mask.
     api.ColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     api.ColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    if (gpu.features().glossy) { // the BRDF's inputs stay the pixel centre's
+      api.ColorMaski(3, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      api.ColorMaski(4, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    }
     set_additive_state(api);
     set_weighted_add(api, 1.0f / static_cast<float>(kCameraJitterPasses));
     gbuffer_.use();
     api.UniformMatrix4fv(vp_, 1, GL_FALSE, glm::value_ptr(vp));
+    api.Uniform4fv(eye_, 1, glm::value_ptr(eye_uniform(view)));
     gpu.draw([&](const Material& m) { // mirrors: no diffuse albedo, as CameraPasses::gbuffer
       material_.bind_base(api, gpu, m, m.specular ? glm::vec3(0.0f) : m.base_color);
     });

@@ -46,7 +46,7 @@ private:
   const GladGLContext* api_;
   ShaderProgram gbuffer_;
   MaterialUniforms material_;
-  GLint vp_;
+  GLint vp_, eye_;
   Renderbuffer stratum_depth_;
   std::unique_ptr<GBuffer> stratum_gbuffer_;
 };

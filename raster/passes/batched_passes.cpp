@@ -10,7 +10,7 @@ std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, con
                                                    const ShadowLodOptions& lod, bool unsure) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
-  if (b < 2 || DeferredShader::capacity(api, b) < b) return nullptr;
+  if (b < 2 || DeferredShader::capacity(api, b, !scene.all_lambertian()) < b) return nullptr;
   const int tiles = ortho_resolution > 0 ? OrthoAtlas::capacity(api, ortho_resolution, b) : 0;
   return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution, tiles,
                                          tiles > 0 ? ortho_resolution : 0, lod, unsure);
@@ -25,8 +25,10 @@ BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float
                  ? std::make_unique<OrthoAtlas>(api, ortho_resolution, ortho_tiles, scene.bounds,
                                                 MaterialFeatures::of(scene))
                  : nullptr),
-      shader_(api, scene, clamp, DeferredShader::capacity(api, std::max(batch, kShadingBatch)),
-              lod.planes != ShadowPlanes::Off, unsure) {}
+      shader_(
+          api, scene, clamp,
+          DeferredShader::capacity(api, std::max(batch, kShadingBatch), !scene.all_lambertian()),
+          lod.planes != ShadowPlanes::Off, unsure) {}
 
 void BatchedPasses::draw_ortho(const std::vector<std::size_t>& directional, const GpuScene& gpu) {
   // One map per direction: a directional light's VPLs (or a sun's) share theirs.
@@ -56,7 +58,9 @@ void BatchedPasses::flush(std::vector<Entry>& batch, const DeferredTarget& into,
   std::vector<std::size_t> cubes, directional; // indices into shaded_
   for (const Entry& e : batch) {
     (e.vpl->kind == VplKind::Directional ? directional : cubes).push_back(shaded_.size());
-    shaded_.push_back({e.vpl, glm::mat3(1.0f), 1.0f, glm::ivec4(0), e.set});
+    AtlasVpl a{e.vpl, glm::mat3(1.0f), 1.0f, glm::ivec4(0), e.set};
+    a.lobe = lobe_of(*e.vpl);
+    shaded_.push_back(a);
   }
   for (std::size_t i : cubes) vpls_.push_back(shaded_[i].vpl);
   if (timer) timer->begin(PassTimer::Shadow);

@@ -69,6 +69,15 @@ public:
                    const std::function<int(const Vpl&)>& set_of, const DeferredTarget& into,
                    const GpuScene& gpu, PassTimer* timer,
                    const std::function<bool(std::size_t)>& after);
+  // The lobes the next draw()s' glossy VPLs index (VplSet::lobes; Vpl::lobe); nullptr (the
+  // default): every VPL is drawn as Lambertian. Not owned: it must outlive those draws.
+  void set_lobes(const std::vector<VplLobe>* lobes) { lobes_ = lobes; }
+  // v's lobe under set_lobes, or nullptr.
+  const VplLobe* lobe_of(const Vpl& v) const {
+    return lobes_ && v.lobe >= 0 && static_cast<std::size_t>(v.lobe) < lobes_->size()
+               ? &(*lobes_)[static_cast<std::size_t>(v.lobe)]
+               : nullptr;
+  }
   // Shades VPLs whose cubes are already in `shadow` (shadow maps kept,
   // raster/shadow/shadow_cache.h): sorted by set on the way, as many per draw as the shader holds.
   void shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shadow, const DeferredTarget& into);
@@ -107,6 +116,7 @@ private:
   std::vector<glm::ivec2> origins_;
   std::vector<AtlasVpl> shaded_;
   std::size_t shadow_triangles_ = 0;
+  const std::vector<VplLobe>* lobes_ = nullptr;
 };
 
 } // namespace irad::gl

@@ -1,5 +1,6 @@
 #include "raster/passes/camera_passes.h"
 
+#include "raster/glsl/brdf_glsl.h"
 #include "raster/glsl/shaders.h"
 #include "raster/passes/vpl_shader.h"
 
@@ -11,12 +12,13 @@ CameraPasses::CameraPasses(const GladGLContext& api, const MaterialFeatures& fea
     : api_(&api), depth_(api, "depth", material_source(shaders::camera_vertex, features),
                          material_source(shaders::depth_fragment, features)),
       gbuffer_(api, "gbuffer", material_source(shaders::camera_vertex, features),
-               material_source(shaders::gbuffer_fragment, features)),
+               shaders::with_brdf(material_source(shaders::gbuffer_fragment, features))),
       emission_(api, "emission", material_source(shaders::camera_vertex, features),
                 material_source(shaders::emission_fragment, features)),
       depth_material_(depth_), gbuffer_material_(gbuffer_), emission_material_(emission_),
       depth_vp_(depth_.uniform("u_view_projection")),
       gbuffer_vp_(gbuffer_.uniform("u_view_projection")),
+      gbuffer_eye_(gbuffer_.optional_uniform("u_eye")),
       emission_vp_(emission_.uniform("u_view_projection")),
       emission_double_sided_(emission_.uniform("u_double_sided")) {}
 
@@ -33,8 +35,11 @@ void CameraPasses::depth(const glm::mat4& view_projection, const GpuScene& gpu) 
   api.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
-void CameraPasses::gbuffer(const glm::mat4& view_projection, const GpuScene& gpu) const {
+void CameraPasses::gbuffer(GBuffer& target, const glm::mat4& view_projection, const glm::vec4& eye,
+                           const GpuScene& gpu) const {
   const GladGLContext& api = *api_;
+  target.bind();
+  target.set_eye(eye);
   api.Disable(GL_BLEND);
   api.Enable(GL_DEPTH_TEST);
   api.DepthFunc(GL_LESS);
@@ -44,6 +49,7 @@ void CameraPasses::gbuffer(const glm::mat4& view_projection, const GpuScene& gpu
   api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gbuffer_.use();
   api.UniformMatrix4fv(gbuffer_vp_, 1, GL_FALSE, glm::value_ptr(view_projection));
+  api.Uniform4fv(gbuffer_eye_, 1, glm::value_ptr(eye));
   gpu.draw([&](const Material& m) {
     const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
     gbuffer_material_.bind_base(api, gpu, m, rho);

@@ -1,8 +1,10 @@
 #pragma once
 // The passes that see the scene from the camera once per image: depth only (the surface every
 // VPL pass then adds to), the G-buffer for interleaved sampling, and the visible emitters' L_e.
+#include "core/camera/view.h"
 #include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
+#include "raster/image/gbuffer.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
 
@@ -10,14 +12,22 @@
 
 namespace irad::gl {
 
+// The shaders' u_eye (raster/glsl/brdf_glsl.h toward_eye): (eye, 1) for a pinhole camera, (the
+// direction toward it, 0) for an orthographic one.
+inline glm::vec4 eye_uniform(const View& view) {
+  return view.orthographic ? glm::vec4(-view.forward, 0.0f) : glm::vec4(view.eye, 1.0f);
+}
+
 class CameraPasses {
 public:
   CameraPasses(const GladGLContext& api, const MaterialFeatures& features);
   // Writes depth only (colour masked) into the bound framebuffer's viewport (clear it first:
   // glClear ignores the viewport).
   void depth(const glm::mat4& view_projection, const GpuScene& gpu) const;
-  // Clears and writes position, normal and albedo (three colour attachments) and depth.
-  void gbuffer(const glm::mat4& view_projection, const GpuScene& gpu) const;
+  // Binds `target`, clears and writes its colour attachments (raster/image/gbuffer.h) and depth,
+  // and records `eye` (eye_uniform: the glossy albedo and shading look toward it) in it.
+  void gbuffer(GBuffer& target, const glm::mat4& view_projection, const glm::vec4& eye,
+               const GpuScene& gpu) const;
   // Adds weight * L_e of the visible emitters (front faces unless double-sided) over the bound
   // depth (weight < 1: one of several jittered passes, raster/image/jitter_passes.h).
   void emitters(const glm::mat4& view_projection, const Scene& scene, const GpuScene& gpu,
@@ -28,7 +38,7 @@ private:
   ShaderProgram depth_, gbuffer_, emission_;
   MaterialUniforms depth_material_, gbuffer_material_, emission_material_;
   GLint depth_vp_;
-  GLint gbuffer_vp_;
+  GLint gbuffer_vp_, gbuffer_eye_;
   GLint emission_vp_, emission_double_sided_;
 };
 

@@ -3,6 +3,7 @@
 #include "core/scene/mirrors.h"
 #include "core/util/error.h"
 #include "raster/glsl/batched_shaders.h"
+#include "raster/glsl/brdf_glsl.h"
 #include "raster/glsl/cube_glsl.h"
 #include "raster/glsl/deferred_shaders.h"
 #include "raster/glsl/mirror_shaders.h"
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <glm/gtc/type_ptr.hpp>
 #include <string>
 
 namespace irad::gl {
@@ -19,7 +21,10 @@ namespace irad::gl {
 namespace {
 
 constexpr GLuint kVplBlockBinding = 1;
-constexpr std::size_t kFloatsPerVpl = shaders::kShadingBytesPerVpl / sizeof(float);
+constexpr std::size_t floats_per_vpl(bool glossy) {
+  return static_cast<std::size_t>(shaders::shading_bytes_per_vpl(glossy)) / sizeof(float);
+}
+constexpr std::size_t kFloatsPerVpl = floats_per_vpl(false);
 // The G-buffer's position, normal and albedo at gbuffer_unit, + 1, + 2 (after the shadow atlas
 // at shadow_unit).
 constexpr GLint gbuffer_unit = 3;
@@ -27,6 +32,7 @@ constexpr GLint ortho_unit = 6;
 constexpr GLint gradient_unit = 7; // ShadowLookup::gradient
 constexpr GLint mirror_unit = 8;   // the mirror polygons' corners
 constexpr GLint list_unit = 9;     // TilePixels::list
+constexpr GLint brdf_unit = 10;    // glossy: the G-buffer's (base, f90) and (f0, metallic)
 
 // The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 160 bytes). `triangles`: the
 // triangles of the VPL's mirror polygon (0: its light reaches nothing, as VplShader's).
@@ -60,15 +66,23 @@ void write_vpl(float* out, const AtlasVpl& a, float dmin2, int triangles) {
   if (vpl.mirror >= 0) std::memcpy(out + 36, &vpl.mirror_plane[0], 4 * sizeof(float));
 }
 
-std::string mirror_define(bool mirrors) {
-  return mirrors ? "#define IRAD_MIRRORS 1\n" : "";
+// The lobe[4] of a glossy scene's BatchVpl record, after write_vpl's (zero for a Lambertian VPL).
+void write_lobe(float* out, const AtlasVpl& a) {
+  const std::array<float, 16> r = lobe_record(*a.vpl, a.lobe);
+  std::memcpy(out, r.data(), sizeof(float) * r.size());
+}
+
+std::string defines(bool mirrors, bool glossy) {
+  return std::string(mirrors ? "#define IRAD_MIRRORS 1\n" : "") +
+         (glossy ? "#define IRAD_GLOSSY 1\n" : "");
 }
 
 // The fragment shader for `batch` VPLs, with the occluder planes' fetches or without them, the
-// unsure light or without it, the mirrored VPLs' pyramid test or without it.
-std::string fragment_source(int batch, bool planes, bool unsure, bool mirrors) {
-  std::string source = shaders::with_cube_lookup(
-      shaders::batched_source(shaders::deferred_vpl_fragment, batch, mirror_define(mirrors)));
+// unsure light or without it, the mirrored VPLs' pyramid test or without it, the glTF BRDF or
+// without it.
+std::string fragment_source(int batch, bool planes, bool unsure, bool mirrors, bool glossy) {
+  std::string source = shaders::with_brdf(shaders::with_cube_lookup(
+      shaders::batched_source(shaders::deferred_vpl_fragment, batch, defines(mirrors, glossy))));
   insert_glsl(source, "#pragma irad_planes\n",
               planes ? "const bool u_planes = true;\n" : "const bool u_planes = false;\n");
   insert_glsl(source, "#pragma irad_unsure\n",
@@ -102,27 +116,29 @@ Texture corner_texture(const GladGLContext& api, const std::vector<MirrorPolygon
 
 } // namespace
 
-int DeferredShader::capacity(const GladGLContext& api, int wanted) {
+int DeferredShader::capacity(const GladGLContext& api, int wanted, bool glossy) {
   GLint block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block);
-  return std::min(wanted, static_cast<int>(block) / shaders::kShadingBytesPerVpl);
+  return std::min(wanted, static_cast<int>(block) / shaders::shading_bytes_per_vpl(glossy));
 }
 
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch,
                                bool planes, bool unsure, const std::vector<MirrorPolygon>& mirrors)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch), planes_(planes),
+      glossy_(!scene.all_lambertian()),
       program_(api, "deferred vpl",
                shaders::batched_source(shaders::deferred_vpl_vertex, batch,
-                                       mirror_define(!mirrors.empty())),
-               fragment_source(batch, planes, unsure, !mirrors.empty())),
+                                       defines(!mirrors.empty(), glossy_)),
+               fragment_source(batch, planes, unsure, !mirrors.empty(), glossy_)),
       first_(program_.uniform("u_first")), tile_origin_(program_.uniform("u_tile_origin")),
       pixel_(program_.uniform("u_pixel")), size_(program_.uniform("u_size")),
       shadow_res_(program_.uniform("u_shadow_res")),
       shadow_half_(program_.uniform("u_shadow_half")),
       bias_texel_(program_.uniform("u_bias_texel")), ortho_res_(program_.uniform("u_ortho_res")),
       apply_albedo_(program_.uniform("u_apply_albedo")), listed_(program_.uniform("u_listed")),
-      vpl_block_(make_buffer(api)), empty_vao_(make_vertex_array(api)),
-      vpl_data_(static_cast<std::size_t>(batch) * kFloatsPerVpl, 0.0f) {
+      eye_(program_.optional_uniform("u_eye")), vpl_block_(make_buffer(api)),
+      empty_vao_(make_vertex_array(api)),
+      vpl_data_(static_cast<std::size_t>(batch) * floats_per_vpl(glossy_), 0.0f) {
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "VplBatch");
   if (index == GL_INVALID_INDEX) throw Error("", "shader deferred vpl", "no block VplBatch");
   api.UniformBlockBinding(program_.get(), index, kVplBlockBinding);
@@ -134,6 +150,10 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   api.Uniform1i(program_.uniform("u_normal"), gbuffer_unit + 1);
   api.Uniform1i(program_.uniform("u_albedo"), gbuffer_unit + 2);
   api.Uniform1i(program_.uniform("u_pixel_list"), list_unit);
+  if (glossy_) {
+    api.Uniform1i(program_.uniform("u_base"), brdf_unit);
+    api.Uniform1i(program_.uniform("u_specular"), brdf_unit + 1);
+  }
   // Scale-relative constants, as VplShader: the coincidence guard and the shadow bias.
   api.Uniform1f(program_.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
   api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * diagonal_);
@@ -154,8 +174,9 @@ void DeferredShader::upload(const AtlasVpl* vpls, int n) {
     const auto mirror = static_cast<std::size_t>(vpl.mirror);
     const int triangles =
         vpl.mirror >= 0 && mirror < mirror_triangles_.size() ? mirror_triangles_[mirror] : 0;
-    write_vpl(vpl_data_.data() + kFloatsPerVpl * static_cast<std::size_t>(s), vpls[s], dmin2,
-              triangles);
+    float* out = vpl_data_.data() + floats_per_vpl(glossy_) * static_cast<std::size_t>(s);
+    write_vpl(out, vpls[s], dmin2, triangles);
+    if (glossy_) write_lobe(out + kFloatsPerVpl, vpls[s]);
   }
   // A new store per batch (no wait for the draws that read the last one).
   api_->BindBuffer(GL_UNIFORM_BUFFER, vpl_block_.get());
@@ -202,6 +223,12 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
     api.BindTexture(GL_TEXTURE_2D, mirror_corners_.get());
   }
   gbuffer.bind_textures(gbuffer_unit);
+  if (glossy_) {
+    if (!gbuffer.glossy())
+      throw Error("", "deferred vpl", "a glossy scene's G-buffer lacks the BRDF");
+    gbuffer.bind_brdf_textures(brdf_unit);
+    api.Uniform4fv(eye_, 1, glm::value_ptr(gbuffer.eye()));
+  }
   api.BindVertexArray(empty_vao_.get());
   api.DrawArraysInstanced(GL_TRIANGLES, 0, 3, count);
 }

@@ -6,6 +6,8 @@
 // looked up in a ShadowAtlas or an OrthoAtlas. The cost of a batch is pixels x VPLs, whatever the
 // number of triangles, and a pixel is lit once even where two faces coincide (duplicated faces,
 // back-to-back walls), which the forward passes light once per face that passes the depth test.
+// In a scene with a material that is not Lambertian the light is f_r,x (from the G-buffer) times
+// the glossy VPLs' lobes (AtlasVpl::lobe).
 #include "core/lights/vpl.h"
 #include "core/scene/mirrors.h"
 #include "core/scene/scene.h"
@@ -51,6 +53,8 @@ struct AtlasVpl {
   int set = 0;
   glm::mat4 lookup{1.0f};
   float half_width = 0.0f, texel = 0.0f;
+  // A glossy VPL's lobe (VplSet::lobes[vpl->lobe]); nullptr: Lambertian.
+  const VplLobe* lobe = nullptr;
 };
 
 class DeferredShader {
@@ -65,8 +69,9 @@ public:
       : DeferredShader(api, scene, clamp, batch, planes, unsure,
                        scene.has_specular() ? find_mirrors(scene) : std::vector<MirrorPolygon>{}) {}
 
-  // The largest batch (<= wanted) this GL's uniform blocks hold.
-  static int capacity(const GladGLContext& api, int wanted);
+  // The largest batch (<= wanted) this GL's uniform blocks hold (glossy: a scene with a material
+  // that is not Lambertian, whose records carry the VPLs' lobes).
+  static int capacity(const GladGLContext& api, int wanted, bool glossy);
 
   // The batch's VPLs vpls[0..n) (n <= batch()).
   void upload(const AtlasVpl* vpls, int n);
@@ -85,12 +90,15 @@ private:
   float diagonal_, clamp_;
   int batch_;
   bool planes_;
+  // The scene has a material that is not Lambertian: the VPLs' lobes and the receivers' BRDF
+  // (raster/glsl/deferred_shaders.h, IRAD_GLOSSY).
+  bool glossy_;
   // Per mirror polygon (core/scene/mirrors.h) the triangles its pyramid test reads (<=
   // max_triangles).
   std::vector<int> mirror_triangles_;
   ShaderProgram program_;
   GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
-      apply_albedo_, listed_;
+      apply_albedo_, listed_, eye_;
   Texture mirror_corners_; // with mirrors: their corners (raster/glsl/deferred_shaders.h)
   Buffer vpl_block_;
   VertexArray empty_vao_;

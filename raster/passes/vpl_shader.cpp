@@ -1,5 +1,6 @@
 #include "raster/passes/vpl_shader.h"
 
+#include "raster/glsl/brdf_glsl.h"
 #include "raster/glsl/cube_glsl.h"
 #include "raster/glsl/mirror_shaders.h"
 #include "raster/glsl/shaders.h"
@@ -33,6 +34,29 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp, 
 
 VplShader::~VplShader() = default;
 
+std::array<float, 16> lobe_record(const Vpl& vpl, const VplLobe* lobe) {
+  std::array<float, 16> r{};
+  if (lobe == nullptr) return r;
+  const BrdfInputs& m = lobe->material;
+  glm::vec3 incident = lobe->incident;
+  if (vpl.mirror >= 0) { // as vpl_lobe_shape: a mirrored copy's lobe is reflected
+    const glm::vec3 n(vpl.mirror_plane);
+    incident -= 2.0f * glm::dot(incident, n) / glm::dot(n, n) * n;
+  }
+  r = {m.base.x,       m.base.y,       m.base.z,       m.metallic, m.f0.x,     m.f0.y,
+       m.f0.z,         m.f90,          incident.x,     incident.y, incident.z, m.roughness,
+       lobe->albedo.x, lobe->albedo.y, lobe->albedo.z, 1.0f};
+  return r;
+}
+
+void VplShader::set_lobe(const Vpl& vpl) const {
+  const bool has = lobes_ && vpl.lobe >= 0 && static_cast<std::size_t>(vpl.lobe) < lobes_->size();
+  const std::array<float, 16> r =
+      lobe_record(vpl, has ? &(*lobes_)[static_cast<std::size_t>(vpl.lobe)] : nullptr);
+  api_->Uniform4fv(lobe_, 4, r.data());
+  api_->Uniform4fv(eye_uniform_, 1, glm::value_ptr(eye_));
+}
+
 void VplShader::set_mirror(const MirrorPolygon& mirror, const glm::vec4& plane) const {
   program_.use();
   api_->Uniform4fv(mirror_plane_, 1, glm::value_ptr(plane));
@@ -46,7 +70,8 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp, 
                      const std::string& fragment)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp),
       program_(api, "vpl", material_source(shaders::camera_vertex, MaterialFeatures::of(scene)),
-               shaders::with_cube_lookup(material_source(fragment, MaterialFeatures::of(scene)))),
+               shaders::with_brdf(shaders::with_cube_lookup(
+                   material_source(fragment, MaterialFeatures::of(scene))))),
       material_(program_), view_projection_(program_.uniform("u_view_projection")),
       position_(program_.uniform("u_vpl_position")), normal_(program_.uniform("u_vpl_normal")),
       intensity_(program_.uniform("u_vpl_intensity")), kind_(program_.uniform("u_vpl_kind")),
@@ -54,7 +79,9 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp, 
       min_dist2_(program_.uniform("u_min_dist2")), frame_(program_.uniform("u_shadow_frame")),
       bias_constant_(program_.uniform("u_bias_constant")),
       bias_texel_(program_.uniform("u_bias_texel")),
-      apply_albedo_(program_.uniform("u_apply_albedo")) {
+      apply_albedo_(program_.uniform("u_apply_albedo")),
+      eye_uniform_(program_.optional_uniform("u_eye")), lobe_(program_.optional_uniform("u_lobe")),
+      glossy_(!scene.all_lambertian()) {
   // Samplers of different types may not share a unit: fix every sampler's unit once.
   program_.use();
   api.Uniform1i(program_.uniform("u_shadow"), shadow_unit);
@@ -71,6 +98,8 @@ void VplShader::draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, cons
   if (vpl.mirror >= 0) { // a mirrored VPL: the pyramid program (nothing if the scene has none)
     const auto k = static_cast<std::size_t>(vpl.mirror);
     if (!mirrored_ || k >= mirrors_.size()) return;
+    mirrored_->eye_ = eye_;
+    mirrored_->lobes_ = lobes_;
     mirrored_->set_mirror(mirrors_[k], vpl.mirror_plane);
     mirrored_->draw_pass(vpl, shadow_cube, texel_angle, frame, view_projection, apply_albedo, gpu);
     return;
@@ -96,7 +125,8 @@ void VplShader::draw_pass(const Vpl& vpl, GLuint shadow_cube, float texel_angle,
   api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
   api.BindTexture(GL_TEXTURE_CUBE_MAP, shadow_cube);
-  if (!apply_albedo) {
+  if (glossy_) set_lobe(vpl);
+  if (!apply_albedo && !glossy_) {
     gpu.draw_covered(1, [&](const Material& m) { material_.bind_alpha(api, gpu, m); });
     return;
   }

@@ -10,6 +10,7 @@
 #include "raster/scene/material_glsl.h"
 #include "raster/shadow/shadow_cube.h"
 
+#include <array>
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
@@ -57,6 +58,11 @@ public:
   // The same with any cube map ShadowCube::render_into drew (texel_angle of its resolution).
   void draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,
             const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const;
+  // A scene with a material that is not Lambertian (IRAD_GLOSSY): the camera the next draws look
+  // from (raster/passes/camera_passes.h eye_uniform), and the lobes their glossy VPLs index
+  // (VplSet::lobes; nullptr: every VPL drawn as Lambertian; not owned, it must outlive the draws).
+  void set_eye(const glm::vec4& eye) { eye_ = eye; }
+  void set_lobes(const std::vector<VplLobe>* lobes) { lobes_ = lobes; }
 
 private:
   VplShader(const GladGLContext& api, const Scene& scene, float clamp, bool planes,
@@ -64,6 +70,8 @@ private:
   void set_mirror(const MirrorPolygon& mirror, const glm::vec4& plane) const;
   void draw_pass(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,
                  const glm::mat4& view_projection, bool apply_albedo, const GpuScene& gpu) const;
+
+  void set_lobe(const Vpl& vpl) const;
 
   std::unique_ptr<VplShader> mirrored_; // the program for mirrored VPLs, with mirrors only
   std::vector<MirrorPolygon> mirrors_;
@@ -73,13 +81,28 @@ private:
   ShaderProgram program_;
   MaterialUniforms material_;
   GLint view_projection_, position_, normal_, intensity_, kind_, spot_cos_, dmin2_, min_dist2_,
-      frame_, bias_constant_, bias_texel_, apply_albedo_;
+      frame_, bias_constant_, bias_texel_, apply_albedo_, eye_uniform_, lobe_;
+  bool glossy_;
+  glm::vec4 eye_{0.0f};
+  const std::vector<VplLobe>* lobes_ = nullptr;
 };
+
+// A glossy VPL's lobe as the shaders read it (raster/glsl/deferred_shaders.h BatchVpl::lobe):
+// (base, metallic), (f0, f90), (incident, roughness), (a(incident), 1), the incident direction
+// reflected for a mirrored VPL (core/lights/vpl.h vpl_lobe_shape); all 0 without a lobe.
+std::array<float, 16> lobe_record(const Vpl& vpl, const VplLobe* lobe);
 
 // Texture units shared by the raster's programs.
 inline constexpr GLint shadow_unit = 0;
 inline constexpr GLint material_unit = 1; // base colour texture
 inline constexpr GLint emissive_unit = 2; // emissive texture
+// The glTF BRDF's textures and tables (raster/scene/material_glsl.h, IRAD_GLOSSY and
+// IRAD_NORMAL_MAP): read by the camera passes and the per-VPL passes.
+inline constexpr GLint metallic_roughness_unit = 3;
+inline constexpr GLint specular_unit = 4;
+inline constexpr GLint specular_color_unit = 5;
+inline constexpr GLint normal_unit = 6;
+inline constexpr GLint albedo_table_unit = 7; // GpuScene::albedo_table
 
 // Additive passes over an existing depth buffer: exactly the visible surface passes GL_LEQUAL.
 void set_additive_state(const GladGLContext& api);

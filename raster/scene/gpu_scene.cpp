@@ -1,6 +1,7 @@
 #include "raster/scene/gpu_scene.h"
 
 #include "core/animation/animation.h"
+#include "core/material/albedo_table.h"
 #include "core/util/error.h"
 
 #include <algorithm>
@@ -38,6 +39,17 @@ Texture upload_texture(const GladGLContext& api, const irad::Texture& t) {
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, gl_wrap(t.wrap_s));
   api.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, gl_wrap(t.wrap_t));
+  return tex;
+}
+
+Texture upload_albedo_table(const GladGLContext& api) {
+  static_assert(sizeof(AlbedoTable::Terms) == 3 * sizeof(float));
+  Texture tex = make_float_texture(api, AlbedoTable::kRough, AlbedoTable::kMu, GL_RGB32F, GL_RGB);
+  api.BindTexture(GL_TEXTURE_2D, tex.get());
+  api.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, AlbedoTable::kRough, AlbedoTable::kMu, GL_RGB, GL_FLOAT,
+                    AlbedoTable::get().cells().data());
+  api.BindTexture(GL_TEXTURE_2D, 0);
   return tex;
 }
 
@@ -113,10 +125,12 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   // The optional arrays run parallel to the positions (core/scene/scene.h): GL must never read past
   // one.
   if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
-      (features_.colors && scene.colors.size() != scene.positions.size()))
-    throw Error(scene.source, "gpu scene", "TEXCOORD_1 or COLOR_0 not one per vertex");
+      (features_.colors && scene.colors.size() != scene.positions.size()) ||
+      (features_.normal_maps && scene.tangents.size() != scene.positions.size()))
+    throw Error(scene.source, "gpu scene", "TEXCOORD_1, COLOR_0 or TANGENT not one per vertex");
   if (features_.uv1) uv1_ = upload_attribute(api, scene.uvs1);
   if (features_.colors) colors_ = upload_attribute(api, scene.colors);
+  if (features_.normal_maps) tangents_ = upload_attribute(api, scene.tangents);
 
   api.BindVertexArray(vao_.get());
   api.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
@@ -126,6 +140,7 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   attach_attributes();
 
   for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
+  if (features_.glossy) albedo_table_ = upload_albedo_table(api);
 }
 
 void GpuScene::attach_attributes() const {
@@ -143,6 +158,7 @@ void GpuScene::attach_attributes() const {
                           reinterpret_cast<const void*>(offsetof(Vertex, uv)));
   if (uv1_) attach_packed(api, uv1_, kUv1Attribute, 2);
   if (colors_) attach_packed(api, colors_, kColorAttribute, 4);
+  if (tangents_) attach_packed(api, tangents_, kTangentAttribute, 4);
 }
 
 VertexArray GpuScene::vertex_array_with(const Buffer& indices) const {

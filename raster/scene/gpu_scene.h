@@ -1,9 +1,9 @@
 #pragma once
 // The scene's triangles and textures on the GPU: one interleaved vertex buffer (position, normal,
-// uv), TEXCOORD_1 and COLOR_0 in buffers of their own only when the scene has them (attributes
-// kUv1Attribute and kColorAttribute, raster/scene/material_glsl.h), one index buffer with the
-// triangles grouped by material, and the textures as linear RGBA32F with bilinear filtering (what
-// the walk samples). Textures are uploaded only when the scene has them.
+// uv), TEXCOORD_1, COLOR_0 and TANGENT in buffers of their own only when the scene has them
+// (attributes kUv1Attribute, kColorAttribute and kTangentAttribute, raster/scene/material_glsl.h),
+// one index buffer with the triangles grouped by material, and the textures as linear RGBA32F with
+// bilinear filtering (what the walk samples). Textures are uploaded only when the scene has them.
 #include "core/scene/scene.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/material_features.h"
@@ -46,6 +46,11 @@ public:
 
   const MaterialFeatures& features() const { return features_; }
 
+  // core/material/albedo_table.h's table as an RGB32F texture of AlbedoTable::kRough x kMu texels
+  // (texel (j, i): node (mu_i, r_j); raster/glsl/brdf_glsl.h brdf_albedo_glsl); 0 unless the scene
+  // has a material that is not Lambertian.
+  GLuint albedo_table() const { return albedo_table_.get(); }
+
   // GL name of scene texture `index` (as in Scene::textures).
   GLuint texture(int index) const { return textures_[static_cast<std::size_t>(index)].get(); }
 
@@ -64,11 +69,13 @@ private:
   VertexArray vao_;
   Buffer vertices_;
   Buffer indices_;
-  Buffer uv1_;    // only with TEXCOORD_1
-  Buffer colors_; // only with COLOR_0
+  Buffer uv1_;      // only with TEXCOORD_1
+  Buffer colors_;   // only with COLOR_0
+  Buffer tangents_; // only with normal maps (Scene::tangents)
   MaterialFeatures features_;
   std::vector<Range> ranges_;
   std::vector<Texture> textures_;
+  Texture albedo_table_;
   GLsizei index_count_ = 0;
 };
 

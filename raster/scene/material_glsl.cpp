@@ -4,6 +4,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
+#include <string>
 
 namespace irad::gl {
 
@@ -23,6 +24,10 @@ out vec2 v_uv1;
 layout(location = 4) in vec4 a_color;
 out vec4 v_color;
 #endif
+#ifdef IRAD_NORMAL_MAP
+layout(location = 5) in vec4 a_tangent;
+out vec4 v_tangent;
+#endif
 void copy_material_attributes() {
   v_uv = a_uv;
 #ifdef IRAD_UV1
@@ -30,6 +35,9 @@ void copy_material_attributes() {
 #endif
 #ifdef IRAD_COLOR
   v_color = a_color;
+#endif
+#ifdef IRAD_NORMAL_MAP
+  v_tangent = a_tangent;
 #endif
 }
 )";
@@ -92,6 +100,75 @@ vec3 material_emission() {
     le *= texture(u_emissive_texture, material_uv(u_emissive_map, u_emissive_set)).rgb;
   return le;
 }
+#ifdef IRAD_NORMAL_MAP
+in vec4 v_tangent;
+uniform bool u_has_normal_texture;
+uniform sampler2D u_normal_texture;
+uniform mat3 u_normal_map;
+uniform int u_normal_set;
+uniform float u_normal_scale;
+#endif
+// The shading normal after the normal map (core/material/surface_material.h mapped_normal), from
+// the unit interpolated normal n.
+vec3 material_normal(vec3 n) {
+#ifdef IRAD_NORMAL_MAP
+  if (!u_has_normal_texture) return n;
+  vec3 t = v_tangent.xyz - dot(v_tangent.xyz, n) * n;
+  float len = length(t);
+  if (!(len > 1e-6)) return n;
+  t /= len;
+  vec3 b = (v_tangent.w < 0.0 ? -1.0 : 1.0) * cross(n, t);
+  vec3 c = 2.0 * texture(u_normal_texture, material_uv(u_normal_map, u_normal_set)).xyz - 1.0;
+  c.xy *= u_normal_scale;
+  vec3 o = c.x * t + c.y * b + c.z * n;
+  float o_len = length(o);
+  return o_len > 1e-6 ? o / o_len : n;
+#else
+  return n;
+#endif
+}
+#ifdef IRAD_GLOSSY
+uniform bool u_lambertian;   // Material::lambertian() or a mirror: m = f0 = f90 = 0
+uniform float u_metallic;
+uniform float u_roughness;
+uniform bool u_has_mr_texture;
+uniform sampler2D u_mr_texture;
+uniform mat3 u_mr_map;
+uniform int u_mr_set;
+uniform vec3 u_f0;           // ((ior - 1)/(ior + 1))^2 specular_color
+uniform float u_specular;    // specular_factor
+uniform bool u_has_specular_texture;
+uniform sampler2D u_specular_texture;
+uniform mat3 u_specular_map;
+uniform int u_specular_set;
+uniform bool u_has_specular_color_texture;
+uniform sampler2D u_specular_color_texture;
+uniform mat3 u_specular_color_map;
+uniform int u_specular_color_set;
+// The BRDF's inputs but the base colour (core/material/surface_material.h brdf_inputs_at):
+// m = metallic x texture B, r = roughness x texture G, s = specular x texture alpha,
+// f0 = min(u_f0 x colour texture, 1) s, f90 = s.
+void material_brdf(out float metallic, out float roughness, out vec3 f0, out float f90) {
+  metallic = 0.0;
+  roughness = 1.0;
+  f0 = vec3(0.0);
+  f90 = 0.0;
+  if (u_lambertian) return;
+  vec4 mr = u_has_mr_texture ? texture(u_mr_texture, material_uv(u_mr_map, u_mr_set)) : vec4(1.0);
+  metallic = clamp(u_metallic * mr.b, 0.0, 1.0);
+  roughness = clamp(u_roughness * mr.g, 0.0, 1.0);
+  float s = u_specular;
+  if (u_has_specular_texture)
+    s *= texture(u_specular_texture, material_uv(u_specular_map, u_specular_set)).a;
+  s = clamp(s, 0.0, 1.0);
+  vec3 colour = vec3(1.0);
+  if (u_has_specular_color_texture)
+    colour = texture(u_specular_color_texture,
+                     material_uv(u_specular_color_map, u_specular_color_set)).rgb;
+  f0 = min(u_f0 * colour, vec3(1.0)) * s;
+  f90 = s;
+}
+#endif
 #ifdef IRAD_ALPHA
 uniform int u_alpha_mode;     // 0 opaque, 1 mask, 2 blend
 uniform float u_alpha_cutoff;
@@ -128,6 +205,11 @@ bool material_absent(uint key) {
 #endif
 )";
 
+constexpr const char* kExtraNames[MaterialUniforms::kExtraTextures] = {"mr", "specular",
+                                                                       "specular_color", "normal"};
+constexpr GLint kExtraUnits[MaterialUniforms::kExtraTextures] = {
+    metallic_roughness_unit, specular_unit, specular_color_unit, normal_unit};
+
 GLint alpha_mode_value(AlphaMode mode) {
   return mode == AlphaMode::Mask ? 1 : mode == AlphaMode::Blend ? 2 : 0;
 }
@@ -148,6 +230,8 @@ MaterialFeatures MaterialFeatures::of(const Scene& scene) {
   f.colors = !scene.colors.empty();
   for (const Material& m : scene.materials) f.alpha = f.alpha || m.alpha_mode != AlphaMode::Opaque;
   f.mirrors = scene.has_specular();
+  f.glossy = !scene.all_lambertian();
+  f.normal_maps = !scene.tangents.empty();
   return f;
 }
 
@@ -161,6 +245,8 @@ std::string material_source(const std::string& source, const MaterialFeatures& f
   if (features.colors) defines += "#define IRAD_COLOR 1\n";
   if (features.alpha) defines += "#define IRAD_ALPHA 1\n";
   if (features.mirrors) defines += "#define IRAD_MIRRORS 1\n";
+  if (features.glossy) defines += "#define IRAD_GLOSSY 1\n";
+  if (features.normal_maps) defines += "#define IRAD_NORMAL_MAP 1\n";
   s.insert(line + 1, defines);
   insert_glsl(s, kVertexMarker, kVertexGlsl);
   insert_glsl(s, kFragmentMarker, kFragmentGlsl);
@@ -180,9 +266,23 @@ MaterialUniforms::MaterialUniforms(const ShaderProgram& program) {
   alpha_mode_ = at("u_alpha_mode");
   alpha_cutoff_ = at("u_alpha_cutoff");
   base_alpha_ = at("u_base_alpha");
+  lambertian_ = at("u_lambertian");
+  metallic_ = at("u_metallic");
+  roughness_ = at("u_roughness");
+  f0_ = at("u_f0");
+  specular_ = at("u_specular");
+  for (int k = 0; k < kExtraTextures; ++k) {
+    const std::string name = kExtraNames[k];
+    extra_[k] = {at(("u_has_" + name + "_texture").c_str()), at(("u_" + name + "_map").c_str()),
+                 at(("u_" + name + "_set").c_str())};
+  }
+  normal_scale_ = at("u_normal_scale");
   program.use(); // samplers of different types may not share a unit: fix them once
   program.set_sampler("u_base_texture", material_unit);
   program.set_sampler("u_emissive_texture", emissive_unit);
+  for (int k = 0; k < kExtraTextures; ++k)
+    program.set_sampler(("u_" + std::string(kExtraNames[k]) + "_texture").c_str(), kExtraUnits[k]);
+  program.set_sampler("u_albedo_table", albedo_table_unit);
 }
 
 void MaterialUniforms::bind_map(const GladGLContext& api, GLint matrix, GLint set,
@@ -207,6 +307,35 @@ void MaterialUniforms::bind_base(const GladGLContext& api, const GpuScene& gpu, 
   bind_texture(api, gpu, m.base_color_texture, has_base_texture_, material_unit);
   bind_map(api, base_map_, base_set_, m.base_color_map);
   bind_alpha(api, gpu, m);
+  bind_brdf(api, gpu, m);
+}
+
+void MaterialUniforms::bind_brdf(const GladGLContext& api, const GpuScene& gpu,
+                                 const Material& m) const {
+  const Scene& scene = gpu.scene();
+  const int textures[kExtraTextures] = {m.metallic_roughness_texture, m.specular_texture,
+                                        m.specular_color_texture, m.normal_texture};
+  const TexCoordMap* maps[kExtraTextures] = {&m.metallic_roughness_map, &m.specular_map,
+                                             &m.specular_color_map, &m.normal_map};
+  const bool lambertian = m.lambertian() || m.specular;
+  for (int k = 0; k < kExtraTextures; ++k) {
+    if (extra_[k].has < 0) continue;
+    // As the CPU (texture_at): a texture without its texture coordinates is not read.
+    const bool read = (k == 3 || !lambertian) && has_texcoords(scene, *maps[k]);
+    bind_texture(api, gpu, read ? textures[k] : -1, extra_[k].has, kExtraUnits[k]);
+    bind_map(api, extra_[k].map, extra_[k].set, *maps[k]);
+  }
+  if (normal_scale_ >= 0) api.Uniform1f(normal_scale_, m.normal_scale);
+  if (lambertian_ < 0) return;
+  api.Uniform1i(lambertian_, lambertian ? 1 : 0);
+  api.Uniform1f(metallic_, m.metallic);
+  api.Uniform1f(roughness_, m.roughness);
+  const float r = (m.ior - 1.0f) / (m.ior + 1.0f);
+  const glm::vec3 f0 = r * r * m.specular_color;
+  api.Uniform3fv(f0_, 1, glm::value_ptr(f0));
+  api.Uniform1f(specular_, m.specular_factor);
+  api.ActiveTexture(GL_TEXTURE0 + albedo_table_unit);
+  api.BindTexture(GL_TEXTURE_2D, gpu.albedo_table());
 }
 
 void MaterialUniforms::bind_emission(const GladGLContext& api, const GpuScene& gpu,

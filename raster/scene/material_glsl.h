@@ -5,9 +5,12 @@
 //   "#pragma irad_material_vertex"    (vertex stage: the attributes, varyings and
 //                                      copy_material_attributes())
 //   "#pragma irad_material_fragment"  (fragment stage: the uniforms, material_albedo(),
-//                                      material_emission(), and with alpha material_absent())
+//                                      material_emission(), material_normal(), with alpha
+//                                      material_absent(), with IRAD_GLOSSY material_brdf())
 // material_source() replaces them and defines, after the version line, only the features the
-// scene has: IRAD_UV1 (TEXCOORD_1), IRAD_COLOR (COLOR_0), IRAD_ALPHA (a Mask or Blend material).
+// scene has: IRAD_UV1 (TEXCOORD_1), IRAD_COLOR (COLOR_0), IRAD_ALPHA (a Mask or Blend material),
+// IRAD_MIRRORS, IRAD_GLOSSY (a material that is not Lambertian: metallic, roughness, f0 and f90
+// from factors and textures) and IRAD_NORMAL_MAP (tangents: material_normal() reads the map).
 // A scene with none of them compiles none of their code (the uv transform is one mat3 product,
 // exact for the identity), so its images are bit-identical to those of shaders without them.
 #include "core/scene/scene.h"
@@ -36,11 +39,22 @@ public:
   // Only the alpha uniforms and the base texture that coverage reads (shadow and depth passes).
   void bind_alpha(const GladGLContext& api, const GpuScene& gpu, const Material& m) const;
 
+  // The textures beside the base colour's: metallic-roughness, specular, specular colour, normal.
+  static constexpr int kExtraTextures = 4;
+
 private:
+  // The BRDF's uniforms and textures (IRAD_GLOSSY) and the normal map (IRAD_NORMAL_MAP); part of
+  // bind_base. A mirror or a Lambertian material sets u_lambertian and reads none of them.
+  void bind_brdf(const GladGLContext& api, const GpuScene& gpu, const Material& m) const;
   void bind_map(const GladGLContext& api, GLint matrix, GLint set, const TexCoordMap& map) const;
   GLint base_color_, has_base_texture_, base_map_, base_set_;
   GLint emission_, has_emissive_texture_, emissive_map_, emissive_set_;
   GLint alpha_mode_, alpha_cutoff_, base_alpha_;
+  GLint lambertian_, metallic_, roughness_, f0_, specular_, normal_scale_;
+  struct TextureUniforms {
+    GLint has = -1, map = -1, set = -1;
+  };
+  TextureUniforms extra_[kExtraTextures];
 };
 
 } // namespace irad::gl
