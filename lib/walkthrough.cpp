@@ -78,7 +78,8 @@ WalkMode default_walk_mode(const Scene& scene, std::size_t camera, float orbit) 
 Walkthrough::Walkthrough(Scene& scene, std::size_t camera, const WalkthroughSettings& settings,
                          Log& log)
     : scene_(scene), camera_(camera), settings_(settings), rays_(scene),
-      walk_(scene, rays_, {settings.paths, 64}, log), n_(walk_.header().paths), vpls_(n_) {
+      walk_(scene, rays_, {settings.paths, 64}, log), n_(walk_.header().paths), vpls_(n_),
+      lobes_(n_) {
   if (!(settings.fps > 0.0f)) throw Error("", "--fps", "must be positive");
   const ShadowPlanes planes = planes_for(scene, rays_, settings);
   if (settings.mode == WalkMode::Ring)
@@ -111,10 +112,11 @@ void Walkthrough::trace(std::uint32_t slot, const View& view) {
   // Particle i < N of the walk (only those have the design's depth counts n_j): slot i is traced
   // anew with the current geometry; a still scene gives the same VPLs again.
   vpls_[slot].clear();
-  walk_.trace(slot, vpls_[slot]);
-  if (ring_) ring_->replace(slot, vpls_[slot], view);
+  lobes_[slot].clear();
+  walk_.trace(slot, vpls_[slot], &lobes_[slot]);
+  if (ring_) ring_->replace(slot, vpls_[slot], view, lobes_[slot]);
   if (settings_.mode == WalkMode::Cached)
-    raster_->cache_path(slot, vpls_[slot], settings_.width, settings_.height);
+    raster_->cache_path(slot, vpls_[slot], settings_.width, settings_.height, lobes_[slot]);
   ++next_;
 }
 
@@ -144,7 +146,14 @@ Image Walkthrough::frame(int frame, const Camera& camera) {
 
 VplSet Walkthrough::all_vpls() const {
   VplSet all = walk_.header();
-  for (const auto& p : vpls_) all.vpls.insert(all.vpls.end(), p.begin(), p.end());
+  for (std::size_t p = 0; p < vpls_.size(); ++p) {
+    const auto first = static_cast<std::int32_t>(all.lobes.size());
+    for (Vpl v : vpls_[p]) {
+      if (v.lobe >= 0) v.lobe += first; // the path's lobes after those of the paths before
+      all.vpls.push_back(v);
+    }
+    all.lobes.insert(all.lobes.end(), lobes_[p].begin(), lobes_[p].end());
+  }
   return all;
 }
 

@@ -40,7 +40,7 @@ std::size_t RasterRenderer::Impl::shade_kept(const View& view) {
 }
 
 void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width,
-                                int height) {
+                                int height, const std::vector<VplLobe>& lobes) {
   Impl& im = *impl_;
   const gl::CurrentScope current(*im.context);
   const int resolution = shadow_resolution_for(im.options.shadow_resolution, width, height);
@@ -65,6 +65,7 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
   for (gl::Texture& c : path.cubes)
     if (c.get() != 0) spare.push_back(std::move(c));
   path = {};
+  path.lobes = lobes;
   std::vector<Vpl> in_atlas;
   for (const Vpl& v : vpls) {
     if (!v.carries_light()) continue;
@@ -90,7 +91,7 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
     }
     path.frames.push_back(im.cache_shadow->render_into(v, im.gpu, path.cubes.back().get()));
   }
-  if (im.shadow_cache) im.shadow_cache->store(slot, in_atlas, im.gpu);
+  if (im.shadow_cache) im.shadow_cache->store(slot, in_atlas, im.gpu, lobes);
   im.context->check("cached shadow maps");
 }
 
@@ -102,20 +103,31 @@ Image RasterRenderer::render_cached(const View& view, RasterTimings* timings) {
   im.deal_paths(im.cached_paths); // the ring's paths
   std::size_t passes = 0;
   if (im.shadow_cache && im.batched) passes += im.shade_kept(view);
-  std::vector<const Vpl*> list;
+  // The VPLs kept as cubes, their lobes gathered into one list (each path's indices moved by the
+  // lobes of the paths before it).
+  std::vector<Vpl> vpls;
+  std::vector<VplLobe> lobes;
   std::vector<std::pair<GLuint, glm::mat3>> maps;
-  for (const Impl::CachedPath& p : im.cache)
+  for (const Impl::CachedPath& p : im.cache) {
     for (std::size_t i = 0; i < p.vpls.size(); ++i) {
-      list.push_back(&p.vpls[i]);
+      vpls.push_back(p.vpls[i]);
+      if (vpls.back().lobe >= 0) vpls.back().lobe += static_cast<std::int32_t>(lobes.size());
       maps.emplace_back(p.cubes[i].get(), p.frames[i]);
     }
+    lobes.insert(lobes.end(), p.lobes.begin(), p.lobes.end());
+  }
+  std::vector<const Vpl*> list;
+  for (const Vpl& v : vpls) list.push_back(&v);
   const auto kept = [&](std::size_t k, glm::mat3& frame) {
     if (list[k]->kind == VplKind::Directional) im.directional_shadow(*list[k]);
     frame = maps[k].second;
     return maps[k].first;
   };
   const float texel = im.cache_shadow ? im.cache_shadow->texel_angle() : 1.0f;
+  im.vpl_shader.set_eye(gl::eye_uniform(view));
+  im.vpl_shader.set_lobes(&lobes);
   passes += im.vpl_passes(view, list, kept, texel, nullptr, {});
+  im.vpl_shader.set_lobes(nullptr);
   return im.finish_image(view, t0, passes, nullptr, timings);
 }
 

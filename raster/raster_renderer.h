@@ -123,7 +123,10 @@ public:
   // replacing what the slot held; render_cached shades every cached VPL from `view` without
   // redrawing a shadow map, then adds the emitters. The shadow maps do not depend on the camera,
   // so a moving camera sees no ghosts; they keep the geometry they were drawn with.
-  void cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width, int height);
+  // `lobes`: what the path's glossy VPLs index (Vpl::lobe; QuasiRandomWalk::trace's), kept
+  // with them; render_cached evaluates them toward its own camera.
+  void cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls, int width, int height,
+                  const std::vector<VplLobe>& lobes = {});
   Image render_cached(const View& view, RasterTimings* timings = nullptr);
   std::size_t cache_bytes() const; // GPU memory of the cached shadow maps
 

@@ -83,6 +83,7 @@ struct RasterRenderer::Impl {
     std::vector<gl::Texture> cubes;
     std::vector<glm::mat3> frames;
     std::vector<Vpl> directional; // batched: drawn anew per image
+    std::vector<VplLobe> lobes;   // what the path's glossy VPLs index (Vpl::lobe)
   };
   std::vector<CachedPath> cache;
   std::uint32_t cached_paths = 0; // past the largest slot and path index cached so far

@@ -155,7 +155,8 @@ std::size_t RingRenderer::single_passes() const {
   return impl_->single_passes;
 }
 
-void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view) {
+void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view,
+                           const std::vector<VplLobe>& lobes) {
   Impl& im = *impl_;
   const gl::CurrentScope current(*im.context);
   const std::size_t s = path % im.options.paths;
@@ -195,9 +196,14 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
     else
       alone.push_back(vpl);
   }
-  if (im.batched)
+  im.vpl_shader.set_eye(gl::eye_uniform(view));
+  im.vpl_shader.set_lobes(&lobes);
+  if (im.batched) {
+    im.batched->set_lobes(&lobes);
     im.passes += im.batched->draw(many, [](const Vpl&) { return 0; },
                                   {im.gbuffer.get(), nullptr, bind_slot}, im.gpu, nullptr, {});
+    im.batched->set_lobes(nullptr);
+  }
   for (const Vpl& vpl : alone) {
     if (!vpl.carries_light()) continue;
     if (vpl.kind == VplKind::Directional) {
@@ -212,6 +218,7 @@ void RingRenderer::replace(std::uint32_t path, const std::vector<Vpl>& vpls, con
     ++im.passes;
     ++im.single_passes;
   }
+  im.vpl_shader.set_lobes(nullptr);
   im.bind_sum();
   im.blend(im.slots[s], false); // the image arriving
   im.filled[s] = true;

@@ -35,8 +35,11 @@ public:
   RingRenderer(const RingRenderer&) = delete;
   RingRenderer& operator=(const RingRenderer&) = delete;
 
-  // Renders one path's VPLs (seen from `view`) into slot path mod N, replacing what was there.
-  void replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view);
+  // Renders one path's VPLs (seen from `view`) into slot path mod N, replacing what was there;
+  // `lobes`: what its glossy VPLs index (Vpl::lobe). A glossy receiver's light in the slot is
+  // that toward this view's camera until the slot is drawn again.
+  void replace(std::uint32_t path, const std::vector<Vpl>& vpls, const View& view,
+               const std::vector<VplLobe>& lobes = {});
   // The running sum plus the emitters and the background (raster/passes/background.h) seen from
   // `view` (alpha 1).
   Image frame(const View& view);

@@ -91,9 +91,9 @@ ReducedMatrix light_rows(const Scene& scene, const RayScene& rays, const View& v
     // A cancelled render leaves the rows not started at 0 (a row: a few ms).
     if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
     const ShadingPoint& p = points[static_cast<std::size_t>(i)];
-    const glm::vec3 k = p.albedo * std::numbers::inv_pi_v<float>;
     for_each_vpl_irradiance(rays, p, sorted, dmin, eps, [&](std::size_t j, const glm::vec3& term) {
-      const glm::vec3 c = k * term;
+      if (term == glm::vec3(0.0f)) return;
+      const glm::vec3 c = receiver_brdf(p, sorted.vpls[j]) * term;
       m.column(order[j])[i] = c.x + c.y + c.z;
     });
   });

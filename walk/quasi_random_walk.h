@@ -58,7 +58,7 @@ public:
   QuasiRandomWalk(const Scene& scene, const RayScene& rays, const WalkOptions& options, Log& log);
   // Appends particle i's VPLs (depths 0..D(i), fewer if it leaves the scene or is absorbed), and
   // the lobes of its glossy VPLs to *lobes (core/lights/vpl.h; null: the VPLs keep lobe -1 and
-  // their Lambertian intensity, all the raster draws).
+  // their Lambertian intensity: every estimator then draws them as Lambertian VPLs).
   void trace(std::uint32_t i, std::vector<Vpl>& out, std::vector<VplLobe>* lobes = nullptr) const;
   // N, rho_bar, l_max, ... with no VPLs.
   VplSet header() const;

@@ -32,9 +32,8 @@ ShadingPoint shading_point(const Scene& scene, const RayHit& hit, const glm::vec
       (front || m.double_sided) ? emission_at(scene, hit.triangle, hit.bary) : glm::vec3(0.0f);
   if (!m.lambertian() && !m.specular) {
     const glm::vec3 n = glm::dot(x.normal, x.geometric) > 0.0f ? x.normal : x.geometric;
-    x.glossy = std::make_shared<const GlossyView>(
-        GlossyView{Brdf(brdf_inputs_at(scene, hit.triangle, hit.bary), facing_normal(n, -dir)),
-                   -dir});
+    x.glossy = std::make_shared<const GlossyView>(GlossyView{
+        Brdf(brdf_inputs_at(scene, hit.triangle, hit.bary), facing_normal(n, -dir)), -dir});
   }
   return x;
 }
@@ -86,7 +85,8 @@ Unshadowed unshadowed(const ShadingPoint& x, const Vpl& v, const VplSet& set, fl
   const float e = emission_profile(v, glm::dot(v.normal, w));
   if (e <= 0.0f) return {};
   const float g = e * cos_x / glm::max(dist2, clamp_distance2(v, dmin));
-  if (v.lobe >= 0) return {v.intensity * vpl_lobe_shape(set.lobes[std::size_t(v.lobe)], v, w) * g, -w, dist - eps};
+  if (v.lobe >= 0)
+    return {v.intensity * vpl_lobe_shape(set.lobes[std::size_t(v.lobe)], v, w) * g, -w, dist - eps};
   return {v.intensity * g, -w, dist - eps};
 }
 
@@ -99,10 +99,9 @@ glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl&
   if (u.term == glm::vec3(0.0f)) return u.term;
   // Shadow ray from the receiver toward the VPL, stopping short of both ends; a mirrored VPL
   // (core/scene/mirrors.h) by way of its mirror polygon.
-  if (v.mirror >= 0
-          ? !mirrored_visible(rays, v, set.mirrors[static_cast<std::size_t>(v.mirror)], x.position,
-                              eps)
-          : rays.occluded(x.position, u.toward, eps, u.tmax))
+  if (v.mirror >= 0 ? !mirrored_visible(rays, v, set.mirrors[static_cast<std::size_t>(v.mirror)],
+                                        x.position, eps)
+                    : rays.occluded(x.position, u.toward, eps, u.tmax))
     return glm::vec3(0.0f);
   return u.term;
 }
@@ -132,17 +131,19 @@ void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const Vpl
     if (blocked[k]) out[index[k]] = glm::vec3(0.0f);
 }
 
+glm::vec3 receiver_brdf(const ShadingPoint& x, const Vpl& v) {
+  if (!x.glossy) return x.albedo * std::numbers::inv_pi_v<float>;
+  const glm::vec3 toward =
+      v.kind == VplKind::Directional ? -v.normal : glm::normalize(v.position - x.position);
+  return x.glossy->brdf.eval(x.glossy->wo, toward);
+}
+
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps) {
   glm::vec3 sum(0.0f);
   if (x.glossy) { // f_r,x per VPL, from the direction its light arrives from
     for_each_vpl_irradiance(rays, x, vpls, dmin, eps, [&](std::size_t j, const glm::vec3& term) {
-      if (term == glm::vec3(0.0f)) return;
-      const Vpl& v = vpls.vpls[j];
-      const glm::vec3 toward = v.kind == VplKind::Directional
-                                   ? -v.normal
-                                   : glm::normalize(v.position - x.position);
-      sum += term * x.glossy->brdf.eval(x.glossy->wo, toward);
+      if (term != glm::vec3(0.0f)) sum += term * receiver_brdf(x, vpls.vpls[j]);
     });
     return sum;
   }

@@ -50,6 +50,10 @@ std::optional<ShadingPoint> visible_point(const Scene& scene, const RayScene& ra
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps);
 
+// What weighs VPL v's term (vpl_irradiance) at x: f_r,x(x.wo, toward v) where x has a BRDF,
+// else rho(x)/pi.
+glm::vec3 receiver_brdf(const ShadingPoint& x, const Vpl& v);
+
 // One VPL's term of that sum without rho(x)/pi: I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)
 // (for a directional VPL, gather_directional's), E_k times the lobe's shape for a glossy VPL
 // (core/lights/vpl.h vpl_lobe_shape); the set's mirror polygons and lobes.

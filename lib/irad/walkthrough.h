@@ -74,8 +74,9 @@ private:
   std::uint32_t n_;
   std::unique_ptr<RingRenderer> ring_;
   std::unique_ptr<RasterRenderer> raster_;
-  std::vector<std::vector<Vpl>> vpls_; // per slot: the path's VPLs
-  std::uint32_t next_ = 0;             // frames traced; the next replaces slot next_ mod N
+  std::vector<std::vector<Vpl>> vpls_;      // per slot: the path's VPLs
+  std::vector<std::vector<VplLobe>> lobes_; // per slot: what its glossy VPLs index
+  std::uint32_t next_ = 0;                  // frames traced; the next replaces slot next_ mod N
   int posed_frame_ = -1;
 };
 

@@ -97,7 +97,8 @@ void ShadowCache::copy_block(glm::ivec2 from, Block to) {
                       GL_NEAREST);
 }
 
-void ShadowCache::store(std::uint32_t slot, const std::vector<Vpl>& vpls, const GpuScene& gpu) {
+void ShadowCache::store(std::uint32_t slot, const std::vector<Vpl>& vpls, const GpuScene& gpu,
+                        const std::vector<VplLobe>& lobes) {
   if (slot >= slots_.size()) slots_.resize(std::size_t(slot) + 1);
   std::vector<Kept>& kept = slots_[slot];
   for (const Kept& k : kept)
@@ -112,7 +113,12 @@ void ShadowCache::store(std::uint32_t slot, const std::vector<Vpl>& vpls, const 
     if (batch.empty()) return;
     atlas_.render(batch.data(), static_cast<int>(batch.size()), gpu, frames, fars, blocks);
     for (std::size_t s = 0; s < batch.size(); ++s) {
-      Kept k{*batch[s], frames[s], fars[s], {}, ShadowAtlas::blocks_for(*batch[s])};
+      Kept k{*batch[s], frames[s], fars[s], {}, ShadowAtlas::blocks_for(*batch[s]), {}, false};
+      const auto lobe = static_cast<std::size_t>(batch[s]->lobe);
+      if (batch[s]->lobe >= 0 && lobe < lobes.size()) {
+        k.lobe = lobes[lobe];
+        k.glossy = true;
+      }
       allocate(k.count, k.blocks); // may bind a new page's framebuffer
       api_->Disable(GL_SCISSOR_TEST);
       api_->BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo_.get());
@@ -153,8 +159,9 @@ std::vector<ShadowCache::Page> ShadowCache::pages() const {
     for (const Kept& k : slot) {
       const glm::ivec2 b0 = origin(k.blocks[0].index);
       const glm::ivec2 b1 = k.count == 2 ? origin(k.blocks[1].index) : b0;
-      out[static_cast<std::size_t>(k.blocks[0].page)].vpls.push_back(
-          {&k.vpl, k.frame, k.far, glm::ivec4(b0, b1), 0});
+      AtlasVpl a{&k.vpl, k.frame, k.far, glm::ivec4(b0, b1), 0};
+      a.lobe = k.glossy ? &k.lobe : nullptr;
+      out[static_cast<std::size_t>(k.blocks[0].page)].vpls.push_back(a);
     }
   return out;
 }

@@ -29,10 +29,12 @@ public:
 
   int resolution() const { return resolution_; }
   // Replaces the maps of `slot` by the cubes of `vpls` (each carries light; no directional VPL:
-  // an orthographic map is drawn per image). Changes the bound framebuffers and viewport.
-  void store(std::uint32_t slot, const std::vector<Vpl>& vpls, const GpuScene& gpu);
+  // an orthographic map is drawn per image), and keeps the glossy ones' lobes (Vpl::lobe indexes
+  // `lobes`). Changes the bound framebuffers and viewport.
+  void store(std::uint32_t slot, const std::vector<Vpl>& vpls, const GpuScene& gpu,
+             const std::vector<VplLobe>& lobes = {});
 
-  // The kept VPLs page by page (AtlasVpl::set 0; valid until the next store).
+  // The kept VPLs page by page (AtlasVpl::set 0, lobe the kept one; valid until the next store).
   struct Page {
     ShadowLookup lookup;
     std::vector<AtlasVpl> vpls;
@@ -50,6 +52,8 @@ private:
     float far;
     Block blocks[2];
     int count; // blocks taken
+    VplLobe lobe;
+    bool glossy; // whether `lobe` is the VPL's
   };
   // `count` free blocks of one page (a VPL's blocks are looked up in one texture), in a new page
   // when no page has them.
