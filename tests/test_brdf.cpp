@@ -516,6 +516,49 @@ TEST(BrdfSampler, MeanWeightIsTheAlbedo) {
   }
 }
 
+// The two lobes apart (the glossy camera pass samples the specular one and the VPLs shade the
+// diffuse one): each equals its formula, they add up to eval, and sample_specular's mean weight
+// is the specular lobe's albedo.
+TEST(BrdfSampler, SpecularLobeAloneKeepsItsAlbedo) {
+  std::mt19937 rng(5);
+  double worst_sum = 0.0, worst_part = 0.0;
+  for (int k = 0; k < 20000; ++k) {
+    const RandomCase c = random_case(rng);
+    const Brdf brdf(c.in, c.n);
+    const glm::vec3 d = brdf.eval_diffuse(c.wo, c.wi), sp = brdf.eval_specular(c.wo, c.wi);
+    const glm::vec3 f = brdf.eval(c.wo, c.wi);
+    const Frame fr(c.n);
+    const Lobes truth = truth_f(c.in, fr.local(c.wo), fr.local(c.wi));
+    for (int ch = 0; ch < 3; ++ch) {
+      worst_sum = std::max(worst_sum, std::abs(double(d[ch] + sp[ch]) - f[ch]) / f[ch]);
+      worst_part = std::max(worst_part, std::abs(sp[ch] - truth.specular[ch]) / truth.specular[ch]);
+      if (truth.diffuse[ch] > 1e-6)
+        worst_part = std::max(worst_part, std::abs(d[ch] - truth.diffuse[ch]) / truth.diffuse[ch]);
+    }
+  }
+  std::printf("lobes apart: worst relative |diffuse + specular - f| %.2e, |lobe - formula| %.2e\n",
+              worst_sum, worst_part);
+  EXPECT_LT(worst_sum, 3e-6);  // measured 2.9e-7 (float sums)
+  EXPECT_LT(worst_part, 6e-5); // measured 6.8e-6
+  const Frame f(kNormal);
+  constexpr int n0 = 256, n1 = 32;
+  for (const SamplerCase& c : kSamplerCases) {
+    const Brdf brdf(c.in, f.n);
+    const glm::vec3 wo = f.at(c.cos_o);
+    glm::dvec3 sum(0.0);
+    for (int i = 0; i < n0; ++i)
+      for (int j = 0; j < n1; ++j)
+        if (const auto s = brdf.sample_specular(wo, (float(i) + 0.5f) / n0, (float(j) + 0.5f) / n1))
+          sum += glm::dvec3(s->weight);
+    const glm::dvec3 mean = sum / double(n0 * n1);
+    const glm::dvec3 truth = truth_albedo(c.in, c.cos_o).specular;
+    std::printf("r %.2f m %.1f cos %.1f: specular samples' mean weight - specular albedo %.1e\n",
+                c.in.roughness, c.in.metallic, c.cos_o, max_abs(mean - truth));
+    // Measured: up to 1.9e-4 (r 0.05 at cos 0.1), else below 2e-5 (8192 stratified samples).
+    EXPECT_LT(max_abs(mean - truth), 1e-3);
+  }
+}
+
 // The histogram of 100k samples (random (u0, u1)) in 16 x 16 bins of (n.wi, phi), phi the azimuth
 // of wi from wo's, against N times the integral of pdf() over each bin (a 16 x 16 midpoint grid
 // in (n.wi, phi) per bin, solid angle d(n.wi) dphi); failed samples are one more bin, expected

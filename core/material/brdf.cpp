@@ -77,6 +77,40 @@ glm::vec3 Brdf::eval(const glm::vec3& wo, const glm::vec3& wi) const {
   return (1.0f - in_.metallic) * dielectric + in_.metallic * fm * vd;
 }
 
+glm::vec3 Brdf::eval_diffuse(const glm::vec3& wo, const glm::vec3& wi) const {
+  const float cos_o = glm::dot(n_, wo), cos_i = glm::dot(n_, wi);
+  if (cos_o <= 0.0f || cos_i <= 0.0f) return glm::vec3(0.0f);
+  if (in_.lambertian()) return in_.base * inv_pi;
+  const float w = ggx::schlick_weight(glm::dot(wo, glm::normalize(wo + wi)));
+  const glm::vec3 fd = in_.f0 + (glm::vec3(in_.f90) - in_.f0) * w;
+  return (1.0f - in_.metallic) * (1.0f - fd) * in_.base * inv_pi;
+}
+
+glm::vec3 Brdf::eval_specular(const glm::vec3& wo, const glm::vec3& wi) const {
+  const float cos_o = glm::dot(n_, wo), cos_i = glm::dot(n_, wi);
+  if (cos_o <= 0.0f || cos_i <= 0.0f || in_.lambertian()) return glm::vec3(0.0f);
+  const float vd =
+      ggx::visibility(cos_i, cos_o, alpha_) * ggx::distribution_of(local(wo + wi), alpha_);
+  const float w = ggx::schlick_weight(glm::dot(wo, glm::normalize(wo + wi)));
+  const glm::vec3 fd = in_.f0 + (glm::vec3(in_.f90) - in_.f0) * w;
+  const glm::vec3 fm = in_.base + (1.0f - in_.base) * w;
+  return ((1.0f - in_.metallic) * fd + in_.metallic * fm) * vd;
+}
+
+std::optional<BrdfSample> Brdf::sample_specular(const glm::vec3& wo, float u0, float u1) const {
+  const glm::vec3 vo = local(wo);
+  if (vo.z <= 0.0f || in_.lambertian()) return std::nullopt;
+  const glm::vec3 h = ggx::sample_visible_normal(vo, alpha_, glm::min(u0, 0.99999994f), u1);
+  const glm::vec3 wi_local = 2.0f * glm::dot(vo, h) * h - vo;
+  if (wi_local.z <= 0.0f) return std::nullopt;
+  BrdfSample s;
+  s.wi = glm::normalize(world(wi_local));
+  s.pdf = ggx::visible_normal_pdf(vo, local(wo + s.wi), alpha_);
+  if (!(s.pdf > 0.0f)) return std::nullopt;
+  s.weight = eval_specular(wo, s.wi) * (glm::dot(n_, s.wi) / s.pdf);
+  return s;
+}
+
 float Brdf::specular_share(float cos_o) const {
   if (in_.lambertian()) return 0.0f;
   const Lobes l = lobes(in_, AlbedoTable::get().at(cos_o, in_.roughness));

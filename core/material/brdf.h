@@ -36,6 +36,14 @@ public:
 
   // f_r(wo, wi), without the cosine.
   glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const;
+  // Its two lobes, f_r = diffuse + specular: (1 - m)(1 - F_d) base/pi, and (1 - m) F_d V D +
+  // m F_m V D (0 for a Lambertian material).
+  glm::vec3 eval_diffuse(const glm::vec3& wo, const glm::vec3& wi) const;
+  glm::vec3 eval_specular(const glm::vec3& wo, const glm::vec3& wi) const;
+  // wi from the specular lobe alone (visible-normal GGX): weight = eval_specular (n.wi) / pdf,
+  // pdf the visible normals' density of wi. nullopt where sample() gives none, and for a
+  // Lambertian material.
+  std::optional<BrdfSample> sample_specular(const glm::vec3& wo, float u0, float u1) const;
   // The density of sample()'s wi given wo: p_s pdf_ggx + (1 - p_s) (n.wi)/pi, with p_s the
   // specular lobe's share of the directional albedo at wo; visible-normal GGX (Heitz 2018).
   float pdf(const glm::vec3& wo, const glm::vec3& wi) const;
