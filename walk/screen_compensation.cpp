@@ -5,6 +5,7 @@
 #include "core/sampling/rng.h"
 #include "core/util/error.h"
 #include "core/util/parallel_rows.h"
+#include "walk/screen_lookup.h"
 #include "walk/vpl_gather.h"
 
 #include <atomic>
@@ -28,10 +29,6 @@ struct PixelSamples {
   std::vector<GatherSample> samples;
 };
 
-// What the camera sees at a pixel's centre (visible_point): the point x the pixel's value
-// belongs to; nothing for the background and mirrors.
-using PixelCentre = std::optional<ShadingPoint>;
-
 struct Context {
   const Scene& scene;
   const RayScene& rays;
@@ -46,67 +43,12 @@ struct Context {
     return vpls.clamp_field ? vpls.clamp_field->at(y) : dmin;
   }
 
-  // The pixel whose image value is the radiance leaving y toward the camera, or -1 when the
-  // camera does not see y's side `n` (outside the image, behind the camera, or hidden). The
-  // pixel must see y's surface at its centre (same_surface): y's own pixel, else the nearest of
-  // its 8 neighbours that does; a pixel whose centre sees another surface holds that surface's
-  // radiance, and at the creases and contacts where the clamp's residual lives that would be a
-  // bias the rounds share (docs/accuracy.md). None: -1 (y is evaluated exactly).
-  int camera_pixel(const glm::vec3& y, const glm::vec3& n) const {
-    const glm::vec4 clip = view.projection * view.view * glm::vec4(y, 1.0f);
-    if (!(clip.w > 0.0f)) return -1;
-    const float px = (clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(view.width);
-    const float py = (0.5f - clip.y / clip.w * 0.5f) * static_cast<float>(view.height);
-    if (!(px >= 0.0f && py >= 0.0f && px < float(view.width) && py < float(view.height))) return -1;
-    glm::vec3 to_eye;
-    float distance;
-    if (view.orthographic) {
-      to_eye = -view.forward;
-      distance = glm::dot(y - view.eye, view.forward);
-    } else {
-      to_eye = view.eye - y;
-      distance = glm::length(to_eye);
-      to_eye /= distance;
-    }
-    if (!(glm::dot(n, to_eye) > 0.0f) || !(distance > 2.0f * eps)) return -1;
-    if (rays.occluded(y + eps * n, to_eye, 0.0f, distance - 2.0f * eps)) return -1;
-    // A pixel's height in world units at y's depth (P[1][1] = cot(yfov / 2), or 1 / ymag).
-    const float depth = view.orthographic ? 1.0f : glm::dot(y - view.eye, view.forward);
-    const float footprint =
-        2.0f * depth / (static_cast<float>(view.height) * view.projection[1][1]);
-    const int ix = static_cast<int>(px), iy = static_cast<int>(py);
-    int best = -1;
-    float best_d2 = 0.0f;
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int qx = ix + dx, qy = iy + dy;
-        if (qx < 0 || qy < 0 || qx >= view.width || qy >= view.height) continue;
-        const float ex = float(qx) + 0.5f - px, ey = float(qy) + 0.5f - py;
-        const float d2 = (dx == 0 && dy == 0) ? -1.0f : ex * ex + ey * ey; // y's own pixel first
-        if (best >= 0 && d2 >= best_d2) continue;
-        const int i = qy * view.width + qx;
-        if (!same_surface(centres[std::size_t(i)], y, n, footprint)) continue;
-        best = i;
-        best_d2 = d2;
-      }
-    return best;
-  }
-
-  // Whether a pixel's centre sees y's surface: a diffuse surface (a mirror's pixel holds another
-  // surface's light) turned y's way (cos > 0.95: not the other face of a crease) and on y's
-  // tangent plane within half a pixel's footprint at y (not a surface behind or in front).
-  static bool same_surface(const PixelCentre& centre, const glm::vec3& y, const glm::vec3& n,
-                           float footprint) {
-    return centre && glm::dot(centre->geometric, n) > 0.95f &&
-           std::abs(glm::dot(n, centre->position - y)) <= 0.5f * footprint;
-  }
-
-  std::vector<PixelCentre> centres; // per pixel, filled before the gathers
+  const ScreenLookup* screen = nullptr; // the image's pixel centres
 };
 
 void gather_pixel(const Context& c, int px, int py, std::uint32_t count, std::uint64_t seed,
                   PixelSamples& out, ScreenCompensationStats& stats) {
-  const PixelCentre& centre = c.centres[std::size_t(py) * std::size_t(c.view.width) + px];
+  const PixelCentre& centre = c.screen->centre(px, py);
   if (!centre) return;
   const ShadingPoint& x = *centre;
   out.albedo = x.albedo;
@@ -126,7 +68,7 @@ void gather_pixel(const Context& c, int px, int py, std::uint32_t count, std::ui
     ++stats.in_reach;
     GatherSample g;
     g.weight = weight;
-    g.lookup = c.camera_pixel(y.position, y.geometric);
+    g.lookup = c.screen->camera_pixel(y.position, y.geometric);
     if (g.lookup < 0) {
       ++stats.fallback;
       g.value = (c.emission ? y.emission : glm::vec3(0.0f)) +
@@ -152,15 +94,12 @@ Image screen_space_residual(const Scene& scene, const RayScene& rays, const View
             options.clamp * scene.bounds.diagonal(),
             rays.epsilon(),
             options.emission,
-            {}};
+            nullptr};
   const std::size_t n = std::size_t(view.width) * std::size_t(view.height);
   Image residual(view.width, view.height);
   if (c.reach() <= 0.0f || options.samples == 0) return residual;
-  c.centres.resize(n);
-  parallel_rows(view.height, options.threads, [&](int y) {
-    for (int x = 0; x < view.width; ++x)
-      c.centres[std::size_t(y) * view.width + x] = visible_point(scene, rays, view, x, y);
-  });
+  const ScreenLookup screen(scene, rays, view, options.threads);
+  c.screen = &screen;
 
   std::vector<PixelSamples> pixels(n);
   std::vector<ScreenCompensationStats> row_stats(std::size_t(view.height));
