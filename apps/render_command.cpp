@@ -52,6 +52,8 @@ struct RenderArgs {
   unsigned threads = 0;
   bool bias_compensation = false;
   std::uint32_t bias_samples = 16;
+  float traced_roughness = RenderOptions{}.traced_roughness;
+  std::uint32_t glossy_samples = RenderOptions{}.glossy_samples;
   std::string compensation = "screen";
   std::string gl = "auto";
   std::string sequence = "halton";
@@ -141,6 +143,8 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
   if (r.clusters > 0) seconds["cluster"] = r.seconds.cluster;
   if (args.bias_compensation || args.compensation != "off")
     seconds["compensation"] = r.seconds.compensation;
+  const bool glossy_pass = args.traced_roughness > 0.0f && !scene.all_lambertian();
+  if (glossy_pass) seconds["glossy"] = r.seconds.glossy;
   if (args.estimator == "raster") {
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
@@ -187,6 +191,12 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
           {"bias_compensation", args.bias_compensation},
           {"compensation", args.bias_compensation ? "traced" : args.compensation},
           {"compensation_fallback", r.compensation_fallback},
+          {"traced_roughness", glossy_pass ? args.traced_roughness : 0.0f},
+          {"glossy_samples", args.glossy_samples},
+          {"glossy_pixels", r.glossy_pixels},
+          {"glossy_rays", r.glossy_rays},
+          {"glossy_on_screen", r.glossy_on_screen},
+          {"glossy_exact", r.glossy_exact},
           {"lights", lights_json(scene)},
           {"seconds", seconds}};
 }
@@ -290,6 +300,8 @@ int run_render(const RenderArgs& args) {
   request.render.bias_compensation = args.bias_compensation || args.compensation == "traced";
   request.render.screen_compensation = args.compensation == "screen";
   request.render.bias_samples = args.bias_samples;
+  request.render.traced_roughness = args.traced_roughness;
+  request.render.glossy_samples = args.glossy_samples;
   request.render.clamped_fraction = !args.stats.empty();
   request.scene.limits.max_triangles = args.max_triangles;
   request.scene.limits.max_file_bytes = args.max_file_mib << 20;
@@ -439,6 +451,15 @@ void add_render_command(CLI::App& app, Commands& commands) {
                 "raster, rt-vpl: add back what the clamp removes (short ray-traced gather paths)");
   cmd->add_option("--bias-samples", args->bias_samples,
                   "gather directions per pixel for --bias-compensation")
+      ->capture_default_str();
+  cmd->add_option("--traced-roughness", args->traced_roughness,
+                  "raster, rt-vpl: glossy surfaces rougher than this take their specular lobe from "
+                  "the VPLs, smoother ones from rays (walk/glossy_pass.h); 0: all from the VPLs")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--glossy-samples", args->glossy_samples,
+                  "raster, rt-vpl: specular rays per pixel below --traced-roughness")
+      ->check(CLI::Range(1u, 4096u))
       ->capture_default_str();
   cmd->add_option(
          "--interleave", args->interleave,

@@ -4,6 +4,7 @@
 #include "core/lights/clamp_field.h"
 #include "core/util/error.h"
 #include "walk/bias_compensation.h"
+#include "walk/glossy_pass.h"
 #include "walk/mirror_pass.h"
 #include "walk/ray_scene.h"
 #include "walk/thin_walls.h"
@@ -157,6 +158,7 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
       choose_shadow_planes(s.scene, rays, options.shadow_lod.planes, options.shadow_resolution);
   const double scan = since(t0);
   options.shadow_lod.planes = planes.planes;
+  options.traced_roughness = s.options.traced_roughness;
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
   s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options
@@ -175,7 +177,8 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
 // silhouettes; walk/vpl_tracer.h trace_vpl_pixels). Timed as the raster's.
 void trace_edges(Stages& s, const RayScene& rays, const RasterRenderer& raster) {
   if (!raster.lists_edge_pixels() || s.cancelled()) return;
-  const VplTracerOptions options{s.options.raster.clamp, s.options.pt.threads, s.stop.flag()};
+  const VplTracerOptions options{s.options.raster.clamp, s.options.pt.threads, s.stop.flag(),
+                                 s.options.traced_roughness};
   trace_vpl_pixels(s.scene, rays, s.r.view, s.r.vpls, options, raster.edge_pixels(), s.r.image);
 }
 
@@ -204,11 +207,34 @@ void run_raster(Stages& s, const RayScene& rays) {
 
 void run_rt_vpl(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
-  const VplTracerOptions options{s.options.raster.clamp, s.options.pt.threads, s.stop.flag()};
+  const VplTracerOptions options{s.options.raster.clamp, s.options.pt.threads, s.stop.flag(),
+                                 s.options.traced_roughness};
   s.r.image = trace_vpls(s.scene, rays, s.r.view, s.r.vpls, options);
   if (without_direct(s.options) && !s.cancelled())
     subtract(s.r.image, trace_vpls(s.scene, rays, s.r.view, no_vpls(s.r.vpls), options));
   s.r.seconds.trace = since(t0);
+}
+
+// Narrow glossy lobes: their specular light by rays from the camera (walk/glossy_pass.h), the VPL
+// estimator having shaded their diffuse lobe.
+void trace_glossy(Stages& s, const RayScene& rays) {
+  if (!(s.options.traced_roughness > 0.0f) || s.scene.all_lambertian() || s.cancelled()) return;
+  const auto t0 = Clock::now();
+  GlossyPassOptions o;
+  o.roughness = s.options.traced_roughness;
+  o.samples = s.options.glossy_samples;
+  o.clamp = s.options.raster.clamp;
+  o.environment = !without_direct(s.options); // the background belongs to the part from 0
+  o.seed = s.options.pt.seed;
+  o.threads = s.options.pt.threads;
+  o.cancel = s.stop.flag();
+  GlossyPassStats stats;
+  add_glossy_pass(s.scene, rays, s.r.view, s.r.vpls, o, s.r.image, &stats);
+  s.r.glossy_pixels += stats.pixels;
+  s.r.glossy_rays += stats.rays;
+  s.r.glossy_on_screen += stats.on_screen;
+  s.r.glossy_exact += stats.exact;
+  s.r.seconds.glossy += since(t0);
 }
 
 // Adds the clamp's residual R(x) to the clamped image.
@@ -234,6 +260,7 @@ void compensate_on_screen(Stages& s, const RayScene& rays) {
   options.samples = s.options.screen_samples;
   options.iterations = s.options.screen_iterations;
   options.emission = !without_direct(s.options); // the emitters belong to the part from 0
+  options.traced_roughness = s.options.traced_roughness;
   options.seed = s.options.pt.seed;
   options.threads = s.options.pt.threads;
   ScreenCompensationStats stats;
@@ -318,6 +345,7 @@ void run_vpl_estimator(Stages& s, const RayScene& rays) {
     run_raster(s, rays);
   else
     run_rt_vpl(s, rays);
+  trace_glossy(s, rays);
   if (s.options.bias_compensation && !s.cancelled())
     compensate(s, rays);
   else if (s.options.screen_compensation && !s.cancelled())
@@ -439,6 +467,11 @@ void run_rounds(Stages& s, const RayScene& rays) {
     t.readback += rm.seconds.readback;
     t.trace += rm.seconds.trace;
     t.compensation += rm.seconds.compensation;
+    t.glossy += rm.seconds.glossy;
+    s.r.glossy_pixels += rm.glossy_pixels;
+    s.r.glossy_rays += rm.glossy_rays;
+    s.r.glossy_on_screen += rm.glossy_on_screen;
+    s.r.glossy_exact += rm.glossy_exact;
     s.r.passes += rm.passes;
     s.r.single_passes += rm.single_passes;
     s.r.edge_pixels = std::max(s.r.edge_pixels, rm.edge_pixels);

@@ -310,7 +310,11 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   // The glossy VPLs' lobes, for this image's passes only.
   im.vpl_shader.set_eye(gl::eye_uniform(view));
   im.vpl_shader.set_lobes(&vpls.lobes);
-  if (im.batched) im.batched->set_lobes(&vpls.lobes);
+  im.vpl_shader.set_traced_roughness(im.options.traced_roughness);
+  if (im.batched) {
+    im.batched->set_lobes(&vpls.lobes);
+    im.batched->set_traced_roughness(im.options.traced_roughness);
+  }
   std::vector<const Vpl*> list;
   list.reserve(vpls.vpls.size());
   for (const Vpl& v : vpls.vpls) list.push_back(&v);
@@ -322,7 +326,11 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
                  : im.vpl_passes(view, list, draw_now, im.texel_angle(), timer ? &*timer : nullptr,
                                  progress);
   im.vpl_shader.set_lobes(nullptr);
-  if (im.batched) im.batched->set_lobes(nullptr);
+  im.vpl_shader.set_traced_roughness(0.0f);
+  if (im.batched) {
+    im.batched->set_lobes(nullptr);
+    im.batched->set_traced_roughness(0.0f);
+  }
   Image image = im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
   if (timings && im.batched) timings->shadow_triangles = im.batched->shadow_triangles();
   return image;

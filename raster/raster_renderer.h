@@ -52,6 +52,10 @@ struct RasterOptions {
   // and simplified below `texels` (0.5) shadow texels at the VPL's distance (docs/performance.md).
   // The per-VPL passes (batch 1) always draw everything.
   ShadowLodOptions shadow_lod{};
+  // Glossy scenes: receivers whose roughness lies below this shade only their diffuse lobe from
+  // the VPLs a ray can meet (core/lights/vpl.h ray_reachable); the caller adds their specular
+  // lobe by rays (walk/glossy_pass.h, as lib/render.cpp does). 0: none. render() only.
+  float traced_roughness = 0.0f;
   // When it becomes true (a signal handler), render() draws no further VPL passes and returns
   // what the passes so far accumulated.
   const std::atomic<bool>* cancel = nullptr;

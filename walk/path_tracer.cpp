@@ -1,8 +1,8 @@
 #include "walk/path_tracer.h"
 
 #include "core/lights/light_sampler.h"
-#include "core/material/surface_material.h"
 #include "core/lights/vpl.h"
+#include "core/material/surface_material.h"
 #include "core/sampling/rng.h"
 #include "core/util/error.h"
 #include "core/util/parallel_rows.h"

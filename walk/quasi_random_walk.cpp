@@ -50,6 +50,7 @@ Vpl light_vpl(const LightStart& start, float weight, std::uint32_t path) {
   v.normal = start.normal;
   v.intensity = weight * start.beta;
   v.kind = start.kind;
+  v.environment = start.environment;
   v.depth = 0;
   v.path = path;
   v.cos_inner = start.cos_inner;

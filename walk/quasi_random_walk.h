@@ -67,9 +67,8 @@ public:
 private:
   // The VPL at a glossy vertex y_j and the particle's next direction and throughput; false when
   // the path ends there.
-  bool glossy_vertex(const PathVertex& y, std::uint32_t i, int j, int depth,
-                     glm::vec3& beta, glm::vec3& dir, std::vector<Vpl>& out,
-                     std::vector<VplLobe>* lobes) const;
+  bool glossy_vertex(const PathVertex& y, std::uint32_t i, int j, int depth, glm::vec3& beta,
+                     glm::vec3& dir, std::vector<Vpl>& out, std::vector<VplLobe>* lobes) const;
 
   const Scene* scene_;
   const RayScene* rays_;

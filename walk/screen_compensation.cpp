@@ -10,6 +10,8 @@
 
 #include <atomic>
 #include <cmath>
+#include <numbers>
+#include <optional>
 #include <vector>
 
 namespace irad {
@@ -17,17 +19,37 @@ namespace irad {
 namespace {
 
 // One gather sample of a pixel with weight (1 - d^2/d(y)^2) > 0: y's value is the image at
-// pixel `lookup`, or (lookup < 0) the exactly evaluated `value`.
+// pixel `lookup`, or (lookup < 0) the exactly evaluated `value`. At a glossy x `weight` carries
+// x's BRDF factor and y's camera_to (walk/screen_lookup.h) per channel.
 struct GatherSample {
   int lookup = -1;
-  float weight = 0.0f;
+  glm::vec3 weight{0.0f};
   glm::vec3 value{0.0f};
 };
 
 struct PixelSamples {
-  glm::vec3 albedo{0.0f}; // rho(x)
+  glm::vec3 albedo{0.0f}; // rho(x); 1 at a glossy x (its samples' weights hold the BRDF)
   std::vector<GatherSample> samples;
 };
+
+// A gather direction at x and its BRDF factor f cos / pdf (the albedo multiplies later at a
+// diffuse x: 1): cosine-distributed at a diffuse x, and for the diffuse lobe alone where the
+// glossy pass traces the specular one (pi f_d); by the BRDF's sampling at any other glossy x.
+struct GatherDirection {
+  glm::vec3 w{0.0f};
+  glm::vec3 factor{0.0f};
+};
+std::optional<GatherDirection> gather_direction(const ShadingPoint& x, double u, double v) {
+  if (!x.glossy) return GatherDirection{cosine_direction(x.normal, u, v), glm::vec3(1.0f)};
+  const GlossyView& g = *x.glossy;
+  if (g.traced_specular) {
+    const glm::vec3 w = cosine_direction(x.normal, u, v);
+    return GatherDirection{w, std::numbers::pi_v<float> * g.brdf.eval_diffuse(g.wo, w)};
+  }
+  const auto s = g.brdf.sample(g.wo, static_cast<float>(u), static_cast<float>(v));
+  if (!s) return std::nullopt;
+  return GatherDirection{s->wi, s->weight};
+}
 
 struct Context {
   const Scene& scene;
@@ -36,7 +58,8 @@ struct Context {
   const VplSet& vpls;
   float dmin; // the global clamp, world units
   float eps;
-  bool emission; // ScreenCompensationOptions::emission
+  bool emission;          // ScreenCompensationOptions::emission
+  float traced_roughness; // ScreenCompensationOptions::traced_roughness
 
   float reach() const { return vpls.clamp_field ? vpls.clamp_field->cap() : dmin; }
   float clamp_at(const glm::vec3& y) const {
@@ -50,13 +73,16 @@ void gather_pixel(const Context& c, int px, int py, std::uint32_t count, std::ui
                   PixelSamples& out, ScreenCompensationStats& stats) {
   const PixelCentre& centre = c.screen->centre(px, py);
   if (!centre) return;
-  const ShadingPoint& x = *centre;
-  out.albedo = x.albedo;
+  ShadingPoint x = *centre;
+  mark_traced_specular(x, c.traced_roughness);
+  out.albedo = x.glossy ? glm::vec3(1.0f) : x.albedo;
   Pcg32 rng(mix64(seed ^ (static_cast<std::uint64_t>(py) * c.view.width + px)), 0);
   const glm::vec3 origin = x.position + c.eps * x.geometric;
   for (std::uint32_t s = 0; s < count; ++s) {
     const double u = rng.next_double(), v = rng.next_double();
-    const glm::vec3 w = cosine_direction(x.normal, u, v);
+    const std::optional<GatherDirection> d = gather_direction(x, u, v);
+    if (!d) continue;
+    const glm::vec3 w = d->w;
     if (glm::dot(w, x.geometric) <= 0.0f) continue;
     ++stats.gathers;
     const auto h = c.rays.intersect(origin, w, 0.0f, c.reach());
@@ -67,8 +93,9 @@ void gather_pixel(const Context& c, int px, int py, std::uint32_t count, std::ui
     if (!(weight > 0.0f)) continue;
     ++stats.in_reach;
     GatherSample g;
-    g.weight = weight;
+    g.weight = x.glossy ? weight * d->factor : glm::vec3(weight);
     g.lookup = c.screen->camera_pixel(y.position, y.geometric);
+    if (g.lookup >= 0 && y.glossy) g.weight *= camera_to(y, -w);
     if (g.lookup < 0) {
       ++stats.fallback;
       g.value = (c.emission ? y.emission : glm::vec3(0.0f)) +
@@ -94,6 +121,7 @@ Image screen_space_residual(const Scene& scene, const RayScene& rays, const View
             options.clamp * scene.bounds.diagonal(),
             rays.epsilon(),
             options.emission,
+            options.traced_roughness,
             nullptr};
   const std::size_t n = std::size_t(view.width) * std::size_t(view.height);
   Image residual(view.width, view.height);

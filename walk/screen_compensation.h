@@ -3,6 +3,9 @@
 // Dachsbacher 2011) with an exact fallback. The residual of walk/bias_compensation.h,
 //   R(x) = rho(x) E_w[(1 - d^2 / d(y)^2)+ L(y -> x)]   (w cosine-distributed, y its hit, d =
 //   |x-y|),
+// at a glossy x E_w[f cos / pdf (1 - d^2 / d(y)^2)+ L(y -> x)] with w from the BRDF's sampling
+// (its diffuse lobe alone where the glossy pass traces the specular one), and a glossy y's image
+// value scaled toward x (walk/screen_lookup.h camera_to),
 // needs the radiance leaving the gather hit y. For a diffuse surface that radiance is the same
 // toward x as toward the camera, so where the camera sees y the clamped image itself holds it:
 // L(y -> x) = image(pixel of y). Only the y the camera does not see (hidden, outside the image,
@@ -43,6 +46,9 @@ struct ScreenCompensationOptions {
   // Whether the exactly evaluated hits add their emission L_e(y): false for a part of the paths
   // that does not hold the emitters (its image holds none either), so that parts add up.
   bool emission = true;
+  // Glossy x below this roughness gather for their diffuse lobe alone (the glossy camera pass,
+  // walk/glossy_pass.h, traces their specular lobe unclamped); 0: none.
+  float traced_roughness = 0.0f;
 };
 
 struct ScreenCompensationStats {

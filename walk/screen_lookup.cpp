@@ -6,6 +6,16 @@
 
 namespace irad {
 
+glm::vec3 camera_to(const ShadingPoint& y, const glm::vec3& toward) {
+  if (!y.glossy) return glm::vec3(1.0f);
+  const Brdf& b = y.glossy->brdf;
+  const glm::vec3 to_camera = b.albedo(y.glossy->wo), to_there = b.albedo(toward);
+  glm::vec3 out(0.0f);
+  for (int ch = 0; ch < 3; ++ch)
+    if (to_camera[ch] > 0.0f) out[ch] = to_there[ch] / to_camera[ch];
+  return out;
+}
+
 ScreenLookup::ScreenLookup(const Scene& scene, const RayScene& rays, const View& view,
                            unsigned threads)
     : rays_(&rays), view_(&view), eps_(rays.epsilon()),

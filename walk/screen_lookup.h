@@ -18,11 +18,18 @@ namespace irad {
 // belongs to; nothing for the background and mirrors.
 using PixelCentre = std::optional<ShadingPoint>;
 
+// What scales the radiance y sends toward the camera (an image's value) into what it sends toward
+// unit `toward`: 1 for a diffuse y; for a glossy one the ratio of its directional albedos toward
+// `toward` and toward the camera, per channel (0 where the latter is 0). It carries the Fresnel and
+// the lobe's reach, not a highlight's place: the glossy camera pass traces the narrow lobes.
+glm::vec3 camera_to(const ShadingPoint& y, const glm::vec3& toward);
+
 class ScreenLookup {
 public:
   // Finds every pixel centre's visible point (threads: 0 all cores).
   ScreenLookup(const Scene& scene, const RayScene& rays, const View& view, unsigned threads);
 
+  int width() const { return view_->width; }
   const PixelCentre& centre(int px, int py) const {
     return centres_[static_cast<std::size_t>(py) * static_cast<std::size_t>(view_->width) +
                     static_cast<std::size_t>(px)];

@@ -135,7 +135,20 @@ glm::vec3 receiver_brdf(const ShadingPoint& x, const Vpl& v) {
   if (!x.glossy) return x.albedo * std::numbers::inv_pi_v<float>;
   const glm::vec3 toward =
       v.kind == VplKind::Directional ? -v.normal : glm::normalize(v.position - x.position);
+  if (x.glossy->traced_specular && v.ray_reachable())
+    return x.glossy->brdf.eval_diffuse(x.glossy->wo, toward);
   return x.glossy->brdf.eval(x.glossy->wo, toward);
+}
+
+bool narrow_lobe(const ShadingPoint& x, float roughness) {
+  return x.glossy && x.glossy->brdf.inputs().roughness < roughness;
+}
+
+void mark_traced_specular(ShadingPoint& x, float roughness) {
+  if (!narrow_lobe(x, roughness) || x.glossy->traced_specular) return;
+  GlossyView marked = *x.glossy;
+  marked.traced_specular = true;
+  x.glossy = std::make_shared<const GlossyView>(marked);
 }
 
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,

@@ -19,6 +19,9 @@ namespace irad {
 struct GlossyView {
   Brdf brdf;
   glm::vec3 wo;
+  // The specular lobe is the glossy camera pass's (walk/glossy_pass.h): the VPLs whose light a
+  // ray can meet (Vpl::ray_reachable) are weighed by the diffuse lobe alone.
+  bool traced_specular = false;
 };
 
 // A surface point seen along a ray, with its normals turned toward the ray's origin.
@@ -50,9 +53,16 @@ std::optional<ShadingPoint> visible_point(const Scene& scene, const RayScene& ra
 glm::vec3 gather_vpls(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls, float dmin,
                       float eps);
 
-// What weighs VPL v's term (vpl_irradiance) at x: f_r,x(x.wo, toward v) where x has a BRDF,
-// else rho(x)/pi.
+// What weighs VPL v's term (vpl_irradiance) at x: f_r,x(x.wo, toward v) where x has a BRDF (its
+// diffuse lobe alone where the glossy pass traces the specular one and v is ray_reachable), else
+// rho(x)/pi.
 glm::vec3 receiver_brdf(const ShadingPoint& x, const Vpl& v);
+
+// Whether the glossy camera pass traces x's specular lobe: x has a BRDF of roughness below
+// `roughness` (0: never).
+bool narrow_lobe(const ShadingPoint& x, float roughness);
+// x with GlossyView::traced_specular set where narrow_lobe.
+void mark_traced_specular(ShadingPoint& x, float roughness);
 
 // One VPL's term of that sum without rho(x)/pi: I_k E_k cos_x / max(d^2, d_min^2) V(y_k, x)
 // (for a directional VPL, gather_directional's), E_k times the lobe's shape for a glossy VPL

@@ -22,6 +22,9 @@ struct VplTracerOptions {
   // When it becomes true (a signal handler), no further pixel is started: those left are 0,
   // alpha included.
   const std::atomic<bool>* cancel = nullptr;
+  // Receivers of roughness below it shade only their diffuse lobe from the VPLs a ray can meet
+  // (RasterOptions::traced_roughness; walk/glossy_pass.h adds the specular lobe). 0: none.
+  float traced_roughness = 0.0f;
 };
 
 Image trace_vpls(const Scene& scene, const RayScene& rays, const View& view, const VplSet& vpls,

@@ -42,9 +42,10 @@ struct Vpl {
   glm::vec3 normal{0.0f, 0.0f, 1.0f}; // unit; the spot axis for Spot, d for Directional
   glm::vec3 intensity{0.0f};
   VplKind kind = VplKind::Surface;
-  std::uint16_t depth = 0; // reflections before this VPL (0: on a light)
-  std::uint32_t path = 0;  // particle index i
-  float cos_inner = 1.0f;  // Spot only: cosines of the inner and outer cone angles
+  bool environment = false; // Directional only: one of the environment's directions (not a sun)
+  std::uint16_t depth = 0;  // reflections before this VPL (0: on a light)
+  std::uint32_t path = 0;   // particle index i
+  float cos_inner = 1.0f;   // Spot only: cosines of the inner and outer cone angles
   float cos_outer = 0.0f;
   std::int32_t mirror = -1;     // mirrored VPL: index in VplSet::mirrors; -1: ordinary
   glm::vec4 mirror_plane{0.0f}; // mirrored VPL: (n, w), n toward the side it lights
@@ -55,6 +56,15 @@ struct Vpl {
   std::int32_t lobe = -1;
 
   bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
+  // Whether the glossy camera pass (walk/glossy_pass.h) gathers this VPL's light by rays: a
+  // surface VPL the walk left after a reflection (the rays meet the surface that reflects it),
+  // or an environment direction (the rays that leave the scene read the map). The lights' own
+  // VPLs (emitters, points, spots, suns) stay the VPL estimators', with the full BRDF: they are
+  // the light sampling of the direct light, where rays alone would find small bright emitters
+  // by chance (fireflies).
+  bool ray_reachable() const {
+    return (clamped() && depth > 0) || (kind == VplKind::Directional && environment);
+  }
   // Whether any channel of the intensity is positive (a black VPL draws no pass).
   bool carries_light() const {
     return intensity.x > 0.0f || intensity.y > 0.0f || intensity.z > 0.0f;

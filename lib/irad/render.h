@@ -82,6 +82,11 @@ struct RenderOptions {
   bool screen_compensation = true;
   std::uint32_t screen_samples = 8;
   int screen_iterations = 3;
+  // Glossy surfaces whose roughness lies below traced_roughness get their specular lobe from
+  // `glossy_samples` rays per pixel (walk/glossy_pass.h), the VPLs their diffuse lobe (raster and
+  // rt-vpl alike); 0: every lobe from the VPLs. Nothing changes for Lambertian scenes.
+  float traced_roughness = 0.0f;
+  std::uint32_t glossy_samples = 16;
   bool clamped_fraction = false; // estimate the share of light the clamp removes
   ProgressCallback progress;     // nullptr: no progress reports
   // Cancellation, two ways. `cancel`: a flag any thread or a signal handler may set. When it
@@ -102,8 +107,9 @@ const char* edge_mode_name(EdgePixelMode mode);
 struct StageSeconds {
   // trace: pt and rt-vpl, or the raster's ray-traced pass over visible mirrors
   // cluster: the rows and the clustering of the VPLs (RenderOptions::clusters)
+  // glossy: the narrow lobes' specular rays (walk/glossy_pass.h)
   double load = 0, walk = 0, cluster = 0, raster = 0, readback = 0, trace = 0, compensation = 0,
-         total = 0;
+         glossy = 0, total = 0;
 };
 
 struct RenderResult {
@@ -132,6 +138,10 @@ struct RenderResult {
   double clamped_fraction = -1.0; // when requested (not with mirrors)
   // screen compensation: the share of its gather samples in reach evaluated exactly (hidden)
   double compensation_fallback = -1.0;
+  // The glossy pass (RenderOptions::traced_roughness; summed over the rounds): pixels whose
+  // specular lobe it traced, its rays, and of them those read from the image and those gathered
+  // exactly (hidden from the camera).
+  std::uint64_t glossy_pixels = 0, glossy_rays = 0, glossy_on_screen = 0, glossy_exact = 0;
   std::string gl;              // GL renderer (raster)
   int shadow_resolution = 0;   // the raster's shadow faces, texels per edge (auto resolved)
   int interleave = 0;          // the raster's k (auto resolved); 0 for rt-vpl

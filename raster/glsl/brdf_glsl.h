@@ -62,6 +62,16 @@ vec3 brdf_eval(vec3 base, float metallic, float roughness, vec3 f0, float f90, v
   return (1.0 - metallic) * dielectric + metallic * fm * vd;
 }
 
+// Its diffuse lobe alone, (1 - m)(1 - F_d) base/pi (core/material/brdf.h eval_diffuse).
+vec3 brdf_eval_diffuse(vec3 base, float metallic, float roughness, vec3 f0, float f90, vec3 n,
+                       vec3 wo, vec3 wi) {
+  if (dot(n, wo) <= 0.0 || dot(n, wi) <= 0.0) return vec3(0.0);
+  if (metallic == 0.0 && f90 == 0.0 && f0 == vec3(0.0)) return base * (1.0 / kBrdfPi);
+  float w = brdf_schlick_weight(dot(wo, normalize(wo + wi)));
+  vec3 fd = f0 + (vec3(f90) - f0) * w;
+  return (1.0 - metallic) * (1.0 - fd) * base * (1.0 / kBrdfPi);
+}
+
 // The unit direction from x toward the camera: u_eye = (its position, 1), or (the direction
 // toward it, 0) for an orthographic camera (raster/passes/camera_passes.h eye_uniform).
 uniform vec4 u_eye;

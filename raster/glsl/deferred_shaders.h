@@ -21,7 +21,8 @@ struct BatchVpl {
   vec4 cone;       // cos inner, cos outer, squared clamp distance, far (the atlas's unit);
                    // directional: texel width, half width (world units)
   ivec4 info;      // kind (0 surface, 1 two-sided, 2 point, 3 spot, 4 directional), mirror
-                   // polygon (-1: not mirrored), its triangles
+                   // polygon (-1: not mirrored), its triangles, 1 if a ray can meet its source
+                   // (core/lights/vpl.h ray_reachable)
   ivec4 blocks;    // atlas texel of its first block (xy) and of its second (zw); directional:
                    // its tile's first texel (xy)
   vec4 frame[3];   // columns of world -> cube frame; directional: rows of world -> (u, v, depth)
@@ -46,11 +47,13 @@ flat out vec4 v_cone;
 flat out vec4 v_frame[3];
 #ifdef IRAD_GLOSSY
 flat out vec4 v_lobe[4];
+flat out int v_reachable;
 #endif
 void main() {
   BatchVpl vpl = u_vpl[u_first + gl_InstanceID];
 #ifdef IRAD_GLOSSY
   v_lobe = vpl.lobe;
+  v_reachable = vpl.info.w;
 #endif
   v_kind = vpl.info.x;
 #ifdef IRAD_MIRRORS
@@ -103,6 +106,8 @@ uniform sampler2D u_normal;      // towards the camera
 uniform sampler2D u_albedo;      // with IRAD_GLOSSY the directional albedo toward the camera
 #ifdef IRAD_GLOSSY
 flat in vec4 v_lobe[4];
+flat in int v_reachable;
+uniform float u_traced_roughness; // receivers below it: the diffuse lobe from reachable VPLs
 uniform sampler2D u_base;        // G-buffer: base, f90
 uniform sampler2D u_specular;    // f0, metallic
 #pragma irad_brdf
@@ -240,12 +245,17 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
 // What multiplies vpl_light at pixel p (point x, normal n, roughness r) for light arriving from
 // unit wi: pi f_r,x(wo, wi) with u_apply_albedo, else that over the G-buffer's albedo (the
 // resolve multiplies by it again); a Lambertian pixel's base, or 1, exactly as without IRAD_GLOSSY.
+// Below u_traced_roughness the light of a VPL a ray can meet takes the diffuse lobe alone: the
+// glossy camera pass (walk/glossy_pass.h) adds the specular one.
 vec3 receiver_weight(ivec2 p, vec3 x, vec3 n, float r, vec3 wi) {
   vec4 b = texelFetch(u_base, p, 0), s = texelFetch(u_specular, p, 0);
   vec3 albedo = texelFetch(u_albedo, p, 0).rgb;
   if (s.a == 0.0 && b.a == 0.0 && s.rgb == vec3(0.0)) return u_apply_albedo ? albedo : vec3(1.0);
   vec3 wo = toward_eye(x);
-  vec3 f = kBrdfPi * brdf_eval(b.rgb, s.a, r, s.rgb, b.a, brdf_facing_normal(n, wo), wo, wi);
+  vec3 nf = brdf_facing_normal(n, wo);
+  vec3 f = kBrdfPi * (v_reachable != 0 && r < u_traced_roughness
+                          ? brdf_eval_diffuse(b.rgb, s.a, r, s.rgb, b.a, nf, wo, wi)
+                          : brdf_eval(b.rgb, s.a, r, s.rgb, b.a, nf, wo, wi));
   if (u_apply_albedo) return f;
   return vec3(albedo.r > 0.0 ? f.r / albedo.r : 0.0, albedo.g > 0.0 ? f.g / albedo.g : 0.0,
               albedo.b > 0.0 ? f.b / albedo.b : 0.0);

@@ -71,6 +71,8 @@ uniform bool u_apply_albedo;     // false: irradiance / pi only (interleaved mod
 // The glTF BRDF at both ends (raster/glsl/deferred_shaders.h's maths): the VPL's lobe as
 // BatchVpl's lobe[4] (w of [3]: 1 for a glossy VPL), the receiver's material from its uniforms.
 uniform vec4 u_lobe[4];
+uniform bool u_vpl_reachable;     // a ray can meet its source (core/lights/vpl.h ray_reachable)
+uniform float u_traced_roughness; // receivers below it: the diffuse lobe from reachable VPLs
 #pragma irad_brdf
 #pragma irad_brdf_albedo
 #endif
@@ -140,7 +142,9 @@ void main() {
   if (!(metallic == 0.0 && f90 == 0.0 && f0 == vec3(0.0))) { // as deferred receiver_weight
     vec3 wo = toward_eye(v_position);
     vec3 nf = brdf_facing_normal(n, wo);
-    weight = kBrdfPi * brdf_eval(base, metallic, roughness, f0, f90, nf, wo, -w);
+    weight = kBrdfPi * (u_vpl_reachable && roughness < u_traced_roughness
+                            ? brdf_eval_diffuse(base, metallic, roughness, f0, f90, nf, wo, -w)
+                            : brdf_eval(base, metallic, roughness, f0, f90, nf, wo, -w));
     if (!u_apply_albedo) {
       vec3 a = brdf_albedo(base, metallic, roughness, f0, f90, dot(nf, wo));
       weight = vec3(a.r > 0.0 ? weight.r / a.r : 0.0, a.g > 0.0 ? weight.g / a.g : 0.0,

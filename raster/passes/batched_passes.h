@@ -72,6 +72,8 @@ public:
   // The lobes the next draw()s' glossy VPLs index (VplSet::lobes; Vpl::lobe); nullptr (the
   // default): every VPL is drawn as Lambertian. Not owned: it must outlive those draws.
   void set_lobes(const std::vector<VplLobe>* lobes) { lobes_ = lobes; }
+  // DeferredShader::set_traced_roughness.
+  void set_traced_roughness(float r) { shader_.set_traced_roughness(r); }
   // v's lobe under set_lobes, or nullptr.
   const VplLobe* lobe_of(const Vpl& v) const {
     return lobes_ && v.lobe >= 0 && static_cast<std::size_t>(v.lobe) < lobes_->size()

@@ -50,7 +50,7 @@ void write_vpl(float* out, const AtlasVpl& a, float dmin2, int triangles) {
   const std::int32_t ints[8] = {static_cast<std::int32_t>(vpl.kind),
                                 vpl.mirror,
                                 triangles,
-                                0,
+                                vpl.ray_reachable() ? 1 : 0,
                                 a.blocks.x,
                                 a.blocks.y,
                                 a.blocks.z,
@@ -136,7 +136,8 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
       shadow_half_(program_.uniform("u_shadow_half")),
       bias_texel_(program_.uniform("u_bias_texel")), ortho_res_(program_.uniform("u_ortho_res")),
       apply_albedo_(program_.uniform("u_apply_albedo")), listed_(program_.uniform("u_listed")),
-      eye_(program_.optional_uniform("u_eye")), vpl_block_(make_buffer(api)),
+      eye_(program_.optional_uniform("u_eye")),
+      traced_(program_.optional_uniform("u_traced_roughness")), vpl_block_(make_buffer(api)),
       empty_vao_(make_vertex_array(api)),
       vpl_data_(static_cast<std::size_t>(batch) * floats_per_vpl(glossy_), 0.0f) {
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "VplBatch");
@@ -228,6 +229,7 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
       throw Error("", "deferred vpl", "a glossy scene's G-buffer lacks the BRDF");
     gbuffer.bind_brdf_textures(brdf_unit);
     api.Uniform4fv(eye_, 1, glm::value_ptr(gbuffer.eye()));
+    api.Uniform1f(traced_, traced_roughness_);
   }
   api.BindVertexArray(empty_vao_.get());
   api.DrawArraysInstanced(GL_TRIANGLES, 0, 3, count);

@@ -80,6 +80,9 @@ public:
   void draw(int first, int count, const TilePixels& pixels, const GBuffer& gbuffer,
             const ShadowLookup& shadow, bool apply_albedo) const;
   int batch() const { return batch_; }
+  // Glossy scenes: receivers of roughness below r shade only their diffuse lobe from the VPLs a
+  // ray can meet (RasterOptions::traced_roughness); 0 (the default): none.
+  void set_traced_roughness(float r) { traced_roughness_ = r; }
 
 private:
   // `mirrors`: the scene's mirror polygons (find_mirrors), their corners uploaded to a texture.
@@ -98,7 +101,8 @@ private:
   std::vector<int> mirror_triangles_;
   ShaderProgram program_;
   GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
-      apply_albedo_, listed_, eye_;
+      apply_albedo_, listed_, eye_, traced_;
+  float traced_roughness_ = 0.0f;
   Texture mirror_corners_; // with mirrors: their corners (raster/glsl/deferred_shaders.h)
   Buffer vpl_block_;
   VertexArray empty_vao_;

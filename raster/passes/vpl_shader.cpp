@@ -55,6 +55,8 @@ void VplShader::set_lobe(const Vpl& vpl) const {
       lobe_record(vpl, has ? &(*lobes_)[static_cast<std::size_t>(vpl.lobe)] : nullptr);
   api_->Uniform4fv(lobe_, 4, r.data());
   api_->Uniform4fv(eye_uniform_, 1, glm::value_ptr(eye_));
+  api_->Uniform1i(reachable_, vpl.ray_reachable() ? 1 : 0);
+  api_->Uniform1f(traced_, traced_roughness_);
 }
 
 void VplShader::set_mirror(const MirrorPolygon& mirror, const glm::vec4& plane) const {
@@ -81,7 +83,8 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp, 
       bias_texel_(program_.uniform("u_bias_texel")),
       apply_albedo_(program_.uniform("u_apply_albedo")),
       eye_uniform_(program_.optional_uniform("u_eye")), lobe_(program_.optional_uniform("u_lobe")),
-      glossy_(!scene.all_lambertian()) {
+      reachable_(program_.optional_uniform("u_vpl_reachable")),
+      traced_(program_.optional_uniform("u_traced_roughness")), glossy_(!scene.all_lambertian()) {
   // Samplers of different types may not share a unit: fix every sampler's unit once.
   program_.use();
   api.Uniform1i(program_.uniform("u_shadow"), shadow_unit);
@@ -100,6 +103,7 @@ void VplShader::draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, cons
     if (!mirrored_ || k >= mirrors_.size()) return;
     mirrored_->eye_ = eye_;
     mirrored_->lobes_ = lobes_;
+    mirrored_->traced_roughness_ = traced_roughness_;
     mirrored_->set_mirror(mirrors_[k], vpl.mirror_plane);
     mirrored_->draw_pass(vpl, shadow_cube, texel_angle, frame, view_projection, apply_albedo, gpu);
     return;

@@ -63,6 +63,9 @@ public:
   // (VplSet::lobes; nullptr: every VPL drawn as Lambertian; not owned, it must outlive the draws).
   void set_eye(const glm::vec4& eye) { eye_ = eye; }
   void set_lobes(const std::vector<VplLobe>* lobes) { lobes_ = lobes; }
+  // Receivers of roughness below r shade only their diffuse lobe from the VPLs a ray can meet
+  // (RasterOptions::traced_roughness); 0 (the default): none.
+  void set_traced_roughness(float r) { traced_roughness_ = r; }
 
 private:
   VplShader(const GladGLContext& api, const Scene& scene, float clamp, bool planes,
@@ -81,7 +84,8 @@ private:
   ShaderProgram program_;
   MaterialUniforms material_;
   GLint view_projection_, position_, normal_, intensity_, kind_, spot_cos_, dmin2_, min_dist2_,
-      frame_, bias_constant_, bias_texel_, apply_albedo_, eye_uniform_, lobe_;
+      frame_, bias_constant_, bias_texel_, apply_albedo_, eye_uniform_, lobe_, reachable_, traced_;
+  float traced_roughness_ = 0.0f;
   bool glossy_;
   glm::vec4 eye_{0.0f};
   const std::vector<VplLobe>* lobes_ = nullptr;

@@ -1,0 +1,133 @@
+#include "walk/glossy_pass.h"
+
+#include "core/sampling/rng.h"
+#include "core/util/parallel_rows.h"
+#include "walk/mirror_pass.h"
+#include "walk/screen_lookup.h"
+#include "walk/vpl_gather.h"
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+namespace irad {
+
+namespace {
+
+struct Context {
+  const Scene& scene;
+  const RayScene& rays;
+  const VplSet& vpls;
+  const ScreenLookup& screen;
+  const Image& before; // the VPL estimator's image, read at the hits the camera sees
+  const GlossyPassOptions& options;
+  float dmin, eps;
+  std::vector<double> cdf; // running sums of the VPLs' intensity luminance (sampled_gather)
+};
+
+// VPLs drawn per hit the camera does not see.
+constexpr std::uint32_t kHiddenVpls = 32;
+
+// gather_vpls at y estimated from kHiddenVpls VPLs drawn by the luminance of their intensity,
+// each term over kHiddenVpls times its probability: unbiased, at a fixed cost per hit whatever
+// the number of VPLs (every VPL with fewer than that).
+glm::vec3 sampled_gather(const Context& c, const ShadingPoint& y, Pcg32& rng) {
+  const std::size_t n = c.vpls.vpls.size();
+  if (n <= kHiddenVpls) return gather_vpls(c.rays, y, c.vpls, c.dmin, c.eps);
+  const double total = c.cdf.back();
+  if (!(total > 0.0)) return glm::vec3(0.0f);
+  glm::vec3 sum(0.0f);
+  for (std::uint32_t k = 0; k < kHiddenVpls; ++k) {
+    const double u = rng.next_double() * total;
+    const auto j =
+        static_cast<std::size_t>(std::upper_bound(c.cdf.begin(), c.cdf.end(), u) - c.cdf.begin());
+    if (j >= n) continue;
+    const double p = (c.cdf[j] - (j > 0 ? c.cdf[j - 1] : 0.0)) / total;
+    const Vpl& v = c.vpls.vpls[j];
+    const glm::vec3 term = vpl_irradiance(c.rays, y, v, c.vpls, c.dmin, c.eps);
+    if (term != glm::vec3(0.0f)) sum += term * receiver_brdf(y, v) / static_cast<float>(p);
+  }
+  return sum / static_cast<float>(kHiddenVpls);
+}
+
+// L(y -> x) along the ray origin + t dir (glossy_pass.h's cases).
+glm::vec3 incoming(const Context& c, const glm::vec3& origin, const glm::vec3& dir, Pcg32& rng,
+                   GlossyPassStats& stats) {
+  const auto hit = c.rays.intersect(origin, dir, 0.0f, std::numeric_limits<float>::infinity());
+  if (!hit)
+    return c.options.environment && c.scene.has_environment() ? c.scene.environment->radiance(dir)
+                                                              : glm::vec3(0.0f);
+  if (c.scene.material_of(hit->triangle).specular)
+    return mirror_radiance(c.scene, c.rays, c.vpls, hit->triangle, origin + hit->t * dir, dir,
+                           c.dmin, c.eps);
+  const ShadingPoint y = shading_point(c.scene, *hit, origin, dir);
+  const int pixel = c.screen.camera_pixel(y.position, y.geometric);
+  if (pixel < 0) {
+    ++stats.exact;
+    return sampled_gather(c, y, rng);
+  }
+  ++stats.on_screen;
+  const glm::vec3 shown(c.before.pixels()[static_cast<std::size_t>(pixel)]);
+  return glm::max(shown - y.emission, glm::vec3(0.0f)) * camera_to(y, -dir);
+}
+
+// The mean of `samples` specular directions' weight times L at pixel (px, py), 0 where the pixel
+// does not see a narrow lobe.
+glm::vec3 specular_light(const Context& c, int px, int py, GlossyPassStats& stats) {
+  const PixelCentre& centre = c.screen.centre(px, py);
+  if (!centre || !narrow_lobe(*centre, c.options.roughness)) return glm::vec3(0.0f);
+  const ShadingPoint& x = *centre;
+  ++stats.pixels;
+  const std::uint64_t index =
+      static_cast<std::uint64_t>(py) * static_cast<std::uint64_t>(c.screen.width()) +
+      static_cast<std::uint64_t>(px);
+  Pcg32 rng(mix64(c.options.seed ^ 0x676c6f7373ULL ^ mix64(index)), 0);
+  const glm::vec3 origin = x.position + c.eps * x.geometric;
+  glm::vec3 sum(0.0f);
+  const auto n = static_cast<float>(c.options.samples);
+  for (std::uint32_t s = 0; s < c.options.samples; ++s) {
+    // Stratified in u0 (the visible normal's radius), random in u1.
+    const float u0 = (static_cast<float>(s) + static_cast<float>(rng.next_double())) / n;
+    const float u1 = static_cast<float>(rng.next_double());
+    const auto sample = x.glossy->brdf.sample_specular(x.glossy->wo, u0, u1);
+    if (!sample || !(glm::dot(sample->wi, x.geometric) > 0.0f)) continue;
+    ++stats.rays;
+    sum += sample->weight * incoming(c, origin, sample->wi, rng, stats);
+  }
+  return sum / n;
+}
+
+} // namespace
+
+void add_glossy_pass(const Scene& scene, const RayScene& rays, const View& view, const VplSet& vpls,
+                     const GlossyPassOptions& options, Image& image, GlossyPassStats* stats) {
+  if (!(options.roughness > 0.0f) || options.samples == 0 || scene.all_lambertian()) return;
+  const ScreenLookup screen(scene, rays, view, options.threads);
+  const Image before = image;
+  Context c{
+      scene,          rays, vpls, screen, before, options, options.clamp * scene.bounds.diagonal(),
+      rays.epsilon(), {}};
+  double total = 0.0;
+  for (const Vpl& v : vpls.vpls) {
+    total +=
+        glm::max(0.0, 0.2126 * v.intensity.x + 0.7152 * v.intensity.y + 0.0722 * v.intensity.z);
+    c.cdf.push_back(total);
+  }
+  std::vector<GlossyPassStats> row_stats(static_cast<std::size_t>(view.height));
+  parallel_rows(view.height, options.threads, [&](int y) {
+    for (int x = 0; x < view.width; ++x) {
+      if (options.cancel != nullptr && options.cancel->load(std::memory_order_relaxed)) return;
+      const glm::vec3 l = specular_light(c, x, y, row_stats[static_cast<std::size_t>(y)]);
+      image.at(x, y) += glm::vec4(l, 0.0f);
+    }
+  });
+  if (stats == nullptr) return;
+  for (const GlossyPassStats& r : row_stats) {
+    stats->pixels += r.pixels;
+    stats->rays += r.rays;
+    stats->on_screen += r.on_screen;
+    stats->exact += r.exact;
+  }
+}
+
+} // namespace irad
