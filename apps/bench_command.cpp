@@ -26,14 +26,18 @@ void add_bench_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--cornell", options->cornell, "The Cornell box glTF")->capture_default_str();
   cmd->add_option("--scene", options->scenes,
                   "Only these scenes, comma-separated: cornell, sphere, large (the default set), "
-                  "sphere2m (the Cornell box with a sphere of 2.1M triangles), zdm2, godot "
-                  "(third-party levels from --shared, with a light and camera added)")
+                  "cornell_glossy (data/cornell_glossy.gltf beside --cornell), sphere2m (the "
+                  "Cornell box with a sphere of 2.1M triangles), zdm2, godot (third-party levels "
+                  "from --shared, with a light and camera added, Lambertian), godot_glossy (the "
+                  "godot room with its own materials and metal spheres)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"cornell", "sphere", "large", "sphere2m", "zdm2", "godot"}));
+      ->check(CLI::IsMember({"cornell", "cornell_glossy", "sphere", "large", "sphere2m", "zdm2",
+                             "godot", "godot_glossy"}));
   cmd->add_option("--shared", options->shared, "Folder of the third-party scenes (zdm2, godot)")
       ->capture_default_str();
   cmd->add_option("--size", options->size,
-                  "Image side (default 64 quick, 256 full, 128 for sphere2m, zdm2 and godot)");
+                  "Image side (default 64 quick, 256 full, 128 for sphere2m and the third-party "
+                  "scenes)");
   cmd->add_option("--reference-spp", options->reference_spp,
                   "Path-traced reference samples per pixel (default 256 quick, 4096 full, 1024 for "
                   "sphere2m)");

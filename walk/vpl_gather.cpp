@@ -84,9 +84,13 @@ Unshadowed unshadowed(const ShadingPoint& x, const Vpl& v, const VplSet& set, fl
   if (cos_x <= 0.0f) return {};
   const float e = emission_profile(v, glm::dot(v.normal, w));
   if (e <= 0.0f) return {};
-  const float g = e * cos_x / glm::max(dist2, clamp_distance2(v, dmin));
-  if (v.lobe >= 0)
-    return {v.intensity * vpl_lobe_shape(set.lobes[std::size_t(v.lobe)], v, w) * g, -w, dist - eps};
+  const float dmin2 = clamp_distance2(v, dmin);
+  const float g = e * cos_x / glm::max(dist2, dmin2);
+  if (v.lobe >= 0) { // a virtual spherical light of the clamp's radius (vpl_lobe_shape)
+    const glm::vec3 shape =
+        vpl_lobe_shape(set.lobes[std::size_t(v.lobe)], v, w, std::sqrt(dmin2) / dist);
+    return {v.intensity * shape * g, -w, dist - eps};
+  }
   return {v.intensity * g, -w, dist - eps};
 }
 

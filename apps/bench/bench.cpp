@@ -63,6 +63,14 @@ Sweep sweep_for(const BenchOptions& o, const std::string& name) {
     s.rt_paths.insert(s.rt_paths.end(), {1024, 4096});
     s.k1_max = 4096;
   }
+  if (name == "cornell_glossy") { // the default's error against time, and the estimators'
+    s.paths = o.quick ? std::vector<std::uint32_t>{16} : std::vector<std::uint32_t>{64, 256, 1024};
+    s.rt_paths = o.quick ? std::vector<std::uint32_t>{16} : std::vector<std::uint32_t>{256, 1024};
+    s.every_sequence = false;
+    s.k1_max = o.quick ? 16u : 256u;
+    s.rounds = o.quick ? std::vector<std::uint32_t>{1} : std::vector<std::uint32_t>{1, 2, 4, 8};
+    s.rt_rounds_max = o.quick ? 1u : 2u;
+  }
   if (name == "cornell") {
     s.cluster_paths = o.quick ? std::vector<std::uint32_t>{256}
                               : std::vector<std::uint32_t>{2048, 4096, 8192, 16384, 32768};
@@ -105,6 +113,9 @@ BenchScene make_scene(const std::string& name, const BenchOptions& o, const Swee
     s = load_real_scene(name, o.shared, log);
   } else if (name == "cornell") {
     s = load_gltf(o.cornell, log);
+  } else if (name == "cornell_glossy") { // beside the Cornell box: data/cornell_glossy.gltf
+    s = load_gltf((std::filesystem::path(o.cornell).parent_path() / "cornell_glossy.gltf").string(),
+                  log);
   } else if (name == "sphere") {
     s = integrating_sphere(1.0, 0.7, o.quick ? 2 : 3).scene;
   } else if (name == "large") {
@@ -122,7 +133,8 @@ BenchScene make_scene(const std::string& name, const BenchOptions& o, const Swee
   } else {
     throw Error("", "--scene",
                 "unknown bench scene '" + name +
-                    "' (cornell, sphere, large, sphere2m, zdm2, godot)");
+                    "' (cornell, cornell_glossy, sphere, large, sphere2m, zdm2, godot, "
+                    "godot_glossy)");
   }
   return {name, std::move(s), since(t0)};
 }
@@ -390,7 +402,8 @@ void bench_scene(const BenchScene& b, const Sweep& sw, const BenchOptions& o,
   const Target g{b, rays, view, reference(b, rays, view, sw.reference_spp, o.out_dir, log), bvh};
   bench_raster(g, sw, rows, log);
   bench_clusters(g, sw, rows, log);
-  if (b.name == "cornell" || is_real_scene(b.name)) bench_default(g, sw, rows, log);
+  if (b.name == "cornell" || b.name == "cornell_glossy" || is_real_scene(b.name))
+    bench_default(g, sw, rows, log);
   bench_rt_vpl(g, sw, rows, log);
   bench_pt(g, sw, rows, log);
 }

@@ -19,7 +19,8 @@ struct BenchOptions {
   std::string cornell = "data/cornell_box.gltf";
   // The third-party scenes zdm2 and godot (apps/bench/bench_real_scenes.h) are read from here.
   std::string shared = "../shared/scenes";
-  // Any of cornell, sphere, large, zdm2, godot (empty: cornell, sphere, large).
+  // Any of cornell, cornell_glossy, sphere, large, sphere2m, zdm2, godot, godot_glossy (empty:
+  // cornell, sphere, large).
   std::vector<std::string> scenes;
   int size = 0;                    // image side; 0: 64 quick, 256 full (zdm2, godot: 128)
   std::uint32_t reference_spp = 0; // 0: 256 quick, 4096 full (sphere2m: 1024)

@@ -97,7 +97,17 @@ struct VplLobe {
 // pi f_r,y(incident, w) / a(incident) per channel (0 where a is 0), the glossy VPL v's emission
 // toward unit w relative to a Lambertian VPL's, about v.normal; a mirrored copy (v.mirror >= 0)
 // reflects the lobe's incident direction in its mirror plane, as it reflects its normal.
-glm::vec3 vpl_lobe_shape(const VplLobe& lobe, const Vpl& v, const glm::vec3& w);
+// spread = r / d > 0: the lobe of a virtual spherical light of radius r seen from d away (Hasan,
+// Krivanek, Walter & Bala 2009: a VPL's light spread over its neighbourhood, so that a narrow lobe
+// lands as a patch, not a spike), approximated by the lobe widened to spread_roughness and
+// divided by the widened lobe's albedo (the VPL's power stays). The estimators take r = the VPL's
+// clamp distance (its neighbours' spacing under the local clamp); spread 0: the point's lobe.
+glm::vec3 vpl_lobe_shape(const VplLobe& lobe, const Vpl& v, const glm::vec3& w,
+                         float spread = 0.0f);
+// The perceptual roughness of a lobe of `roughness` seen through a sphere of angular radius
+// about `spread` (radians): alpha'^2 = alpha^2 + (spread / 2)^2 (the reflected direction moves by
+// twice the half vector's angle), alpha' at most 1.
+float spread_roughness(float roughness, float spread);
 
 struct VplSet {
   std::vector<Vpl> vpls;

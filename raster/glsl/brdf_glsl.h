@@ -87,15 +87,6 @@ vec3 brdf_facing_normal(vec3 n, vec3 wo) {
   return normalize(n + (1e-3 - c) * wo);
 }
 
-// A glossy VPL's lobe shape pi f_r,y(incident, w) / a(incident) per channel (0 where a is 0):
-// core/lights/vpl.h vpl_lobe_shape, about the VPL's normal ny.
-vec3 brdf_lobe_shape(vec3 base, float metallic, float roughness, vec3 f0, float f90, vec3 ny,
-                     vec3 incident, vec3 w, vec3 albedo) {
-  vec3 f = brdf_eval(base, metallic, roughness, f0, f90, ny, incident, w);
-  return vec3(albedo.r > 0.0 ? kBrdfPi * f.r / albedo.r : 0.0,
-              albedo.g > 0.0 ? kBrdfPi * f.g / albedo.g : 0.0,
-              albedo.b > 0.0 ? kBrdfPi * f.b / albedo.b : 0.0);
-}
 )";
 
 // The directional albedo (core/material/brdf.h directional_albedo): the table's S, W, Q at
@@ -124,6 +115,28 @@ vec3 brdf_albedo(vec3 base, float metallic, float roughness, vec3 f0, float f90,
   vec3 metal = base * (t.x - t.y) + t.y;
   vec3 kept = 1.0 - f0 * (1.0 - t.z) - f90 * t.z;
   return ((1.0 - metallic) * dielectric + metallic * metal) + (1.0 - metallic) * base * kept;
+}
+
+// core/lights/vpl.h spread_roughness: alpha'^2 = alpha^2 + (spread / 2)^2, at most 1.
+float brdf_spread_roughness(float roughness, float spread) {
+  float a = max(roughness * roughness, kBrdfMinAlpha);
+  return sqrt(sqrt(min(a * a + 0.25 * spread * spread, 1.0)));
+}
+
+// A glossy VPL's lobe shape pi f_r,y(incident, w) / a(incident) per channel (0 where a is 0),
+// about the VPL's normal ny; spread > 0 widens it to the virtual spherical light's and takes the
+// widened lobe's albedo (core/lights/vpl.h vpl_lobe_shape).
+vec3 brdf_lobe_shape(vec3 base, float metallic, float roughness, vec3 f0, float f90, vec3 ny,
+                     vec3 incident, vec3 w, vec3 albedo, float spread) {
+  float widened = spread > 0.0 ? brdf_spread_roughness(roughness, spread) : 0.0;
+  if (widened > roughness) {
+    roughness = widened;
+    albedo = brdf_albedo(base, metallic, roughness, f0, f90, dot(ny, incident));
+  }
+  vec3 f = brdf_eval(base, metallic, roughness, f0, f90, ny, incident, w);
+  return vec3(albedo.r > 0.0 ? kBrdfPi * f.r / albedo.r : 0.0,
+              albedo.g > 0.0 ? kBrdfPi * f.g / albedo.g : 0.0,
+              albedo.b > 0.0 ? kBrdfPi * f.b / albedo.b : 0.0);
 }
 )";
 

@@ -111,6 +111,7 @@ uniform float u_traced_roughness; // receivers below it: the diffuse lobe from r
 uniform sampler2D u_base;        // G-buffer: base, f90
 uniform sampler2D u_specular;    // f0, metallic
 #pragma irad_brdf
+#pragma irad_brdf_albedo
 #endif
 uniform ivec2 u_tile_origin;     // the viewport's lower-left pixel
 uniform ivec3 u_pixel;           // k, dx, dy
@@ -235,7 +236,8 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
 #ifdef IRAD_GLOSSY
   if (v_lobe[3].w > 0.0)
     light *= brdf_lobe_shape(v_lobe[0].rgb, v_lobe[0].a, v_lobe[2].w, v_lobe[1].rgb, v_lobe[1].a,
-                             v_vpl_normal, v_lobe[2].xyz, w, v_lobe[3].rgb);
+                             v_vpl_normal, v_lobe[2].xyz, w, v_lobe[3].rgb,
+                             sqrt(v_cone.z) / dist); // the clamp's sphere
 #endif
   if (lookup_unsure) unsure = dot(light, LUMINANCE);
   return hidden ? vec3(0.0) : light;

@@ -133,7 +133,8 @@ void main() {
   vec3 light = u_vpl_intensity * (g * INV_PI);
   if (u_lobe[3].w > 0.0)
     light *= brdf_lobe_shape(u_lobe[0].rgb, u_lobe[0].a, u_lobe[2].w, u_lobe[1].rgb, u_lobe[1].a,
-                             u_vpl_normal, u_lobe[2].xyz, w, u_lobe[3].rgb);
+                             u_vpl_normal, u_lobe[2].xyz, w, u_lobe[3].rgb,
+                             sqrt(u_dmin2) / dist); // the clamp's sphere
   vec3 base = material_albedo();
   float metallic, roughness, f90;
   vec3 f0;

@@ -33,6 +33,7 @@ constexpr GLint gradient_unit = 7; // ShadowLookup::gradient
 constexpr GLint mirror_unit = 8;   // the mirror polygons' corners
 constexpr GLint list_unit = 9;     // TilePixels::list
 constexpr GLint brdf_unit = 10;    // glossy: the G-buffer's (base, f90) and (f0, metallic)
+constexpr GLint table_unit = 12;   // glossy: the albedo table (the VSLs' widened lobes)
 
 // The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 160 bytes). `triangles`: the
 // triangles of the VPL's mirror polygon (0: its light reaches nothing, as VplShader's).
@@ -154,6 +155,8 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   if (glossy_) {
     api.Uniform1i(program_.uniform("u_base"), brdf_unit);
     api.Uniform1i(program_.uniform("u_specular"), brdf_unit + 1);
+    api.Uniform1i(program_.uniform("u_albedo_table"), table_unit);
+    albedo_table_ = albedo_table_texture(api);
   }
   // Scale-relative constants, as VplShader: the coincidence guard and the shadow bias.
   api.Uniform1f(program_.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
@@ -228,6 +231,8 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
     if (!gbuffer.glossy())
       throw Error("", "deferred vpl", "a glossy scene's G-buffer lacks the BRDF");
     gbuffer.bind_brdf_textures(brdf_unit);
+    api.ActiveTexture(GL_TEXTURE0 + table_unit);
+    api.BindTexture(GL_TEXTURE_2D, albedo_table_.get());
     api.Uniform4fv(eye_, 1, glm::value_ptr(gbuffer.eye()));
     api.Uniform1f(traced_, traced_roughness_);
   }

@@ -13,6 +13,7 @@
 #include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/gbuffer.h"
+#include "raster/scene/gpu_scene.h"
 
 #include <glm/glm.hpp>
 #include <vector>
@@ -104,6 +105,7 @@ private:
       apply_albedo_, listed_, eye_, traced_;
   float traced_roughness_ = 0.0f;
   Texture mirror_corners_; // with mirrors: their corners (raster/glsl/deferred_shaders.h)
+  Texture albedo_table_;   // glossy: raster/scene/gpu_scene.h albedo_table_texture
   Buffer vpl_block_;
   VertexArray empty_vao_;
   std::vector<float> vpl_data_;

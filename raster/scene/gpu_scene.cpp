@@ -42,17 +42,6 @@ Texture upload_texture(const GladGLContext& api, const irad::Texture& t) {
   return tex;
 }
 
-Texture upload_albedo_table(const GladGLContext& api) {
-  static_assert(sizeof(AlbedoTable::Terms) == 3 * sizeof(float));
-  Texture tex = make_float_texture(api, AlbedoTable::kRough, AlbedoTable::kMu, GL_RGB32F, GL_RGB);
-  api.BindTexture(GL_TEXTURE_2D, tex.get());
-  api.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, AlbedoTable::kRough, AlbedoTable::kMu, GL_RGB, GL_FLOAT,
-                    AlbedoTable::get().cells().data());
-  api.BindTexture(GL_TEXTURE_2D, 0);
-  return tex;
-}
-
 Vertex vertex_of(const Scene& scene, std::size_t i) {
   const glm::vec3& p = scene.positions[i];
   const glm::vec3& n = scene.normals[i];
@@ -80,6 +69,17 @@ void attach_packed(const GladGLContext& api, const Buffer& buffer, GLuint locati
 }
 
 } // namespace
+
+Texture albedo_table_texture(const GladGLContext& api) {
+  static_assert(sizeof(AlbedoTable::Terms) == 3 * sizeof(float));
+  Texture tex = make_float_texture(api, AlbedoTable::kRough, AlbedoTable::kMu, GL_RGB32F, GL_RGB);
+  api.BindTexture(GL_TEXTURE_2D, tex.get());
+  api.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  api.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, AlbedoTable::kRough, AlbedoTable::kMu, GL_RGB, GL_FLOAT,
+                    AlbedoTable::get().cells().data());
+  api.BindTexture(GL_TEXTURE_2D, 0);
+  return tex;
+}
 
 void GpuScene::update_vertices() {
   if (!scene_->animation) return;
@@ -140,7 +140,7 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   attach_attributes();
 
   for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
-  if (features_.glossy) albedo_table_ = upload_albedo_table(api);
+  if (features_.glossy) albedo_table_ = albedo_table_texture(api);
 }
 
 void GpuScene::attach_attributes() const {

@@ -13,6 +13,10 @@
 
 namespace irad::gl {
 
+// core/material/albedo_table.h's table as an RGB32F texture of AlbedoTable::kRough x kMu texels
+// (texel (j, i): node (mu_i, r_j); raster/glsl/brdf_glsl.h brdf_albedo_glsl).
+Texture albedo_table_texture(const GladGLContext& api);
+
 class GpuScene {
 public:
   GpuScene(const GladGLContext& api, const Scene& scene);
@@ -46,9 +50,8 @@ public:
 
   const MaterialFeatures& features() const { return features_; }
 
-  // core/material/albedo_table.h's table as an RGB32F texture of AlbedoTable::kRough x kMu texels
-  // (texel (j, i): node (mu_i, r_j); raster/glsl/brdf_glsl.h brdf_albedo_glsl); 0 unless the scene
-  // has a material that is not Lambertian.
+  // albedo_table_texture, uploaded once; 0 unless the scene has a material that is not
+  // Lambertian.
   GLuint albedo_table() const { return albedo_table_.get(); }
 
   // GL name of scene texture `index` (as in Scene::textures).
