@@ -22,15 +22,20 @@ struct Context {
   const Image& before; // the VPL estimator's image, read at the hits the camera sees
   const GlossyPassOptions& options;
   float dmin, eps;
-  std::vector<double> cdf; // running sums of the VPLs' intensity luminance (sampled_gather)
+  std::vector<double> cdf; // running sums of the VPLs' sampling weights (sampled_gather)
 };
+
+// A VPL's weight in sampled_gather: the luminance of its intensity.
+double sampling_weight(const Vpl& v) {
+  return glm::max(0.0, 0.2126 * v.intensity.x + 0.7152 * v.intensity.y + 0.0722 * v.intensity.z);
+}
 
 // VPLs drawn per hit the camera does not see.
 constexpr std::uint32_t kHiddenVpls = 32;
 
-// gather_vpls at y estimated from kHiddenVpls VPLs drawn by the luminance of their intensity,
-// each term over kHiddenVpls times its probability: unbiased, at a fixed cost per hit whatever
-// the number of VPLs (every VPL with fewer than that).
+// gather_vpls at y estimated from kHiddenVpls VPLs drawn by sampling_weight, each term over
+// kHiddenVpls times its probability: unbiased, at a fixed cost per hit whatever the number of
+// VPLs (every VPL with fewer than that).
 glm::vec3 sampled_gather(const Context& c, const ShadingPoint& y, Pcg32& rng) {
   const std::size_t n = c.vpls.vpls.size();
   if (n <= kHiddenVpls) return gather_vpls(c.rays, y, c.vpls, c.dmin, c.eps);
@@ -61,7 +66,9 @@ glm::vec3 incoming(const Context& c, const glm::vec3& origin, const glm::vec3& d
     return mirror_radiance(c.scene, c.rays, c.vpls, hit->triangle, origin + hit->t * dir, dir,
                            c.dmin, c.eps);
   const ShadingPoint y = shading_point(c.scene, *hit, origin, dir);
-  const int pixel = c.screen.camera_pixel(y.position, y.geometric);
+  // A narrow-lobe y's pixel holds its diffuse lobe alone: its light toward x from the VPLs.
+  const int pixel =
+      narrow_lobe(y, c.options.roughness) ? -1 : c.screen.camera_pixel(y.position, y.geometric);
   if (pixel < 0) {
     ++stats.exact;
     return sampled_gather(c, y, rng);
@@ -109,8 +116,7 @@ void add_glossy_pass(const Scene& scene, const RayScene& rays, const View& view,
       rays.epsilon(), {}};
   double total = 0.0;
   for (const Vpl& v : vpls.vpls) {
-    total +=
-        glm::max(0.0, 0.2126 * v.intensity.x + 0.7152 * v.intensity.y + 0.0722 * v.intensity.z);
+    total += sampling_weight(v);
     c.cdf.push_back(total);
   }
   std::vector<GlossyPassStats> row_stats(static_cast<std::size_t>(view.height));

@@ -12,13 +12,12 @@
 //   - y seen by the camera (walk/screen_lookup.h): the image's value there less y's L_e (a
 //     diffuse surface sends toward x what it sends toward the camera; a glossy one that times
 //     the ratio of its directional albedos toward x and toward the camera);
-//   - y hidden: the VPLs' light at y toward x, exactly (walk/vpl_gather.h gather_vpls, shadow
-//     rays);
+//   - y hidden, or of a narrow lobe itself (its pixel holds its diffuse lobe alone): the light of
+//     32 VPLs drawn by power at y toward x (an unbiased estimate of walk/vpl_gather.h
+//     gather_vpls, with shadow rays);
 //   - y on a mirror: the mirror's radiance (walk/mirror_pass.h); a ray that leaves the scene: the
 //     environment.
-// What the image does not hold is left out: the specular light of another narrow-lobe surface
-// seen in this one (its pixel holds its diffuse lobe only), and the clamp's residual at y when
-// the compensation runs after this pass.
+// The clamp's residual at y is left out (the compensation runs after this pass).
 #include "core/camera/view.h"
 #include "core/image/image.h"
 #include "core/lights/vpl.h"
@@ -32,7 +31,7 @@ namespace irad {
 
 struct GlossyPassOptions {
   float roughness = 0.0f;     // receivers below it (walk/vpl_gather.h narrow_lobe); 0: none
-  std::uint32_t samples = 16; // specular directions per pixel
+  std::uint32_t samples = 32; // specular directions per pixel
   float clamp = 0.05f;        // the exact gathers' global d_min (fraction of the diagonal)
   // Whether escaped rays add the environment: false for a part of the paths that does not hold
   // the direct light (its image holds no background either), so that parts add up.
@@ -46,7 +45,7 @@ struct GlossyPassStats {
   std::uint64_t pixels = 0;    // pixels whose specular lobe was traced
   std::uint64_t rays = 0;      // specular rays traced
   std::uint64_t on_screen = 0; // of them, hits read from the image
-  std::uint64_t exact = 0;     // and hits the camera does not see, gathered exactly
+  std::uint64_t exact = 0;     // and hits gathered from the VPLs (hidden, or narrow lobes)
 };
 
 // Adds L_s to every pixel whose centre sees a surface with a narrow lobe; `image` is the VPL

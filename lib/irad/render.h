@@ -85,8 +85,9 @@ struct RenderOptions {
   // Glossy surfaces whose roughness lies below traced_roughness get their specular lobe from
   // `glossy_samples` rays per pixel (walk/glossy_pass.h), the VPLs their diffuse lobe (raster and
   // rt-vpl alike); 0: every lobe from the VPLs. Nothing changes for Lambertian scenes.
-  float traced_roughness = 0.0f;
-  std::uint32_t glossy_samples = 16;
+  // 0.35 and 32: measured on the glossy Cornell box and godot_glossy (docs/performance.md).
+  float traced_roughness = 0.35f;
+  std::uint32_t glossy_samples = 32;
   bool clamped_fraction = false; // estimate the share of light the clamp removes
   ProgressCallback progress;     // nullptr: no progress reports
   // Cancellation, two ways. `cancel`: a flag any thread or a signal handler may set. When it
