@@ -245,6 +245,33 @@ ColumnClusters cluster_columns(const ReducedMatrix& m, std::size_t clusters, std
   return out;
 }
 
+// The draw weights of cluster [begin, end): alpha_j, and for a glossy VPL alpha_j plus half its
+// power's share of the cluster's alpha. A glossy VPL's lobe may miss the sampled rows where it
+// lights what they do not see (a narrow lobe's reflection, a surface hidden from the camera):
+// drawn by alpha alone it would come rarely and scaled by alpha_C / alpha_j, a firefly; any
+// positive weights keep the representative unbiased. Clusters of Lambertian VPLs keep alpha.
+std::vector<double> draw_weights(const VplSet& walk, const ColumnClusters& clusters,
+                                 std::uint32_t begin, std::uint32_t end) {
+  std::vector<double> w(end - begin);
+  double alpha = 0.0, power = 0.0;
+  bool glossy = false;
+  for (std::uint32_t i = begin; i < end; ++i) {
+    const std::uint32_t j = clusters.order[i];
+    alpha += w[i - begin] = clusters.norms[j];
+    const glm::vec3& c = walk.vpls[j].intensity;
+    power += double(c.x) + c.y + c.z;
+    glossy = glossy || walk.vpls[j].lobe >= 0;
+  }
+  if (!glossy || !(power > 0.0)) return w;
+  for (std::uint32_t i = begin; i < end; ++i) {
+    const Vpl& v = walk.vpls[clusters.order[i]];
+    if (v.lobe < 0) continue;
+    const double p = double(v.intensity.x) + v.intensity.y + v.intensity.z;
+    w[i - begin] += 0.5 * alpha * p / power;
+  }
+  return w;
+}
+
 Representatives pick_representatives(const VplSet& walk, const ColumnClusters& clusters,
                                      std::uint64_t seed) {
   Representatives out;
@@ -254,12 +281,23 @@ Representatives pick_representatives(const VplSet& walk, const ColumnClusters& c
   out.set.vpls.reserve(clusters.clusters());
   for (std::size_t k = 0; k < clusters.clusters(); ++k) {
     const std::uint32_t begin = clusters.starts[k], end = clusters.starts[k + 1];
-    double alpha = 0.0;
-    for (std::uint32_t i = begin; i < end; ++i) alpha += clusters.norms[clusters.order[i]];
+    const std::vector<double> w = draw_weights(walk, clusters, begin, end);
+    double total = 0.0;
+    for (const double x : w) total += x;
     Pcg32 rng(seed, k);
-    const std::uint32_t j = draw_by_norm(clusters.order, begin, end, clusters.norms, alpha, rng);
+    // As draw_by_norm, over w.
+    double u = rng.next_double() * total;
+    std::uint32_t i = end - 1;
+    for (std::uint32_t m = begin; m < end; ++m) {
+      u -= w[m - begin];
+      if (u < 0.0) {
+        i = m;
+        break;
+      }
+    }
+    const std::uint32_t j = clusters.order[i];
     Vpl v = walk.vpls[j];
-    v.intensity *= static_cast<float>(alpha / clusters.norms[j]);
+    v.intensity *= static_cast<float>(total / w[i - begin]);
     v.clamp_distance = 0.0f;
     out.set.vpls.push_back(v);
   }

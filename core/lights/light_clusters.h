@@ -56,7 +56,9 @@ struct Representatives {
 
 // One representative per cluster (drawn with the seed), its intensity scaled by
 // alpha_C / alpha_j; the set keeps the walk's counts and mirrors, not its clamp field (the
-// representatives are clamped anew at their own density).
+// representatives are clamped anew at their own density). In a cluster with glossy VPLs each
+// glossy one's weight is alpha_j plus half its power's share of alpha_C (a lobe may light what no
+// sampled row sees), and the scale is the weights' sum over its weight: still unbiased.
 Representatives pick_representatives(const VplSet& walk, const ColumnClusters& clusters,
                                      std::uint64_t seed);
 
