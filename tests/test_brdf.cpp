@@ -682,5 +682,5 @@ TEST(BrdfAlbedo, HemisphericalIsTheCosineWeightedMean) {
   std::printf("hemispherical: worst |error| %.2e\n", worst);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -105,8 +105,7 @@ enum Mode { kEval, kAlbedo, kDiffuse };
 Image render_cases(const std::vector<Case>& cases, Mode mode) {
   const auto context = gl::create_osmesa_context();
   const GladGLContext& api = context->api();
-  const gl::ShaderProgram program(api, "brdf test", kVertex,
-                                  gl::shaders::with_brdf(kFragment));
+  const gl::ShaderProgram program(api, "brdf test", kVertex, gl::shaders::with_brdf(kFragment));
   const int texels = kWidth * kHeight * kTexels;
   const gl::Texture input = gl::make_float_texture(api, texels, 1);
   const std::vector<float> data = case_texels(cases);

@@ -117,5 +117,5 @@ TEST(Gl, TargetBeyondTheImplementationLimitIsRefused) {
   EXPECT_EQ(image.height(), 4);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad
