@@ -70,6 +70,7 @@ slow=(
   Glossy.PlaneUnderSquareLightPathTracer
   GlossyCornell.PathTracerAndRtVplAgreeInEveryChannelsMean
   GlossyCornell.WithAMirrorWallTooPathTracerAndRtVplAgree
+  RasterGlossy.InterleavedKeepsTheMeans
 )
 default_filter="*-$(IFS=:; echo "${slow[*]}")"
 filter=${1:-$default_filter}

@@ -250,9 +250,10 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
 // Below u_traced_roughness the light of a VPL a ray can meet takes the diffuse lobe alone: the
 // glossy camera pass (walk/glossy_pass.h) adds the specular one.
 vec3 receiver_weight(ivec2 p, vec3 x, vec3 n, float r, vec3 wi) {
+  vec4 a = texelFetch(u_albedo, p, 0);
+  vec3 albedo = a.rgb;
+  if (a.w < 0.5) return u_apply_albedo ? albedo : vec3(1.0); // Lambertian: no more fetches
   vec4 b = texelFetch(u_base, p, 0), s = texelFetch(u_specular, p, 0);
-  vec3 albedo = texelFetch(u_albedo, p, 0).rgb;
-  if (s.a == 0.0 && b.a == 0.0 && s.rgb == vec3(0.0)) return u_apply_albedo ? albedo : vec3(1.0);
   vec3 wo = toward_eye(x);
   vec3 nf = brdf_facing_normal(n, wo);
   vec3 f = kBrdfPi * (v_reachable != 0 && r < u_traced_roughness

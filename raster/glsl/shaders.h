@@ -197,8 +197,9 @@ void main() {
 // G-buffer (raster/image/gbuffer.h): the world position (w = 1 where there is a surface), the
 // shading normal facing the camera and the albedo. With IRAD_GLOSSY the normal's w holds the
 // roughness, the albedo is the directional albedo a(wo) toward the camera (the interleaved
-// resolve's demodulation; base for a Lambertian material), and two more targets hold (base, f90)
-// and (f0, metallic).
+// resolve's demodulation; base for a Lambertian material) with w 1 where the BRDF is not
+// Lambertian (0: the shading reads no more), and two more targets hold (base, f90) and
+// (f0, metallic).
 inline constexpr const char* gbuffer_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;
@@ -227,7 +228,8 @@ void main() {
   vec3 wo = toward_eye(v_position);
   float cos_o = dot(brdf_facing_normal(n, wo), wo);
   o_normal = vec4(n, roughness);
-  o_albedo = vec4(brdf_albedo(base, metallic, roughness, f0, f90, cos_o), 1.0);
+  bool lambertian = metallic == 0.0 && f90 == 0.0 && f0 == vec3(0.0);
+  o_albedo = vec4(brdf_albedo(base, metallic, roughness, f0, f90, cos_o), lambertian ? 0.0 : 1.0);
   o_base = vec4(base, f90);
   o_specular = vec4(f0, metallic);
 #else
