@@ -67,6 +67,11 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.clusters = k.clusters.value_or(0);
   require_at_least_one(k.rounds, "rounds");
   o.rounds = k.rounds;
+  if (!(k.traced_roughness >= 0.0f && k.traced_roughness <= 1.0f))
+    throw Error("", "traced_roughness", "must be between 0 and 1");
+  o.traced_roughness = k.traced_roughness;
+  require_at_least_one(k.glossy_samples, "glossy_samples");
+  o.glossy_samples = k.glossy_samples;
   return o;
 }
 
@@ -77,6 +82,7 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   seconds["cluster"] = r.seconds.cluster;
   seconds["raster"] = r.seconds.raster;
   seconds["trace"] = r.seconds.trace;
+  seconds["glossy"] = r.seconds.glossy;
   seconds["total"] = r.seconds.total;
   py::dict s;
   s["estimator"] = k.estimator;

@@ -3,6 +3,7 @@
 // released, and the results as NumPy arrays and dicts. The bindings add no logic of their own:
 // everything is irad::render (lib/irad/render.h) and irad::quasi_random_walk.
 #include "core/scene/scene.h"
+#include "irad/render.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pytypes.h>
@@ -35,6 +36,8 @@ struct RenderKeywords {
   std::optional<std::size_t> clusters;   // RenderOptions::clusters (0: every VPL); None: auto
   std::uint32_t rounds = 1;              // RenderOptions::rounds
   std::string interleave_edges = "auto"; // auto, traced, shaded, off (irad render's option)
+  float traced_roughness = RenderOptions{}.traced_roughness;     // --traced-roughness
+  std::uint32_t glossy_samples = RenderOptions{}.glossy_samples; // --glossy-samples
 };
 
 // (image float32 (h, w, 3), stats dict). The GIL is released while rendering; Ctrl-C (SIGINT

@@ -17,6 +17,7 @@ import irad
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CORNELL = os.path.join(ROOT, "data", "cornell_box.gltf")
+CORNELL_GLOSSY = os.path.join(ROOT, "data", "cornell_glossy.gltf")
 IRAD = os.environ.get("IRAD_BINARY", os.path.join(ROOT, "build", "bin", "irad"))
 
 
@@ -80,6 +81,20 @@ def test_edge_pixels_equal_the_cli(cornell, tmp_path, edges):
     assert np.array_equal(image, exr[..., :3])  # bit-identical
     with pytest.raises(irad.Error, match="interleave_edges"):
         irad.render(cornell, size=(8, 8), paths=4, interleave_edges="sometimes")
+
+
+def test_glossy_pass_equals_the_cli(tmp_path):
+    glossy = irad.load(CORNELL_GLOSSY)
+    image, stats = irad.render(glossy, size=(32, 24), paths=64, traced_roughness=0.5,
+                               glossy_samples=8)
+    assert stats["seconds"]["glossy"] > 0.0
+    out = tmp_path / "glossy.exr"
+    subprocess.run([IRAD, "render", CORNELL_GLOSSY, "-o", str(out), "--size", "32x24", "--paths",
+                    "64", "--traced-roughness", "0.5", "--glossy-samples", "8", "--quiet"],
+                   check=True)
+    assert np.array_equal(image, irad.read_exr(str(out))[..., :3])  # bit-identical
+    with pytest.raises(irad.Error, match="traced_roughness"):
+        irad.render(glossy, size=(8, 8), paths=4, traced_roughness=2.0)
 
 
 def test_scene_summary(cornell):
