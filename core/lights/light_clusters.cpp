@@ -272,6 +272,42 @@ std::vector<double> draw_weights(const VplSet& walk, const ColumnClusters& clust
   return w;
 }
 
+// The glossy VPLs no sampled row sees (alpha_j = 0: their lobes light only what the rows miss)
+// are not dropped: m of them, m their power's share of the clusters (at least 1), drawn with
+// replacement by power, each scaled by P / (m p_j): an unbiased estimate of their light.
+void add_unseen_glossy(const VplSet& walk, const ColumnClusters& clusters, std::uint64_t seed,
+                       std::vector<Vpl>& out) {
+  std::vector<std::uint32_t> unseen;
+  std::vector<double> cdf;
+  double unseen_power = 0.0, all = 0.0;
+  for (std::size_t j = 0; j < walk.vpls.size(); ++j) {
+    const glm::vec3& c = walk.vpls[j].intensity;
+    const double p = double(c.x) + c.y + c.z;
+    all += p;
+    if (walk.vpls[j].lobe < 0 || j >= clusters.norms.size() || clusters.norms[j] > 0.0f ||
+        !(p > 0.0))
+      continue;
+    unseen.push_back(static_cast<std::uint32_t>(j));
+    unseen_power += p;
+    cdf.push_back(unseen_power);
+  }
+  if (unseen.empty()) return;
+  const auto m = static_cast<std::size_t>(
+      std::max(1.0, std::round(double(clusters.clusters()) * unseen_power / all)));
+  Pcg32 rng(seed, clusters.clusters() + 1);
+  for (std::size_t k = 0; k < m; ++k) {
+    const double u = (double(k) + rng.next_double()) / double(m) * unseen_power; // stratified
+    const std::size_t i = std::min<std::size_t>(
+        static_cast<std::size_t>(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()),
+        unseen.size() - 1);
+    const double p = cdf[i] - (i > 0 ? cdf[i - 1] : 0.0);
+    Vpl v = walk.vpls[unseen[i]];
+    v.intensity *= static_cast<float>(unseen_power / (double(m) * p));
+    v.clamp_distance = 0.0f;
+    out.push_back(v);
+  }
+}
+
 Representatives pick_representatives(const VplSet& walk, const ColumnClusters& clusters,
                                      std::uint64_t seed) {
   Representatives out;
@@ -301,12 +337,14 @@ Representatives pick_representatives(const VplSet& walk, const ColumnClusters& c
     v.clamp_distance = 0.0f;
     out.set.vpls.push_back(v);
   }
+  add_unseen_glossy(walk, clusters, seed, out.set.vpls);
   double all = 0.0, dropped = 0.0;
   for (std::size_t j = 0; j < walk.vpls.size(); ++j) {
     const glm::vec3& c = walk.vpls[j].intensity;
     const double sum = double(c.x) + c.y + c.z;
     all += sum;
-    if (j < clusters.norms.size() && !(clusters.norms[j] > 0.0f)) dropped += sum;
+    if (j < clusters.norms.size() && !(clusters.norms[j] > 0.0f) && walk.vpls[j].lobe < 0)
+      dropped += sum;
   }
   out.dropped_fraction = all > 0.0 ? dropped / all : 0.0;
   return out;

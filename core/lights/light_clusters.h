@@ -7,8 +7,9 @@
 // alpha_C / alpha_j, alpha_j = |R_j| the norm of its reduced column, alpha_C = sum_C alpha_j:
 //   E[representative of C] = sum_{j in C} (alpha_j / alpha_C) (alpha_C / alpha_j) I_j = sum_C I_j,
 // so the c representatives are an unbiased estimate of all the VPLs' light at every pixel (a
-// column no sampled row sees, alpha_j = 0, is dropped: the one bias, its share of the power is
-// reported). The clustering minimises Hasan's cost of a cluster,
+// Lambertian column no sampled row sees, alpha_j = 0, is dropped: the one bias, its share of the
+// power is reported; glossy ones are kept, pick_representatives). The clustering minimises Hasan's
+// cost of a cluster,
 //   cost(C) = sum_{i, j in C} alpha_i alpha_j |x_i - x_j|^2 = 2 (alpha_C^2 - |sum_C R_j|^2),
 // x_j = R_j / alpha_j, by splitting the costliest cluster along a random line (through two
 // columns drawn by norm) at the point of least total cost, until there are c.
@@ -51,14 +52,16 @@ ColumnClusters cluster_columns(const ReducedMatrix& m, std::size_t clusters, std
 
 struct Representatives {
   VplSet set;                    // the walk's set with one scaled VPL per cluster
-  double dropped_fraction = 0.0; // share of the VPLs' summed intensity no row saw
+  double dropped_fraction = 0.0; // share of the VPLs' summed intensity no row saw (Lambertian)
 };
 
 // One representative per cluster (drawn with the seed), its intensity scaled by
 // alpha_C / alpha_j; the set keeps the walk's counts and mirrors, not its clamp field (the
 // representatives are clamped anew at their own density). In a cluster with glossy VPLs each
 // glossy one's weight is alpha_j plus half its power's share of alpha_C (a lobe may light what no
-// sampled row sees), and the scale is the weights' sum over its weight: still unbiased.
+// sampled row sees), and the scale is the weights' sum over its weight: still unbiased. Glossy
+// VPLs no row sees at all are not dropped: their power's share of the representatives (at least
+// one) is drawn from them by power and appended (more representatives than clusters).
 Representatives pick_representatives(const VplSet& walk, const ColumnClusters& clusters,
                                      std::uint64_t seed);
 
