@@ -9,8 +9,8 @@
 #include "core/camera/view.h"
 #include "core/environment/environment.h"
 #include "core/scene/scene_builder.h"
-#include "tests/convex_polyhedron.h"
 #include "raster/raster_renderer.h"
+#include "tests/convex_polyhedron.h"
 #include "walk/path_tracer.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/vpl_tracer.h"
@@ -156,5 +156,5 @@ TEST_P(EnvironmentFurnaceRaster, EveryInterleaveFactor) {
 
 INSTANTIATE_TEST_SUITE_P(Interleave, EnvironmentFurnaceRaster, ::testing::Values(1, 2, 4, 8));
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -82,7 +82,8 @@ FurnaceErrors furnace_errors(const Scene& scene, const RayScene& rays, const Vie
                              const Image& image) {
   std::vector<double> table(201);
   for (std::size_t i = 0; i < table.size(); ++i)
-    table[i] = metal_albedo(std::max(1e-3, double(i) / 200.0), double(kRoughness * kRoughness), 300);
+    table[i] =
+        metal_albedo(std::max(1e-3, double(i) / 200.0), double(kRoughness * kRoughness), 300);
   auto hit_at = [&](int x, int y) {
     const CameraRay r = pixel_ray(view, x, y);
     return rays.intersect(r.origin, r.direction, view.znear, 1e30f);
@@ -118,9 +119,8 @@ TEST(Glossy, FacingNormalBendsOnlyANormalThatFacesAway) {
   const glm::vec3 bent = facing_normal(n, grazing);
   EXPECT_NEAR(glm::length(bent), 1.0f, 1e-6f);
   EXPECT_GT(glm::dot(bent, grazing), 0.0f);
-  EXPECT_NEAR(glm::dot(bent, grazing), 1e-3f / glm::length(n + (1e-3f - glm::dot(n, grazing)) *
-                                                                   grazing),
-              1e-6f);
+  EXPECT_NEAR(glm::dot(bent, grazing),
+              1e-3f / glm::length(n + (1e-3f - glm::dot(n, grazing)) * grazing), 1e-6f);
   const BrdfInputs plastic{glm::vec3(0.5f), 0.0f, 0.3f, glm::vec3(0.04f), 1.0f};
   EXPECT_GT(Brdf(plastic, bent).eval(grazing, n).x, 0.0f);
 }
@@ -155,13 +155,12 @@ TEST(Glossy, WhiteFurnaceRoughMetalRtVpl) {
   const VplSet vpls = quasi_random_walk(scene, rays, w, log);
   const FurnaceErrors e =
       furnace_errors(scene, rays, view, trace_vpls(scene, rays, view, vpls, {0.05f, 0}));
-  std::printf("rt-vpl furnace, metal r=%.1f, N=1024, %d pixels: mean %+.4f rms %.4f\n",
-              kRoughness, e.pixels, e.mean, e.rms);
+  std::printf("rt-vpl furnace, metal r=%.1f, N=1024, %d pixels: mean %+.4f rms %.4f\n", kRoughness,
+              e.pixels, e.mean, e.rms);
   // Measured: mean -0.0027, rms 0.0141 (1024 directional VPLs seen through a glossy lobe).
   EXPECT_LT(std::abs(e.mean), 0.006);
   EXPECT_LT(e.rms, 0.025);
 }
-
 
 // The glTF dielectric of design.md 1b written out here: (1 - F) base/pi + F V D with
 // F = f0 + (1 - f0)(1 - v.h)^5 (f90 = 1).
@@ -265,8 +264,8 @@ TEST(Glossy, PlaneUnderPointLightEveryPixel) {
   WalkOptions w;
   w.paths = 16;
   const VplSet vpls = quasi_random_walk(scene, rays, w, log);
-  const PlaneErrors rt = plane_errors(
-      scene, rays, view, trace_vpls(scene, rays, view, vpls, {0.0f, 0}), true);
+  const PlaneErrors rt =
+      plane_errors(scene, rays, view, trace_vpls(scene, rays, view, vpls, {0.0f, 0}), true);
   std::printf("point light over a glossy plane: pt max %.2e, rt-vpl max %.2e (relative)\n",
               pt.rel_max, rt.rel_max);
   // Measured: rt-vpl 1.5e-6 (single-precision rounding); pt 4.2e-4: its shadow ray leaves from
@@ -290,5 +289,5 @@ TEST(Glossy, PlaneUnderSquareLightPathTracer) {
   EXPECT_LT(e.rel_rms, 0.02);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -82,7 +82,8 @@ Means render_both(const char* file, std::uint32_t spp, std::uint32_t paths) {
   std::printf("%s glossy, 48x48: pt %u spp (%.5f %.5f %.5f), rt-vpl N=%u clamp 0 (%.5f %.5f %.5f), "
               "%zu VPLs, %zu glossy; rt/pt - 1: %+.4f %+.4f %+.4f\n",
               file, spp, m.pt.x, m.pt.y, m.pt.z, paths, m.rt.x, m.rt.y, m.rt.z, vpls.vpls.size(),
-              vpls.lobes.size(), m.rt.x / m.pt.x - 1.0, m.rt.y / m.pt.y - 1.0, m.rt.z / m.pt.z - 1.0);
+              vpls.lobes.size(), m.rt.x / m.pt.x - 1.0, m.rt.y / m.pt.y - 1.0,
+              m.rt.z / m.pt.z - 1.0);
   return m;
 }
 
@@ -135,5 +136,5 @@ TEST(GlossyCornell, LambertianDeclarationIgnoresRoughnessAndIor) {
   EXPECT_TRUE(rt_a.pixels() == rt_b.pixels());
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

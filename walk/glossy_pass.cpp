@@ -1,5 +1,6 @@
 #include "walk/glossy_pass.h"
 
+#include "core/environment/environment.h"
 #include "core/sampling/rng.h"
 #include "core/util/parallel_rows.h"
 #include "walk/mirror_pass.h"
@@ -27,7 +28,7 @@ struct Context {
 
 // A VPL's weight in sampled_gather: the luminance of its intensity.
 double sampling_weight(const Vpl& v) {
-  return glm::max(0.0, 0.2126 * v.intensity.x + 0.7152 * v.intensity.y + 0.0722 * v.intensity.z);
+  return glm::max(0.0, double(luminance(v.intensity)));
 }
 
 // VPLs drawn per hit the camera does not see.

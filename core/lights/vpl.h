@@ -104,6 +104,14 @@ struct VplLobe {
 // clamp distance (its neighbours' spacing under the local clamp); spread 0: the point's lobe.
 glm::vec3 vpl_lobe_shape(const VplLobe& lobe, const Vpl& v, const glm::vec3& w,
                          float spread = 0.0f);
+// The lobe's incident direction as v sends it: reflected in v's mirror plane for a mirrored copy.
+glm::vec3 lobe_incident(const VplLobe& lobe, const Vpl& v);
+// v's lobe in `lobes` (VplSet::lobes), or nullptr for a Lambertian VPL or an index outside them.
+inline const VplLobe* find_lobe(const std::vector<VplLobe>& lobes, const Vpl& v) {
+  return v.lobe >= 0 && static_cast<std::size_t>(v.lobe) < lobes.size()
+             ? &lobes[static_cast<std::size_t>(v.lobe)]
+             : nullptr;
+}
 // The perceptual roughness of a lobe of `roughness` seen through a sphere of angular radius
 // about `spread` (radians): alpha'^2 = alpha^2 + (spread / 2)^2 (the reflected direction moves by
 // twice the half vector's angle), alpha' at most 1.

@@ -13,12 +13,17 @@ float spread_roughness(float roughness, float spread) {
   return std::sqrt(std::sqrt(a2));
 }
 
-glm::vec3 vpl_lobe_shape(const VplLobe& lobe, const Vpl& v, const glm::vec3& w, float spread) {
+glm::vec3 lobe_incident(const VplLobe& lobe, const Vpl& v) {
   glm::vec3 incident = lobe.incident;
   if (v.mirror >= 0) {
     const glm::vec3 n(v.mirror_plane);
     incident -= 2.0f * glm::dot(incident, n) / glm::dot(n, n) * n;
   }
+  return incident;
+}
+
+glm::vec3 vpl_lobe_shape(const VplLobe& lobe, const Vpl& v, const glm::vec3& w, float spread) {
+  const glm::vec3 incident = lobe_incident(lobe, v);
   BrdfInputs material = lobe.material;
   glm::vec3 albedo = lobe.albedo;
   const float widened = spread > 0.0f ? spread_roughness(material.roughness, spread) : 0.0f;

@@ -72,6 +72,21 @@ vec3 brdf_eval_diffuse(vec3 base, float metallic, float roughness, vec3 f0, floa
   return (1.0 - metallic) * (1.0 - fd) * base * (1.0 / kBrdfPi);
 }
 
+// pi f_r(wo, wi) of a receiver at its normal nf (bent toward wo: brdf_facing_normal), its diffuse
+// lobe alone when diffuse_only (the glossy camera pass traces the specular one): what the deferred
+// and the per-VPL passes weigh a VPL's light by.
+vec3 brdf_receiver(vec3 base, float metallic, float roughness, vec3 f0, float f90, vec3 nf,
+                   vec3 wo, vec3 wi, bool diffuse_only) {
+  return kBrdfPi * (diffuse_only ? brdf_eval_diffuse(base, metallic, roughness, f0, f90, nf, wo, wi)
+                                 : brdf_eval(base, metallic, roughness, f0, f90, nf, wo, wi));
+}
+
+// f / a per channel, 0 where a is 0 (a demodulating or normalising albedo).
+vec3 brdf_over(vec3 f, vec3 a) {
+  return vec3(a.r > 0.0 ? f.r / a.r : 0.0, a.g > 0.0 ? f.g / a.g : 0.0,
+              a.b > 0.0 ? f.b / a.b : 0.0);
+}
+
 // The unit direction from x toward the camera: u_eye = (its position, 1), or (the direction
 // toward it, 0) for an orthographic camera (raster/passes/camera_passes.h eye_uniform).
 uniform vec4 u_eye;
@@ -133,10 +148,8 @@ vec3 brdf_lobe_shape(vec3 base, float metallic, float roughness, vec3 f0, float 
     roughness = widened;
     albedo = brdf_albedo(base, metallic, roughness, f0, f90, dot(ny, incident));
   }
-  vec3 f = brdf_eval(base, metallic, roughness, f0, f90, ny, incident, w);
-  return vec3(albedo.r > 0.0 ? kBrdfPi * f.r / albedo.r : 0.0,
-              albedo.g > 0.0 ? kBrdfPi * f.g / albedo.g : 0.0,
-              albedo.b > 0.0 ? kBrdfPi * f.b / albedo.b : 0.0);
+  return brdf_over(kBrdfPi * brdf_eval(base, metallic, roughness, f0, f90, ny, incident, w),
+                   albedo);
 }
 )";
 

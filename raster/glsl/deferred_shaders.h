@@ -255,13 +255,9 @@ vec3 receiver_weight(ivec2 p, vec3 x, vec3 n, float r, vec3 wi) {
   if (a.w < 0.5) return u_apply_albedo ? albedo : vec3(1.0); // Lambertian: no more fetches
   vec4 b = texelFetch(u_base, p, 0), s = texelFetch(u_specular, p, 0);
   vec3 wo = toward_eye(x);
-  vec3 nf = brdf_facing_normal(n, wo);
-  vec3 f = kBrdfPi * (v_reachable != 0 && r < u_traced_roughness
-                          ? brdf_eval_diffuse(b.rgb, s.a, r, s.rgb, b.a, nf, wo, wi)
-                          : brdf_eval(b.rgb, s.a, r, s.rgb, b.a, nf, wo, wi));
-  if (u_apply_albedo) return f;
-  return vec3(albedo.r > 0.0 ? f.r / albedo.r : 0.0, albedo.g > 0.0 ? f.g / albedo.g : 0.0,
-              albedo.b > 0.0 ? f.b / albedo.b : 0.0);
+  vec3 f = brdf_receiver(b.rgb, s.a, r, s.rgb, b.a, brdf_facing_normal(n, wo), wo, wi,
+                         v_reachable != 0 && r < u_traced_roughness);
+  return u_apply_albedo ? f : brdf_over(f, albedo);
 }
 #endif
 

@@ -143,14 +143,10 @@ void main() {
   if (!(metallic == 0.0 && f90 == 0.0 && f0 == vec3(0.0))) { // as deferred receiver_weight
     vec3 wo = toward_eye(v_position);
     vec3 nf = brdf_facing_normal(n, wo);
-    weight = kBrdfPi * (u_vpl_reachable && roughness < u_traced_roughness
-                            ? brdf_eval_diffuse(base, metallic, roughness, f0, f90, nf, wo, -w)
-                            : brdf_eval(base, metallic, roughness, f0, f90, nf, wo, -w));
-    if (!u_apply_albedo) {
-      vec3 a = brdf_albedo(base, metallic, roughness, f0, f90, dot(nf, wo));
-      weight = vec3(a.r > 0.0 ? weight.r / a.r : 0.0, a.g > 0.0 ? weight.g / a.g : 0.0,
-                    a.b > 0.0 ? weight.b / a.b : 0.0);
-    }
+    weight = brdf_receiver(base, metallic, roughness, f0, f90, nf, wo, -w,
+                           u_vpl_reachable && roughness < u_traced_roughness);
+    if (!u_apply_albedo)
+      weight = brdf_over(weight, brdf_albedo(base, metallic, roughness, f0, f90, dot(nf, wo)));
   }
   o_color = vec4(light * weight, 0.0);
 #else

@@ -75,11 +75,7 @@ public:
   // DeferredShader::set_traced_roughness.
   void set_traced_roughness(float r) { shader_.set_traced_roughness(r); }
   // v's lobe under set_lobes, or nullptr.
-  const VplLobe* lobe_of(const Vpl& v) const {
-    return lobes_ && v.lobe >= 0 && static_cast<std::size_t>(v.lobe) < lobes_->size()
-               ? &(*lobes_)[static_cast<std::size_t>(v.lobe)]
-               : nullptr;
-  }
+  const VplLobe* lobe_of(const Vpl& v) const { return lobes_ ? find_lobe(*lobes_, v) : nullptr; }
   // Shades VPLs whose cubes are already in `shadow` (shadow maps kept,
   // raster/shadow/shadow_cache.h): sorted by set on the way, as many per draw as the shader holds.
   void shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shadow, const DeferredTarget& into);

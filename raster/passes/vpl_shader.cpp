@@ -38,11 +38,7 @@ std::array<float, 16> lobe_record(const Vpl& vpl, const VplLobe* lobe) {
   std::array<float, 16> r{};
   if (lobe == nullptr) return r;
   const BrdfInputs& m = lobe->material;
-  glm::vec3 incident = lobe->incident;
-  if (vpl.mirror >= 0) { // as vpl_lobe_shape: a mirrored copy's lobe is reflected
-    const glm::vec3 n(vpl.mirror_plane);
-    incident -= 2.0f * glm::dot(incident, n) / glm::dot(n, n) * n;
-  }
+  const glm::vec3 incident = lobe_incident(*lobe, vpl);
   r = {m.base.x,       m.base.y,       m.base.z,       m.metallic, m.f0.x,     m.f0.y,
        m.f0.z,         m.f90,          incident.x,     incident.y, incident.z, m.roughness,
        lobe->albedo.x, lobe->albedo.y, lobe->albedo.z, 1.0f};
@@ -50,9 +46,7 @@ std::array<float, 16> lobe_record(const Vpl& vpl, const VplLobe* lobe) {
 }
 
 void VplShader::set_lobe(const Vpl& vpl) const {
-  const bool has = lobes_ && vpl.lobe >= 0 && static_cast<std::size_t>(vpl.lobe) < lobes_->size();
-  const std::array<float, 16> r =
-      lobe_record(vpl, has ? &(*lobes_)[static_cast<std::size_t>(vpl.lobe)] : nullptr);
+  const std::array<float, 16> r = lobe_record(vpl, lobes_ ? find_lobe(*lobes_, vpl) : nullptr);
   api_->Uniform4fv(lobe_, 4, r.data());
   api_->Uniform4fv(eye_uniform_, 1, glm::value_ptr(eye_));
   api_->Uniform1i(reachable_, vpl.ray_reachable() ? 1 : 0);

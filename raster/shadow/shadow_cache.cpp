@@ -113,12 +113,8 @@ void ShadowCache::store(std::uint32_t slot, const std::vector<Vpl>& vpls, const 
     if (batch.empty()) return;
     atlas_.render(batch.data(), static_cast<int>(batch.size()), gpu, frames, fars, blocks);
     for (std::size_t s = 0; s < batch.size(); ++s) {
-      Kept k{*batch[s], frames[s], fars[s], {}, ShadowAtlas::blocks_for(*batch[s]), {}, false};
-      const auto lobe = static_cast<std::size_t>(batch[s]->lobe);
-      if (batch[s]->lobe >= 0 && lobe < lobes.size()) {
-        k.lobe = lobes[lobe];
-        k.glossy = true;
-      }
+      Kept k{*batch[s], frames[s], fars[s], {}, ShadowAtlas::blocks_for(*batch[s]), {}};
+      if (const VplLobe* lobe = find_lobe(lobes, *batch[s])) k.lobe = *lobe;
       allocate(k.count, k.blocks); // may bind a new page's framebuffer
       api_->Disable(GL_SCISSOR_TEST);
       api_->BindFramebuffer(GL_READ_FRAMEBUFFER, read_fbo_.get());
@@ -160,7 +156,7 @@ std::vector<ShadowCache::Page> ShadowCache::pages() const {
       const glm::ivec2 b0 = origin(k.blocks[0].index);
       const glm::ivec2 b1 = k.count == 2 ? origin(k.blocks[1].index) : b0;
       AtlasVpl a{&k.vpl, k.frame, k.far, glm::ivec4(b0, b1), 0};
-      a.lobe = k.glossy ? &k.lobe : nullptr;
+      a.lobe = k.lobe ? &*k.lobe : nullptr;
       out[static_cast<std::size_t>(k.blocks[0].page)].vpls.push_back(a);
     }
   return out;

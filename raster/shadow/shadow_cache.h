@@ -17,6 +17,7 @@
 #include "raster/shadow/shadow_atlas.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace irad::gl {
@@ -51,9 +52,8 @@ private:
     glm::mat3 frame;
     float far;
     Block blocks[2];
-    int count; // blocks taken
-    VplLobe lobe;
-    bool glossy; // whether `lobe` is the VPL's
+    int count;                   // blocks taken
+    std::optional<VplLobe> lobe; // a glossy VPL's
   };
   // `count` free blocks of one page (a VPL's blocks are looked up in one texture), in a new page
   // when no page has them.
