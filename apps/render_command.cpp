@@ -148,6 +148,10 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
   if (args.estimator == "raster") {
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
+    // In the order the stages ran: [[name, seconds], ...].
+    nlohmann::json setup = nlohmann::json::array();
+    for (const auto& [stage, t] : r.seconds.raster_setup) setup.push_back({stage, t});
+    seconds["raster_setup"] = setup;
     if (scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h
   } else {
     seconds["trace"] = r.seconds.trace;

@@ -57,6 +57,7 @@ struct Stages {
   StopFlag& stop; // render()'s, shared by the rounds
   RenderResult& r;
   std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
+  double planes_scan = 0.0;               // its thinnest-wall scan (seconds)
 
   bool cancelled() {
     r.cancelled = r.cancelled || stop.poll();
@@ -162,6 +163,7 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
   s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options
+  s.planes_scan = scan;
   log_planes(s.log, planes, options.shadow_resolution, scan);
   s.r.shadow_resolution = options.shadow_resolution;
   s.r.interleave = options.interleave;
@@ -193,6 +195,9 @@ void run_raster(Stages& s, const RayScene& rays) {
     subtract(s.r.image, raster.render(s.r.view, no_vpls(s.r.vpls)));
   s.r.seconds.raster = since(t0);
   s.r.seconds.readback = timings.readback;
+  s.r.seconds.raster_setup = {{"planes scan", s.planes_scan}};
+  const StageTimes setup = raster.setup_times();
+  for (const auto& stage : setup.stages()) s.r.seconds.raster_setup.push_back(stage);
   s.r.passes = timings.passes;
   s.r.single_passes = timings.single_passes;
   s.r.edge_pixels = timings.edge_pixels;

@@ -55,7 +55,7 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
                         : 0;
   if (!batched || !batched->matches(options.batch, resolution, ortho))
     batched = gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
-                                      options.shadow_lod, lists_unsure_pixels(options));
+                                      options.shadow_lod, lists_unsure_pixels(options), &lod);
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {
@@ -261,10 +261,21 @@ void check_raster_options(const RasterOptions& options) {
 
 RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options) {
   check_raster_options(options);
+  auto start = StageTimes::Clock::now();
   auto context = gl::create_context(options.backend, options.gl_device);
   if (options.gl_messages) context->route_debug_messages(options.gl_messages);
+  StageTimes times;
+  start = times.lap("gl context", start);
   impl_ = std::make_unique<Impl>(scene, options, std::move(context));
+  times.lap("gl upload", start);
+  impl_->setup_times = std::move(times);
   impl_->context->release();
+}
+
+StageTimes RasterRenderer::setup_times() const {
+  StageTimes times = impl_->setup_times;
+  times.add("", impl_->lod.setup_times());
+  return times;
 }
 
 // The GL objects are deleted in their own context.

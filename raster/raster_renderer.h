@@ -7,6 +7,7 @@
 #include "core/lights/vpl.h"
 #include "core/mesh/mesh_clusters.h"
 #include "core/scene/scene.h"
+#include "core/util/stage_times.h"
 #include "raster/context/gl_backend.h"
 
 #include <atomic>
@@ -139,6 +140,10 @@ public:
   void scene_changed();
 
   std::string description() const; // backend and GL renderer
+  // The one-time stages so far: "gl context" (its creation), "gl upload" (the scene's buffers,
+  // textures and the shaders), and once the batched passes drew from the shadow hierarchy its
+  // build and upload (raster/shadow/lod_provider.h).
+  StageTimes setup_times() const;
 
   // The last image's edge pixels (RasterOptions::edge_pixels; none when Off, without
   // interleaving, or before a render) as Image coordinates (y down), row by row; Listed: with

@@ -19,6 +19,7 @@
 #include "raster/passes/directional_pass.h"
 #include "raster/passes/vpl_shader.h"
 #include "raster/scene/gpu_scene.h"
+#include "raster/shadow/lod_provider.h"
 #include "raster/shadow/shadow_cache.h"
 #include "raster/shadow/shadow_cube.h"
 
@@ -60,6 +61,8 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::Context> context;
   const GladGLContext& api;
   gl::GpuScene gpu;
+  gl::LodProvider lod;    // the batched passes' shadow hierarchy, kept when they are re-made
+  StageTimes setup_times; // the GL context and the upload (RasterRenderer::setup_times)
   std::unique_ptr<gl::ShadowCube> shadow; // the per-VPL passes' cube, made on first use
   int shadow_res = 0;                     // this image's cube resolution
   gl::CameraPasses camera;
@@ -92,7 +95,7 @@ struct RasterRenderer::Impl {
 
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
-        camera(api, gpu.features()),
+        lod(api, gpu, o.shadow_lod), camera(api, gpu.features()),
         vpl_shader(api, s, o.clamp, o.shadow_lod.planes != ShadowPlanes::Off),
         jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr),
         background(gl::Background::make(api, s)) {

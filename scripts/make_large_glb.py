@@ -70,6 +70,26 @@ def panel():
     return pos, nrm, uv, idx
 
 
+def write_glb(doc, blob, out):
+    """Writes doc (its buffer 0 the GLB's binary chunk, byteLength set here) and blob (a
+    bytearray, padded to 4 bytes here) as a GLB 2.0 file at out, through a temporary file renamed
+    into place; returns the file's size."""
+    while len(blob) % 4:
+        blob.append(0)
+    doc["buffers"][0:1] = [{"byteLength": len(blob)}]
+    text = json.dumps(doc, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    total = 12 + 8 + len(text) + 8 + len(blob)
+    tmp = pathlib.Path(str(out) + ".tmp")
+    with open(tmp, "wb") as f:
+        f.write(struct.pack("<4sII", b"glTF", 2, total))
+        f.write(struct.pack("<I4s", len(text), b"JSON") + text)
+        f.write(struct.pack("<I4s", len(blob), b"BIN\x00"))
+        f.write(blob)
+    tmp.replace(out)
+    return total
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("-o", "--output", required=True)
@@ -130,19 +150,8 @@ def main():
                      "rotation": [math.sin(ang), 0, 0, math.cos(ang)]}]
     doc["scenes"] = [{"nodes": [0, 1]}]
     doc["scene"] = 0
-    while len(blob) % 4:
-        blob.append(0)
-    doc["buffers"].append({"byteLength": len(blob)})
-    text = json.dumps(doc, separators=(",", ":")).encode()
-    text += b" " * (-len(text) % 4)
-    total = 12 + 8 + len(text) + 8 + len(blob)
     out = pathlib.Path(args.output)
-    with open(str(out) + ".tmp", "wb") as f:
-        f.write(struct.pack("<4sII", b"glTF", 2, total))
-        f.write(struct.pack("<I4s", len(text), b"JSON") + text)
-        f.write(struct.pack("<I4s", len(blob), b"BIN\x00"))
-        f.write(blob)
-    pathlib.Path(str(out) + ".tmp").replace(out)
+    total = write_glb(doc, blob, out)
     tris = 2 * args.quads * args.quads + 2
     print(f"{out}: {tris} triangles, {(args.quads + 1) ** 2 + 4} vertices, {total} bytes")
 

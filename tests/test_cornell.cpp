@@ -6,11 +6,14 @@
 #include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 namespace irad {
 namespace IRAD_UNITY_ID {
@@ -79,10 +82,20 @@ TEST(Cornell, CommandLineWritesImagesAndStats) {
     EXPECT_TRUE(stats.contains(key)) << key;
   for (const char* key : {"load", "walk", "raster", "total"})
     EXPECT_TRUE(stats["seconds"].contains(key)) << key;
+  // The raster's one-time stages in the order they ran (the box's shadow hierarchy included).
+  std::vector<std::string> stages;
+  for (const auto& stage : stats["seconds"]["raster_setup"]) {
+    stages.push_back(stage[0]);
+    EXPECT_GE(stage[1].get<double>(), 0.0) << stage[0];
+  }
+  EXPECT_GE(stages.size(), 9u);
+  EXPECT_EQ(stages.front(), "planes scan");
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "hierarchy levels"), stages.end());
+  EXPECT_EQ(stages.back(), "hierarchy upload");
   EXPECT_EQ(stats["paths"], 16);
   EXPECT_EQ(stats["size"][0], 48);
   fs::remove_all(dir);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -1,14 +1,18 @@
 // The same input, options and thread count give a bit-identical EXR on the same machine: every
 // estimator is rendered twice through the command line and the files compared byte for byte.
 // The path tracer is also the same whatever the thread count (one RNG stream per pixel, sample).
+#include "core/util/parallel_rows.h"
 #include "tests/test_paths.h"
 
+#include <atomic>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <iterator>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -65,4 +69,25 @@ TEST_F(Determinism, PathTracerIsBitIdenticalForAnyThreadCount) {
   EXPECT_NE(a, render("pt_d", "--estimator pt --spp 4 --seed 8 --threads 2"));
 }
 
-} // namespace
+// parallel_tasks (the shadow hierarchy's build): every task once, each worker index below the
+// worker count, and a task's exception rethrown on the caller's thread after the others stopped.
+TEST(ParallelTasks, RunsEachTaskOnceAndRethrows) {
+  const unsigned workers = irad::worker_count(3, 100);
+  EXPECT_EQ(workers, 3u); // as many as asked, at most one per task
+  EXPECT_EQ(irad::worker_count(3, 2), 2u);
+  std::vector<int> runs(100, 0);
+  std::atomic<bool> bad_worker{false};
+  irad::parallel_tasks(100, 3, [&](int t, unsigned w) {
+    ++runs[static_cast<std::size_t>(t)];
+    if (w >= workers) bad_worker = true;
+  });
+  EXPECT_EQ(runs, std::vector<int>(100, 1));
+  EXPECT_FALSE(bad_worker);
+  EXPECT_THROW(irad::parallel_tasks(100, 3,
+                                    [](int t, unsigned) {
+                                      if (t == 17) throw std::runtime_error("task 17");
+                                    }),
+               std::runtime_error);
+}
+
+} // namespace IRAD_UNITY_ID

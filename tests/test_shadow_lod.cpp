@@ -198,6 +198,48 @@ TEST(ShadowLod, AlphaTestedTrianglesStayOutOfTheTree) {
   EXPECT_EQ(c.original_indices, 6u);
 }
 
+// Whether a and b hold the same hierarchy, field by field (floats bit for bit).
+bool same_hierarchy(const MeshClusters& a, const MeshClusters& b) {
+  const auto same_node = [](const ClusterNode& x, const ClusterNode& y) {
+    return x.bounds.lo == y.bounds.lo && x.bounds.hi == y.bounds.hi && x.error == y.error &&
+           x.mesh_first == y.mesh_first && x.mesh_count == y.mesh_count &&
+           x.leaf_first == y.leaf_first && x.leaf_count == y.leaf_count &&
+           x.children[0] == y.children[0] && x.children[1] == y.children[1] &&
+           x.levels_first == y.levels_first && x.levels_count == y.levels_count;
+  };
+  const auto same_level = [](const ClusterLevel& x, const ClusterLevel& y) {
+    return x.error == y.error && x.first == y.first && x.count == y.count;
+  };
+  return a.indices == b.indices && a.roots == b.roots && a.triangles == b.triangles &&
+         a.original_indices == b.original_indices &&
+         std::equal(a.nodes.begin(), a.nodes.end(), b.nodes.begin(), b.nodes.end(), same_node) &&
+         std::equal(a.levels.begin(), a.levels.end(), b.levels.begin(), b.levels.end(), same_level);
+}
+
+// The build runs its nodes' simplifications in parallel; the result must not depend on how
+// many threads did: two spheres (two component trees with their whole-component levels) and
+// small ones (the tree of the small components), on 1, 2 and 3 threads.
+TEST(ShadowLod, TheSameHierarchyOnAnyNumberOfThreads) {
+  Scene s;
+  add_sphere(s, kCentre, kRadius, 48, add_material(s, glm::vec3(0.5f)));
+  add_sphere(s, kCentre + glm::vec3(5.0f, 0.0f, 0.0f), 1.0f, 32, add_material(s, glm::vec3(0.5f)));
+  for (int k = 0; k < 20; ++k) // 48 triangles each
+    add_sphere(s, glm::vec3(float(k), -4.0f, 0.0f), 0.3f, 4, add_material(s, glm::vec3(0.5f)));
+  finish(s);
+  ClusterOptions options{128, true};
+  options.threads = 1;
+  StageTimes stages;
+  const MeshClusters one = build_mesh_clusters(s, options, &stages);
+  ASSERT_GE(one.roots.size(), 3u);
+  std::vector<std::string> names;
+  for (const auto& stage : stages.stages()) names.push_back(stage.first);
+  EXPECT_EQ(names, (std::vector<std::string>{"weld", "planar", "tree", "inner", "levels"}));
+  for (unsigned threads : {2u, 3u}) {
+    options.threads = threads;
+    EXPECT_TRUE(same_hierarchy(one, build_mesh_clusters(s, options))) << threads << " threads";
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // GL: the Cornell box with a finely tessellated sphere floating in it.
 
@@ -352,5 +394,5 @@ TEST(ShadowLod, NoNewLeaksBetweenTwoSubdividedRooms) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -1,6 +1,7 @@
 #include "core/mesh/mesh_clusters.h"
 
 #include "core/mesh/planar_reduction.h"
+#include "core/util/parallel_rows.h"
 
 #include <algorithm>
 #include <limits>
@@ -215,10 +216,44 @@ Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& 
   return s;
 }
 
-// The inner nodes' meshes, children before parents (nodes are numbered parents first).
-void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify) {
+// Per worker of parallel_tasks, simplify_union's map from scene vertex to compact index (all
+// ~0u between calls), made on the worker's first task.
+class LocalMaps {
+public:
+  LocalMaps(std::size_t vertices, unsigned workers) : vertices_(vertices), maps_(workers) {}
+  std::vector<std::uint32_t>& of(unsigned worker) {
+    std::vector<std::uint32_t>& m = maps_[worker];
+    if (m.empty()) m.assign(vertices_, ~0u);
+    return m;
+  }
+
+private:
+  std::size_t vertices_;
+  std::vector<std::vector<std::uint32_t>> maps_;
+};
+
+// The nodes by height (leaves 0, a parent one above its higher child), lowest first: a node's
+// children all lie in the groups before its own.
+std::vector<std::vector<std::int32_t>> nodes_by_height(const MeshClusters& out) {
+  std::vector<int> height(out.nodes.size(), 0);
+  std::vector<std::vector<std::int32_t>> groups(1);
+  for (std::size_t n = out.nodes.size(); n-- > 0;) { // children after their parents
+    const ClusterNode& node = out.nodes[n];
+    if (!node.leaf())
+      height[n] = 1 + std::max(height[static_cast<std::size_t>(node.children[0])],
+                               height[static_cast<std::size_t>(node.children[1])]);
+    if (static_cast<std::size_t>(height[n]) >= groups.size()) groups.resize(height[n] + 1u);
+    groups[static_cast<std::size_t>(height[n])].push_back(static_cast<std::int32_t>(n));
+  }
+  return groups;
+}
+
+// The inner nodes' meshes, height by height (each height's nodes in parallel: a node reads only
+// its children's meshes), then appended in node order: the same result on any number of threads.
+void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, unsigned threads) {
   std::vector<std::vector<std::uint32_t>> meshes(out.nodes.size());
-  std::vector<std::uint32_t> local_of(scene.positions.size(), ~0u);
+  LocalMaps local(scene.positions.size(),
+                  worker_count(threads, static_cast<int>(out.nodes.size())));
   const auto mesh_of = [&](std::int32_t n) {
     const ClusterNode& c = out.nodes[static_cast<std::size_t>(n)];
     const std::vector<std::uint32_t>& m = meshes[static_cast<std::size_t>(n)];
@@ -226,26 +261,29 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify) 
                                                  out.indices.begin() + c.mesh_first + c.mesh_count)
                     : m;
   };
-  for (std::size_t n = out.nodes.size(); n-- > 0;) {
+  const auto simplify_node = [&](std::size_t n, unsigned worker) {
     ClusterNode& node = out.nodes[n];
-    if (node.leaf()) continue;
     std::vector<std::uint32_t> input = mesh_of(node.children[0]);
     const std::vector<std::uint32_t> second = mesh_of(node.children[1]);
     input.insert(input.end(), second.begin(), second.end());
     const float below = std::max(out.nodes[static_cast<std::size_t>(node.children[0])].error,
                                  out.nodes[static_cast<std::size_t>(node.children[1])].error);
+    node.error = below;
     if (simplify && !input.empty()) {
-      Simplified s = simplify_union(scene, input, local_of);
+      Simplified s = simplify_union(scene, input, local.of(worker));
       if (s.indices.size() < input.size()) {
         input = std::move(s.indices);
         node.error = below + s.error;
-      } else {
-        node.error = below;
       }
-    } else {
-      node.error = below;
     }
     meshes[n] = std::move(input);
+  };
+  const std::vector<std::vector<std::int32_t>> groups = nodes_by_height(out);
+  for (std::size_t h = 1; h < groups.size(); ++h) {
+    const std::vector<std::int32_t>& group = groups[h];
+    parallel_tasks(static_cast<int>(group.size()), threads, [&](int k, unsigned worker) {
+      simplify_node(static_cast<std::size_t>(group[static_cast<std::size_t>(k)]), worker);
+    });
   }
   for (std::size_t n = 0; n < out.nodes.size(); ++n) {
     ClusterNode& node = out.nodes[n];
@@ -256,43 +294,73 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify) 
   }
 }
 
-// Each node's coarser levels: its mesh halved again and again (the border still locked) while
-// that removes at least a tenth of the triangles. A root of one connected component (`whole`)
-// starts from its original triangles instead and quarters them: no region border inside it is
-// locked, so a closed surface simplifies as far as its error allows.
+// One node's coarser levels (add_coarser_levels), meshes one after another in `indices`.
+struct NodeLevels {
+  std::vector<ClusterLevel> levels; // first: offsets into `indices`
+  std::vector<std::uint32_t> indices;
+};
+
+// Its mesh halved again and again (the border still locked) while that removes at least a tenth
+// of the triangles. A root of one connected component (`whole`) starts from its original
+// triangles instead and quarters them: no region border inside it is locked, so a closed surface
+// simplifies as far as its error allows.
+NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size_t n, bool whole,
+                          int max_levels, float base_error, std::vector<std::uint32_t>& local_of) {
+  const ClusterNode& node = out.nodes[n];
+  const std::uint32_t first = whole ? node.leaf_first : node.mesh_first;
+  const std::uint32_t count = whole ? node.leaf_count : node.mesh_count;
+  std::vector<std::uint32_t> mesh(out.indices.begin() + first, out.indices.begin() + first + count);
+  float error = whole ? base_error : node.error;
+  NodeLevels result;
+  const auto keep = [&] {
+    result.levels.push_back({error, static_cast<std::uint32_t>(result.indices.size()),
+                             static_cast<std::uint32_t>(mesh.size())});
+    result.indices.insert(result.indices.end(), mesh.begin(), mesh.end());
+  };
+  // First what simplifies without error (coplanar triangles: flat walls to their borders),
+  // then quarters or halves, whatever that costs.
+  if (!mesh.empty()) {
+    Simplified s = simplify_union(scene, mesh, local_of, 0, kExact);
+    if (10 * s.indices.size() <= 9 * mesh.size()) {
+      error += s.error;
+      mesh = std::move(s.indices);
+      keep();
+    }
+  }
+  for (int l = 0; l < max_levels && !mesh.empty(); ++l) {
+    Simplified s = simplify_union(scene, mesh, local_of, whole ? 4 : 2);
+    if (10 * s.indices.size() > 9 * mesh.size()) break;
+    error += s.error;
+    mesh = std::move(s.indices);
+    keep();
+  }
+  return result;
+}
+
+// Every node's coarser levels, in parallel (the component roots first: the longest tasks), then
+// appended in node order: the same result on any number of threads.
 void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
-                        const std::vector<bool>& whole, float base_error) {
-  std::vector<std::uint32_t> local_of(scene.positions.size(), ~0u);
+                        const std::vector<bool>& whole, float base_error, unsigned threads) {
+  std::vector<std::size_t> order(out.nodes.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t n) { return whole[n]; });
+  std::vector<NodeLevels> levels(out.nodes.size());
+  LocalMaps local(scene.positions.size(), worker_count(threads, static_cast<int>(order.size())));
+  parallel_tasks(static_cast<int>(order.size()), threads, [&](int k, unsigned worker) {
+    const std::size_t n = order[static_cast<std::size_t>(k)];
+    levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, base_error, local.of(worker));
+  });
   for (std::size_t n = 0; n < out.nodes.size(); ++n) {
     ClusterNode& node = out.nodes[n];
     node.levels_first = static_cast<std::uint32_t>(out.levels.size());
-    const std::uint32_t first = whole[n] ? node.leaf_first : node.mesh_first;
-    const std::uint32_t count = whole[n] ? node.leaf_count : node.mesh_count;
-    std::vector<std::uint32_t> mesh(out.indices.begin() + first,
-                                    out.indices.begin() + first + count);
-    float error = whole[n] ? base_error : node.error;
-    // First what simplifies without error (coplanar triangles: flat walls to their borders),
-    // then quarters or halves, whatever that costs.
-    if (!mesh.empty()) {
-      Simplified s = simplify_union(scene, mesh, local_of, 0, kExact);
-      if (10 * s.indices.size() <= 9 * mesh.size()) {
-        error += s.error;
-        mesh = std::move(s.indices);
-        out.levels.push_back({error, static_cast<std::uint32_t>(out.indices.size()),
-                              static_cast<std::uint32_t>(mesh.size())});
-        out.indices.insert(out.indices.end(), mesh.begin(), mesh.end());
-      }
+    const auto base = static_cast<std::uint32_t>(out.indices.size());
+    for (ClusterLevel level : levels[n].levels) {
+      level.first += base;
+      out.levels.push_back(level);
     }
-    for (int l = 0; l < max_levels && !mesh.empty(); ++l) {
-      Simplified s = simplify_union(scene, mesh, local_of, whole[n] ? 4 : 2);
-      if (10 * s.indices.size() > 9 * mesh.size()) break;
-      error += s.error;
-      mesh = std::move(s.indices);
-      out.levels.push_back({error, static_cast<std::uint32_t>(out.indices.size()),
-                            static_cast<std::uint32_t>(mesh.size())});
-      out.indices.insert(out.indices.end(), mesh.begin(), mesh.end());
-    }
-    node.levels_count = static_cast<std::uint32_t>(out.levels.size()) - node.levels_first;
+    out.indices.insert(out.indices.end(), levels[n].indices.begin(), levels[n].indices.end());
+    node.levels_count = static_cast<std::uint32_t>(levels[n].levels.size());
+    levels[n] = {};
   }
 }
 
@@ -308,7 +376,11 @@ std::uint32_t automatic_leaf_triangles(std::size_t triangles) {
   return leaf;
 }
 
-MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& requested) {
+MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& requested,
+                                 StageTimes* times) {
+  StageTimes own;
+  StageTimes& stages = times ? *times : own;
+  auto start = StageTimes::Clock::now();
   ClusterOptions options = requested;
   if (options.leaf_triangles == 0)
     options.leaf_triangles = automatic_leaf_triangles(scene.triangle_count());
@@ -320,6 +392,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     b.out.triangles.push_back(static_cast<std::uint32_t>(t));
     b.triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
   }
+  start = stages.lap("weld", start);
   if (options.simplify) {
     // Flat parts first reduced exactly (to 2 kPlanar of the surface): the regions' locked
     // borders then cost what their outlines need, not the tessellation's resolution.
@@ -330,8 +403,9 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
       b.leaf_error = 2.0f * epsilon;
     }
   }
-  for (const glm::uvec3& t : b.triangles)
-    b.centroids.push_back((scene.positions[t.x] + scene.positions[t.y] + scene.positions[t.z]) /
+  start = stages.lap("planar", start);
+  for (const glm::uvec3& v : b.triangles)
+    b.centroids.push_back((scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) /
                           3.0f);
   if (b.triangles.empty()) return std::move(b.out);
   // One tree per connected component of at least a leaf's triangles, one for all the others.
@@ -353,8 +427,12 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     begin = end;
   }
   b.out.original_indices = b.out.indices.size();
-  simplify_inner_nodes(scene, b.out, options.simplify);
-  if (options.simplify) add_coarser_levels(scene, b.out, options.max_levels, whole, b.leaf_error);
+  start = stages.lap("tree", start);
+  simplify_inner_nodes(scene, b.out, options.simplify, options.threads);
+  start = stages.lap("inner", start);
+  if (options.simplify)
+    add_coarser_levels(scene, b.out, options.max_levels, whole, b.leaf_error, options.threads);
+  stages.lap("levels", start);
   return std::move(b.out);
 }
 

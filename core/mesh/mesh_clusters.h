@@ -42,6 +42,7 @@
 // triangles the scene has.
 #include "core/scene/bounds.h"
 #include "core/scene/scene.h"
+#include "core/util/stage_times.h"
 
 #include <cstdint>
 #include <vector>
@@ -125,6 +126,8 @@ struct ClusterOptions {
   // Cull mode: the same image as drawing every triangle).
   bool simplify = true;
   int max_levels = 8; // coarser levels per node at most
+  // Threads of the build (0: all cores); the hierarchy is the same on any number.
+  unsigned threads = 0;
 };
 
 // About 512 leaves, 128 to 1024 triangles each (a power of two). On zdm2 (58k triangles,
@@ -135,7 +138,9 @@ std::uint32_t automatic_leaf_triangles(std::size_t triangles);
 // The hierarchy over the triangles of Opaque materials (Mask and Blend ones keep their alpha
 // test, drawn apart by the caller). The caller decides about animated scenes (the tree is of the
 // positions at the time of the call).
-MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& options = {});
+// times: where given, gets the build's stages (weld, planar, tree, inner, levels).
+MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& options = {},
+                                 StageTimes* times = nullptr);
 
 // The distance from p to the box b (0 inside).
 float distance_to(const Bounds& b, const glm::vec3& p);

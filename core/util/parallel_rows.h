@@ -4,7 +4,9 @@
 // throw (an exception escaping a worker thread would terminate the program).
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <functional>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -25,6 +27,40 @@ inline void parallel_rows(int rows, unsigned threads, const std::function<void(i
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, false);
   work(true);
   for (std::thread& t : pool) t.join();
+}
+
+// The threads parallel_rows and parallel_tasks run for `threads` (0: all cores) and `tasks`.
+inline unsigned worker_count(unsigned threads, int tasks) {
+  threads = std::max(1u, threads ? threads : std::thread::hardware_concurrency());
+  return std::max(1u, std::min(threads, static_cast<unsigned>(std::max(tasks, 1))));
+}
+
+// Runs body(task, worker) for every task in [0, tasks) on worker_count(threads, tasks) threads,
+// tasks handed out in order from a shared counter; worker in [0, worker_count) names the thread,
+// so that each can keep its own scratch. body must only write its task's data; an exception it
+// throws stops the tasks not yet begun and is rethrown here once every thread has finished.
+inline void parallel_tasks(int tasks, unsigned threads,
+                           const std::function<void(int task, unsigned worker)>& body) {
+  std::atomic<int> next{0};
+  std::mutex failed_mutex;
+  std::exception_ptr failed;
+  auto work = [&](unsigned worker) {
+    for (int t = next++; t < tasks; t = next++) {
+      try {
+        body(t, worker);
+      } catch (...) {
+        const std::lock_guard lock(failed_mutex);
+        if (!failed) failed = std::current_exception();
+        next = tasks;
+      }
+    }
+  };
+  const unsigned workers = worker_count(threads, tasks);
+  std::vector<std::thread> pool;
+  for (unsigned w = 1; w < workers; ++w) pool.emplace_back(work, w);
+  work(0);
+  for (std::thread& t : pool) t.join();
+  if (failed) std::rethrow_exception(failed);
 }
 
 } // namespace irad

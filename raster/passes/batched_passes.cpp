@@ -7,20 +7,22 @@ namespace irad::gl {
 std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, const Scene& scene,
                                                    float clamp, int batch, int resolution,
                                                    int ortho_resolution,
-                                                   const ShadowLodOptions& lod, bool unsure) {
+                                                   const ShadowLodOptions& lod, bool unsure,
+                                                   LodProvider* shared) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
   if (b < 2 || DeferredShader::capacity(api, b, !scene.all_lambertian()) < b) return nullptr;
   const int tiles = ortho_resolution > 0 ? OrthoAtlas::capacity(api, ortho_resolution, b) : 0;
   return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution, tiles,
-                                         tiles > 0 ? ortho_resolution : 0, lod, unsure);
+                                         tiles > 0 ? ortho_resolution : 0, lod, unsure, shared);
 }
 
 BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp,
                              int requested, int batch, int resolution, int ortho_tiles,
-                             int ortho_resolution, const ShadowLodOptions& lod, bool unsure)
+                             int ortho_resolution, const ShadowLodOptions& lod, bool unsure,
+                             LodProvider* shared)
     : requested_(requested),
-      atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene), lod),
+      atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene), lod, shared),
       ortho_(ortho_tiles > 0
                  ? std::make_unique<OrthoAtlas>(api, ortho_resolution, ortho_tiles, scene.bounds,
                                                 MaterialFeatures::of(scene))

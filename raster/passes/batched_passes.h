@@ -40,14 +40,15 @@ public:
   // Batches of up to `batch` VPLs (fewer if this GL's texture or uniform-block sizes ask for
   // it) with resolution^2 cube faces and, ortho_resolution > 0 (scenes with directional light),
   // as many orthographic maps of ortho_resolution^2; nullptr when batch < 2 or not even 2 VPLs
-  // fit. unsure: the shading's alpha adds the unsure light (DeferredShader).
+  // fit. unsure: the shading's alpha adds the unsure light (DeferredShader). shared: the shadow
+  // hierarchy (ShadowAtlas; nullptr: the atlas builds its own).
   static std::unique_ptr<BatchedPasses> make(const GladGLContext& api, const Scene& scene,
                                              float clamp, int batch, int resolution,
                                              int ortho_resolution, const ShadowLodOptions& lod,
-                                             bool unsure);
+                                             bool unsure, LodProvider* shared = nullptr);
   BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp, int requested, int batch,
                 int resolution, int ortho_tiles, int ortho_resolution, const ShadowLodOptions& lod,
-                bool unsure);
+                bool unsure, LodProvider* shared);
 
   // Whether this object serves make(..., batch, resolution, ortho_resolution).
   bool matches(int batch, int resolution, int ortho_resolution) const {

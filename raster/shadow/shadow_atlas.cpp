@@ -77,7 +77,7 @@ int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) 
 
 ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
                          const Bounds& bounds, const MaterialFeatures& features,
-                         const ShadowLodOptions& lod)
+                         const ShadowLodOptions& lod, LodProvider* shared)
     : api_(&api), resolution_(resolution), batch_(batch),
       block_(ShadowAtlas::block_size(resolution)), grid_(block_grid(blocks, block_)),
       bounds_(bounds),
@@ -88,7 +88,7 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
                           features)),
       material_(program_), block_buffer_(make_buffer(api)), block_data_(block_floats(batch), 0.0f),
       lod_options_(lod), u_face_(program_.uniform("u_face")),
-      u_copies_(features.mirrors ? program_.uniform("u_copies") : -1) {
+      u_copies_(features.mirrors ? program_.uniform("u_copies") : -1), shared_lod_(shared) {
   const glm::ivec2 size = grid_ * block_;
   GLint uniform_block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
@@ -123,14 +123,14 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
 
 bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
   if (lod_options_.mode == ShadowLodMode::Off || scene.scene().animation) return false;
-  if (lod_scene_ != &scene) {
-    // Cull draws the scene's own triangles (the same image as Off), On also their reductions.
-    const bool on = lod_options_.mode == ShadowLodMode::On;
-    lod_ =
-        std::make_unique<ShadowLod>(*api_, scene, build_mesh_clusters(scene.scene(), {0, on}), on);
-    lod_scene_ = &scene;
+  if (!lod_) {
+    if (!shared_lod_) {
+      own_lod_ = std::make_unique<LodProvider>(*api_, scene, lod_options_);
+      shared_lod_ = own_lod_.get();
+    }
+    lod_ = shared_lod_->get();
   }
-  return !lod_->clusters().nodes.empty();
+  return lod_ && !lod_->clusters().nodes.empty();
 }
 
 void ShadowAtlas::draw_clusters(int n, const GpuScene& scene) {

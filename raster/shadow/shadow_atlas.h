@@ -24,6 +24,7 @@
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
+#include "raster/shadow/lod_provider.h"
 #include "raster/shadow/shadow_lod.h"
 
 #include <algorithm>
@@ -41,9 +42,11 @@ public:
   // features: the scene's (raster/scene/material_features.h); with alpha, absent fragments cast no
   // shadow.
   // lod: how the faces draw the opaque triangles (Off: all of them into every face). The
-  // hierarchy is built on the first render() of a scene (never for an animated one).
+  // hierarchy comes from `shared` on the first render() (never for an animated scene); without
+  // one the atlas builds its own then, of the scene it renders.
   ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks, const Bounds& bounds,
-              const MaterialFeatures& features, const ShadowLodOptions& lod = {ShadowLodMode::Off});
+              const MaterialFeatures& features, const ShadowLodOptions& lod = {ShadowLodMode::Off},
+              LodProvider* shared = nullptr);
 
   // The largest batch (<= wanted) an atlas with one block per VPL can hold on this GL: 0 or 1
   // means batching is not possible.
@@ -86,7 +89,7 @@ public:
   // Triangles the faces of the last render() drew from the hierarchy (0 without one), and the
   // hierarchy (nullptr before a render() or without one).
   std::size_t cluster_triangles() const { return cluster_triangles_; }
-  const ShadowLod* lod() const { return lod_.get(); }
+  const ShadowLod* lod() const { return lod_; }
 
 private:
   // One face of the batch: instance 6 s + f, its view-projection, rectangle and VPL position.
@@ -147,9 +150,10 @@ private:
   ShadowLodOptions lod_options_;
   GLint u_face_;
   GLint u_copies_; // -1: a scene without mirrors (the program has no mirrored cubes)
-  std::unique_ptr<ShadowLod> lod_;
-  const GpuScene* lod_scene_ = nullptr; // the scene lod_ is of
-  std::vector<Face> faces_;             // of the last render()
+  LodProvider* shared_lod_;
+  std::unique_ptr<LodProvider> own_lod_; // without a shared one
+  const ShadowLod* lod_ = nullptr;       // from either, on the first render()
+  std::vector<Face> faces_;              // of the last render()
   ClusterSelection selection_;
   std::vector<std::vector<ClusterPick>> picks_, near_; // per face of faces_
   std::vector<std::size_t> totals_, taken_;            // per face: indices picked, taken
