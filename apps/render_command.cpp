@@ -62,6 +62,7 @@ struct RenderArgs {
   int batch = RasterOptions{}.batch;
   std::string shadow_lod = "on";
   std::string shadow_occlusion = "on";
+  std::string hierarchy_cache = "on";
   std::string shadow_planes = "auto";
   std::string jitter = "off";
   std::string interleave_edges = "auto";
@@ -156,53 +157,55 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
   } else {
     seconds["trace"] = r.seconds.trace;
   }
-  return {{"scene", args.scene},
-          {"estimator", args.estimator},
-          {"vpls", r.vpls.vpls.size()},
-          {"vpls_planned", r.vpls.planned},
-          {"passes", r.passes},
-          {"single_passes", r.single_passes},
-          {"edge_pixels", r.edge_pixels},
-          {"unsure_pixels", r.unsure_pixels},
-          {"paths", r.vpls.paths},
-          {"sequence", args.sequence},
-          {"light_allocation", args.light_allocation},
-          {"rho_bar", r.vpls.rho_bar},
-          {"l_max", r.vpls.l_max},
-          {"depth_capped", r.vpls.depth_capped},
-          {"size", {r.view.width, r.view.height}},
-          {"triangles", scene.triangle_count()},
-          {"shadow_res", r.shadow_resolution}, // as drawn: 0 for rt-vpl
-          {"interleave", r.interleave},        // as drawn: auto resolved
-          {"interleave_edges", r.edge_mode},   // as drawn: auto resolved
-          {"batch", args.batch},
-          {"shadow_lod", args.shadow_lod},
-          {"shadow_occlusion", args.shadow_occlusion == "on"},
-          {"shadow_planes", r.shadow_planes}, // as drawn: auto resolved
-          {"thinnest_wall", r.thinnest_wall},
-          {"jitter", args.jitter == "on"},
-          {"clamp", args.clamp},
-          {"clamp_distance", args.clamp * scene.bounds.diagonal()}, // local: the cap
-          {"clamp_mode", args.clamp_mode},
-          {"clusters", r.clusters}, // as drawn: auto resolved
-          {"rounds", r.rounds},
-          {"cluster_rows", args.cluster_rows},
-          {"walk_vpls", r.walk_vpls},
-          {"cluster_dropped", r.cluster_dropped},
-          {"camera", r.camera.name},
-          {"gl", r.gl},
-          {"clamped_fraction", r.clamped_fraction},
-          {"bias_compensation", args.bias_compensation},
-          {"compensation", args.bias_compensation ? "traced" : args.compensation},
-          {"compensation_fallback", r.compensation_fallback},
-          {"traced_roughness", glossy_pass ? args.traced_roughness : 0.0f},
-          {"glossy_samples", args.glossy_samples},
-          {"glossy_pixels", r.glossy_pixels},
-          {"glossy_rays", r.glossy_rays},
-          {"glossy_on_screen", r.glossy_on_screen},
-          {"glossy_exact", r.glossy_exact},
-          {"lights", lights_json(scene)},
-          {"seconds", seconds}};
+  return {
+      {"scene", args.scene},
+      {"estimator", args.estimator},
+      {"vpls", r.vpls.vpls.size()},
+      {"vpls_planned", r.vpls.planned},
+      {"passes", r.passes},
+      {"single_passes", r.single_passes},
+      {"edge_pixels", r.edge_pixels},
+      {"unsure_pixels", r.unsure_pixels},
+      {"paths", r.vpls.paths},
+      {"sequence", args.sequence},
+      {"light_allocation", args.light_allocation},
+      {"rho_bar", r.vpls.rho_bar},
+      {"l_max", r.vpls.l_max},
+      {"depth_capped", r.vpls.depth_capped},
+      {"size", {r.view.width, r.view.height}},
+      {"triangles", scene.triangle_count()},
+      {"shadow_res", r.shadow_resolution}, // as drawn: 0 for rt-vpl
+      {"interleave", r.interleave},        // as drawn: auto resolved
+      {"interleave_edges", r.edge_mode},   // as drawn: auto resolved
+      {"batch", args.batch},
+      {"shadow_lod", args.shadow_lod},
+      {"shadow_occlusion", args.shadow_occlusion == "on"},
+      {"hierarchy_cache", {{"outcome", r.hierarchy_cache}, {"reason", r.hierarchy_cache_reason}}},
+      {"shadow_planes", r.shadow_planes}, // as drawn: auto resolved
+      {"thinnest_wall", r.thinnest_wall},
+      {"jitter", args.jitter == "on"},
+      {"clamp", args.clamp},
+      {"clamp_distance", args.clamp * scene.bounds.diagonal()}, // local: the cap
+      {"clamp_mode", args.clamp_mode},
+      {"clusters", r.clusters}, // as drawn: auto resolved
+      {"rounds", r.rounds},
+      {"cluster_rows", args.cluster_rows},
+      {"walk_vpls", r.walk_vpls},
+      {"cluster_dropped", r.cluster_dropped},
+      {"camera", r.camera.name},
+      {"gl", r.gl},
+      {"clamped_fraction", r.clamped_fraction},
+      {"bias_compensation", args.bias_compensation},
+      {"compensation", args.bias_compensation ? "traced" : args.compensation},
+      {"compensation_fallback", r.compensation_fallback},
+      {"traced_roughness", glossy_pass ? args.traced_roughness : 0.0f},
+      {"glossy_samples", args.glossy_samples},
+      {"glossy_pixels", r.glossy_pixels},
+      {"glossy_rays", r.glossy_rays},
+      {"glossy_on_screen", r.glossy_on_screen},
+      {"glossy_exact", r.glossy_exact},
+      {"lights", lights_json(scene)},
+      {"seconds", seconds}};
 }
 
 // Written as image_io writes images: into PATH.tmp, renamed over PATH; the .tmp never stays.
@@ -292,6 +295,7 @@ int run_render(const RenderArgs& args) {
   request.render.raster.batch = args.batch;
   request.render.raster.shadow_lod.mode = parse_shadow_lod(args.shadow_lod);
   request.render.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
+  if (args.hierarchy_cache == "off") request.render.raster.hierarchy_cache.clear();
   request.render.raster.shadow_lod.planes = parse_shadow_planes(args.shadow_planes);
   request.render.raster.jitter = args.jitter == "on";
   set_edge_pixels(args.interleave_edges, request.render); // checked by CLI11
@@ -491,6 +495,12 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--shadow-occlusion", args->shadow_occlusion,
                   "Raster, batched, shadow-lod on or cull: each face draws its nearest clusters "
                   "first and leaves out those they hide (the same image)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--hierarchy-cache", args->hierarchy_cache,
+                  "Raster, batched, shadow-lod on or cull: keep the shadow hierarchy of a scene "
+                  "between runs in $XDG_CACHE_HOME/irad/hierarchy (else ~/.cache/irad/hierarchy); "
+                  "off: build it every time")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--shadow-planes", args->shadow_planes,

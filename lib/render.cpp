@@ -196,6 +196,8 @@ void run_raster(Stages& s, const RayScene& rays) {
   s.r.seconds.raster = since(t0);
   s.r.seconds.readback = timings.readback;
   s.r.seconds.raster_setup = {{"planes scan", s.planes_scan}};
+  s.r.hierarchy_cache = outcome_name(raster.hierarchy_cache().outcome);
+  s.r.hierarchy_cache_reason = raster.hierarchy_cache().reason;
   const StageTimes setup = raster.setup_times();
   for (const auto& stage : setup.stages()) s.r.seconds.raster_setup.push_back(stage);
   s.r.passes = timings.passes;

@@ -272,6 +272,10 @@ RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options)
   impl_->context->release();
 }
 
+CacheResult RasterRenderer::hierarchy_cache() const {
+  return impl_->lod.cache_result();
+}
+
 StageTimes RasterRenderer::setup_times() const {
   StageTimes times = impl_->setup_times;
   times.add("", impl_->lod.setup_times());

@@ -5,12 +5,14 @@
 #include "core/camera/view.h"
 #include "core/image/image.h"
 #include "core/lights/vpl.h"
+#include "core/mesh/cluster_cache.h"
 #include "core/mesh/mesh_clusters.h"
 #include "core/scene/scene.h"
 #include "core/util/stage_times.h"
 #include "raster/context/gl_backend.h"
 
 #include <atomic>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <string>
@@ -53,6 +55,9 @@ struct RasterOptions {
   // and simplified below `texels` (0.5) shadow texels at the VPL's distance (docs/performance.md).
   // The per-VPL passes (batch 1) always draw everything.
   ShadowLodOptions shadow_lod{};
+  // Where the shadow hierarchy is kept between runs (core/mesh/cluster_cache.h): the user's cache
+  // folder by default; empty: built every time, never written.
+  std::filesystem::path hierarchy_cache = default_cache_folder();
   // Glossy scenes: receivers whose roughness lies below this shade only their diffuse lobe from
   // the VPLs a ray can meet (core/lights/vpl.h ray_reachable); the caller adds their specular
   // lobe by rays (walk/glossy_pass.h, as lib/render.cpp does). 0: none. render() only.
@@ -144,6 +149,8 @@ public:
   // textures and the shaders), and once the batched passes drew from the shadow hierarchy its
   // build and upload (raster/shadow/lod_provider.h).
   StageTimes setup_times() const;
+  // What the hierarchy cache did (CacheOutcome::Off until the hierarchy was needed).
+  CacheResult hierarchy_cache() const;
 
   // The last image's edge pixels (RasterOptions::edge_pixels; none when Off, without
   // interleaving, or before a render) as Image coordinates (y down), row by row; Listed: with

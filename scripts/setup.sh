@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config ccache
   libembree-dev libosmesa6-dev libegl-dev libegl-mesa0 libgl-dev libglm-dev libopenexr-dev
-  libstb-dev libdraco-dev libmeshoptimizer-dev libnanoflann-dev libwebp-dev nlohmann-json3-dev libgtest-dev libcli11-dev libfmt-dev
+  libstb-dev libdraco-dev libmeshoptimizer-dev libnanoflann-dev libwebp-dev nlohmann-json3-dev libgtest-dev libcli11-dev libfmt-dev libxxhash-dev
   python3-glad gnuplot-nox
   libglfw3-dev xvfb xauth # irad walkthrough --window, and its test under xvfb-run
   clang-14 libclang-rt-14-dev # the fuzzer: cmake --preset fuzz, fuzz/run.sh (libFuzzer, ASan)

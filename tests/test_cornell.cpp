@@ -63,37 +63,62 @@ TEST(Cornell, FiniteAndTheFloorBleedsTheWallColours) {
   EXPECT_LT(light.g, 12.5f);
 }
 
-TEST(Cornell, CommandLineWritesImagesAndStats) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "irad_cornell_cli";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string cmd = std::string(IRAD_BINARY) + " render " + cornell.string() + " -o " +
-                          (dir / "c.exr").string() + " -o " + (dir / "c.png").string() +
-                          " --size 48x32 --paths 16 --quiet --stats " + (dir / "s.json").string();
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
-  const Image exr = read_exr(dir / "c.exr");
-  EXPECT_EQ(exr.width(), 48);
-  EXPECT_EQ(exr.height(), 32);
-  EXPECT_EQ(exr.non_finite_count(), 0u);
-  EXPECT_GT(fs::file_size(dir / "c.png"), 100u);
-  std::ifstream in(dir / "s.json");
-  const nlohmann::json stats = nlohmann::json::parse(in);
-  for (const char* key : {"vpls", "paths", "rho_bar", "l_max", "size", "seconds"})
-    EXPECT_TRUE(stats.contains(key)) << key;
-  for (const char* key : {"load", "walk", "raster", "total"})
-    EXPECT_TRUE(stats["seconds"].contains(key)) << key;
-  // The raster's one-time stages in the order they ran (the box's shadow hierarchy included).
+// The raster's one-time stages in --stats, in the order they ran.
+std::vector<std::string> setup_stages(const nlohmann::json& stats) {
   std::vector<std::string> stages;
   for (const auto& stage : stats["seconds"]["raster_setup"]) {
     stages.push_back(stage[0]);
     EXPECT_GE(stage[1].get<double>(), 0.0) << stage[0];
   }
-  EXPECT_GE(stages.size(), 9u);
-  EXPECT_EQ(stages.front(), "planes scan");
-  EXPECT_NE(std::find(stages.begin(), stages.end(), "hierarchy levels"), stages.end());
-  EXPECT_EQ(stages.back(), "hierarchy upload");
+  return stages;
+}
+
+bool has(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+// Twice through a fresh hierarchy cache: the first run builds and writes the box's shadow
+// hierarchy, the second reads it back and draws the same image.
+TEST(Cornell, CommandLineWritesImagesAndStats) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "irad_cornell_cli";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto run = [&](const std::string& name) {
+    const std::string cmd =
+        "XDG_CACHE_HOME=" + (dir / "cache").string() + " " + std::string(IRAD_BINARY) + " render " +
+        cornell.string() + " -o " + (dir / (name + ".exr")).string() + " -o " +
+        (dir / (name + ".png")).string() + " --size 48x32 --paths 16 --quiet --stats " +
+        (dir / (name + ".json")).string();
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+    std::ifstream in(dir / (name + ".json"));
+    return nlohmann::json::parse(in);
+  };
+  const nlohmann::json stats = run("c");
+  const Image exr = read_exr(dir / "c.exr");
+  EXPECT_EQ(exr.width(), 48);
+  EXPECT_EQ(exr.height(), 32);
+  EXPECT_EQ(exr.non_finite_count(), 0u);
+  EXPECT_GT(fs::file_size(dir / "c.png"), 100u);
+  for (const char* key : {"vpls", "paths", "rho_bar", "l_max", "size", "seconds"})
+    EXPECT_TRUE(stats.contains(key)) << key;
+  for (const char* key : {"load", "walk", "raster", "total"})
+    EXPECT_TRUE(stats["seconds"].contains(key)) << key;
   EXPECT_EQ(stats["paths"], 16);
   EXPECT_EQ(stats["size"][0], 48);
+  const std::vector<std::string> built = setup_stages(stats);
+  ASSERT_FALSE(built.empty());
+  EXPECT_EQ(built.front(), "planes scan");
+  EXPECT_TRUE(has(built, "hierarchy levels"));
+  EXPECT_TRUE(has(built, "hierarchy cache write"));
+  EXPECT_EQ(built.back(), "hierarchy upload");
+  EXPECT_EQ(stats["hierarchy_cache"]["outcome"], "written");
+
+  const nlohmann::json again = run("d");
+  const std::vector<std::string> read = setup_stages(again);
+  EXPECT_TRUE(has(read, "hierarchy cache read"));
+  EXPECT_FALSE(has(read, "hierarchy levels"));
+  EXPECT_EQ(again["hierarchy_cache"]["outcome"], "hit");
+  EXPECT_TRUE(read_exr(dir / "d.exr").pixels() == exr.pixels());
   fs::remove_all(dir);
 }
 

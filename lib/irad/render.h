@@ -128,6 +128,9 @@ struct RenderResult {
   std::uint32_t rounds = 1; // rounds averaged (RenderOptions::rounds; fewer when cancelled)
   // When cancelled: what was accumulated (pt, rt-vpl: pixels not done are 0, alpha too).
   Image image;
+  // What the shadow hierarchy's cache did (core/mesh/cluster_cache.h outcome_name: off, hit,
+  // written, rebuilt, unwritable) and why a file was not used or written.
+  std::string hierarchy_cache = "off", hierarchy_cache_reason;
   StageSeconds seconds;   // load: the camera, view and ray-tracing structure (render_file: also
                           // the loading)
   bool cancelled = false; // stopped early by a cancellation

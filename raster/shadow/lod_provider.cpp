@@ -3,8 +3,8 @@
 namespace irad::gl {
 
 LodProvider::LodProvider(const GladGLContext& api, const GpuScene& gpu,
-                         const ShadowLodOptions& options)
-    : api_(&api), gpu_(&gpu), options_(options) {}
+                         const ShadowLodOptions& options, std::filesystem::path cache)
+    : api_(&api), gpu_(&gpu), options_(options), cache_(std::move(cache)) {}
 
 const ShadowLod* LodProvider::get() {
   if (options_.mode == ShadowLodMode::Off || gpu_->scene().animation) return nullptr;
@@ -12,7 +12,8 @@ const ShadowLod* LodProvider::get() {
     // Cull draws the scene's own triangles (the same image as Off), On also their reductions.
     const bool on = options_.mode == ShadowLodMode::On;
     StageTimes build;
-    MeshClusters clusters = build_mesh_clusters(gpu_->scene(), {0, on}, &build);
+    MeshClusters clusters =
+        cached_mesh_clusters(gpu_->scene(), {0, on}, cache_, &build, &cache_result_);
     times_.add("hierarchy ", build);
     const auto start = StageTimes::Clock::now();
     lod_ = std::make_unique<ShadowLod>(*api_, *gpu_, std::move(clusters), on);

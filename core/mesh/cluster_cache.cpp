@@ -1,0 +1,415 @@
+#include "core/mesh/cluster_cache.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fmt/format.h>
+#include <fstream>
+#include <memory>
+#include <meshoptimizer.h>
+#include <system_error>
+#include <unistd.h>
+#include <vector>
+#include <xxhash.h>
+
+namespace irad {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr char kMagic[8] = {'I', 'R', 'A', 'D', 'L', 'O', 'D', '\0'};
+// The file layout's version: raise it whenever the layout or the build's results change.
+constexpr std::uint32_t kFormat = 1;
+constexpr std::size_t kNodeWords = 15;  // a node as 32-bit words (write_node)
+constexpr std::size_t kLevelWords = 3;  // a level as 32-bit words
+constexpr std::size_t kCountFields = 6; // indices, nodes, roots, levels, triangles, original
+
+template <class T>
+std::uint32_t word(T value) {
+  static_assert(sizeof(T) == 4);
+  std::uint32_t w;
+  std::memcpy(&w, &value, 4);
+  return w;
+}
+template <class T>
+T from_word(std::uint32_t w) {
+  static_assert(sizeof(T) == 4);
+  T value;
+  std::memcpy(&value, &w, 4);
+  return value;
+}
+
+std::array<std::uint32_t, kNodeWords> node_words(const ClusterNode& n) {
+  return {word(n.bounds.lo.x), word(n.bounds.lo.y), word(n.bounds.lo.z), word(n.bounds.hi.x),
+          word(n.bounds.hi.y), word(n.bounds.hi.z), word(n.error),       n.mesh_first,
+          n.mesh_count,        n.leaf_first,        n.leaf_count,        word(n.children[0]),
+          word(n.children[1]), n.levels_first,      n.levels_count};
+}
+ClusterNode node_from(const std::uint32_t* w) {
+  ClusterNode n;
+  n.bounds.lo = {from_word<float>(w[0]), from_word<float>(w[1]), from_word<float>(w[2])};
+  n.bounds.hi = {from_word<float>(w[3]), from_word<float>(w[4]), from_word<float>(w[5])};
+  n.error = from_word<float>(w[6]);
+  n.mesh_first = w[7];
+  n.mesh_count = w[8];
+  n.leaf_first = w[9];
+  n.leaf_count = w[10];
+  n.children[0] = from_word<std::int32_t>(w[11]);
+  n.children[1] = from_word<std::int32_t>(w[12]);
+  n.levels_first = w[13];
+  n.levels_count = w[14];
+  return n;
+}
+
+struct FreeHashState {
+  void operator()(XXH3_state_t* s) const { XXH3_freeState(s); }
+};
+using HashState = std::unique_ptr<XXH3_state_t, FreeHashState>;
+
+// Bytes written through a running XXH3-64 checksum.
+class HashedWriter {
+public:
+  explicit HashedWriter(const fs::path& path) : out_(path, std::ios::binary | std::ios::trunc) {
+    XXH3_64bits_reset(state_.get());
+  }
+  void bytes(const void* data, std::size_t n) {
+    XXH3_64bits_update(state_.get(), data, n);
+    out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(n));
+  }
+  template <class T>
+  void values(const std::vector<T>& v) {
+    bytes(v.data(), v.size() * sizeof(T));
+  }
+  // The checksum of everything so far, appended (not hashed); whether every write succeeded.
+  bool finish() {
+    const std::uint64_t sum = XXH3_64bits_digest(state_.get());
+    out_.write(reinterpret_cast<const char*>(&sum), sizeof sum);
+    out_.close();
+    return static_cast<bool>(out_);
+  }
+  bool good() const { return static_cast<bool>(out_); }
+
+private:
+  std::ofstream out_;
+  HashState state_{XXH3_createState()};
+};
+
+// Reads what HashedWriter wrote, hashing as it goes; any short read leaves it failed.
+class HashedReader {
+public:
+  explicit HashedReader(const fs::path& path) : in_(path, std::ios::binary) {
+    XXH3_64bits_reset(state_.get());
+  }
+  bool bytes(void* data, std::size_t n) {
+    in_.read(static_cast<char*>(data), static_cast<std::streamsize>(n));
+    if (!in_) return false;
+    XXH3_64bits_update(state_.get(), data, n);
+    return true;
+  }
+  template <class T>
+  bool values(std::vector<T>& v, std::size_t n) {
+    v.resize(n);
+    return bytes(v.data(), n * sizeof(T));
+  }
+  // Whether the stored checksum follows and matches, and nothing comes after it.
+  bool checksum_matches() {
+    std::uint64_t stored = 0;
+    in_.read(reinterpret_cast<char*>(&stored), sizeof stored);
+    if (!in_ || stored != XXH3_64bits_digest(state_.get())) return false;
+    return in_.peek() == std::char_traits<char>::eof();
+  }
+  bool good() const { return static_cast<bool>(in_); }
+
+private:
+  std::ifstream in_;
+  HashState state_{XXH3_createState()};
+};
+
+struct Header {
+  char magic[8];
+  std::uint32_t format, meshopt;
+  std::uint64_t key_low, key_high;
+  std::uint64_t counts[kCountFields];
+};
+static_assert(sizeof(Header) == 80, "the header has no padding");
+
+// The file's size for a header's counts (whether it can hold them at all is the caller's).
+std::uintmax_t expected_size(const Header& h) {
+  const auto& c = h.counts;
+  return sizeof(Header) + 4 * (c[0] + kNodeWords * c[1] + c[2] + kLevelWords * c[3] + c[4]) +
+         sizeof(std::uint64_t);
+}
+
+bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& key) {
+  HashedWriter w(path);
+  Header h{};
+  std::memcpy(h.magic, kMagic, sizeof kMagic);
+  h.format = kFormat;
+  h.meshopt = MESHOPTIMIZER_VERSION;
+  h.key_low = key.low;
+  h.key_high = key.high;
+  const std::uint64_t counts[kCountFields] = {c.indices.size(),   c.nodes.size(),
+                                              c.roots.size(),     c.levels.size(),
+                                              c.triangles.size(), c.original_indices};
+  std::memcpy(h.counts, counts, sizeof counts);
+  w.bytes(&h, sizeof h);
+  w.values(c.indices);
+  std::vector<std::uint32_t> words;
+  words.reserve(c.nodes.size() * kNodeWords);
+  for (const ClusterNode& n : c.nodes) {
+    const auto nw = node_words(n);
+    words.insert(words.end(), nw.begin(), nw.end());
+  }
+  w.values(words);
+  w.values(c.roots);
+  words.clear();
+  for (const ClusterLevel& l : c.levels) {
+    words.push_back(word(l.error));
+    words.push_back(l.first);
+    words.push_back(l.count);
+  }
+  w.values(words);
+  w.values(c.triangles);
+  return w.finish();
+}
+
+// The hierarchy in `path` for `key`, or "" in `why` and the hierarchy; else why not.
+MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t vertices,
+                       std::size_t triangles, std::string& why) {
+  MeshClusters c;
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  HashedReader r(path);
+  Header h{};
+  if (ec || !r.good() || !r.bytes(&h, sizeof h)) {
+    why = "unreadable or shorter than its header";
+    return c;
+  }
+  if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0 || h.format != kFormat ||
+      h.meshopt != MESHOPTIMIZER_VERSION) {
+    why = "another format or meshoptimizer version";
+    return c;
+  }
+  if (h.key_low != key.low || h.key_high != key.high) {
+    why = "the key of another scene";
+    return c;
+  }
+  // Counts a file of this size can hold (so that a flipped count allocates nothing absurd).
+  for (std::uint64_t n : h.counts)
+    if (n > size) {
+      why = "sizes beyond the file";
+      return c;
+    }
+  if (expected_size(h) != size) {
+    why = "truncated or padded";
+    return c;
+  }
+  std::vector<std::uint32_t> words;
+  bool ok = r.values(c.indices, h.counts[0]) && r.values(words, h.counts[1] * kNodeWords);
+  for (std::size_t k = 0; ok && k < h.counts[1]; ++k)
+    c.nodes.push_back(node_from(&words[k * kNodeWords]));
+  ok = ok && r.values(c.roots, h.counts[2]) && r.values(words, h.counts[3] * kLevelWords);
+  for (std::size_t k = 0; ok && k < h.counts[3]; ++k)
+    c.levels.push_back({from_word<float>(words[k * kLevelWords]), words[k * kLevelWords + 1],
+                        words[k * kLevelWords + 2]});
+  ok = ok && r.values(c.triangles, h.counts[4]);
+  c.original_indices = h.counts[5];
+  if (!ok || !r.checksum_matches()) {
+    why = "checksum mismatch";
+    return {};
+  }
+  why = validate_clusters(c, vertices, triangles);
+  if (!why.empty()) return {};
+  return c;
+}
+
+// Removes the least recently used hierarchies until the folder holds at most kCacheBytes, and
+// temporary files an hour old (a writer that died).
+void trim_folder(const fs::path& folder) {
+  std::error_code ec;
+  std::vector<std::pair<fs::file_time_type, fs::path>> files;
+  std::uintmax_t total = 0;
+  const auto now = fs::file_time_type::clock::now();
+  for (const fs::directory_entry& e : fs::directory_iterator(folder, ec)) {
+    const fs::path& p = e.path();
+    const fs::file_time_type t = e.last_write_time(ec);
+    if (ec) continue;
+    if (p.filename().string().find(".tmp.") != std::string::npos) {
+      if (now - t > std::chrono::hours(1)) fs::remove(p, ec);
+      continue;
+    }
+    if (p.extension() != ".lod") continue;
+    total += e.file_size(ec);
+    files.emplace_back(t, p);
+  }
+  std::sort(files.begin(), files.end());
+  for (const auto& [t, p] : files) {
+    if (total <= kCacheBytes) break;
+    const std::uintmax_t bytes = fs::file_size(p, ec);
+    if (fs::remove(p, ec)) total -= bytes;
+  }
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+std::string check_nodes(const MeshClusters& c) {
+  const std::size_t n = c.nodes.size(), indices = c.indices.size();
+  const auto in_indices = [&](std::uint64_t first, std::uint64_t count) {
+    return count % 3 == 0 && first + count <= indices;
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const ClusterNode& node = c.nodes[k];
+    const std::string at = fmt::format("node {}: ", k);
+    if (!std::isfinite(node.error) || node.error < 0.0f || !finite(node.bounds.lo) ||
+        !finite(node.bounds.hi))
+      return at + "error or bounds not finite";
+    if (!in_indices(node.mesh_first, node.mesh_count) ||
+        !in_indices(node.leaf_first, node.leaf_count) ||
+        std::uint64_t{node.leaf_first} + node.leaf_count > c.original_indices)
+      return at + "a range outside the indices";
+    if (std::uint64_t{node.levels_first} + node.levels_count > c.levels.size())
+      return at + "levels outside the list";
+    const bool leaf = node.children[0] < 0 && node.children[1] < 0;
+    for (std::int32_t child : node.children)
+      if (!leaf && (child <= static_cast<std::int64_t>(k) || static_cast<std::size_t>(child) >= n))
+        return at + "a child out of order";
+  }
+  return "";
+}
+
+} // namespace
+
+fs::path default_cache_folder() {
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  if (xdg && *xdg && fs::path(xdg).is_absolute()) return fs::path(xdg) / "irad" / "hierarchy";
+  const char* home = std::getenv("HOME");
+  if (home && *home) return fs::path(home) / ".cache" / "irad" / "hierarchy";
+  return {};
+}
+
+std::string ClusterKey::hex() const {
+  return fmt::format("{:016x}{:016x}", high, low);
+}
+
+ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
+  const HashState state(XXH3_createState());
+  XXH3_128bits_reset(state.get());
+  const auto add = [&](const void* data, std::size_t n) {
+    XXH3_128bits_update(state.get(), data, n);
+  };
+  const std::uint32_t leaf = options.leaf_triangles != 0
+                                 ? options.leaf_triangles
+                                 : automatic_leaf_triangles(scene.triangle_count());
+  const std::array<std::uint32_t, 5> settings = {kFormat, MESHOPTIMIZER_VERSION, leaf,
+                                                 options.simplify ? 1u : 0u,
+                                                 static_cast<std::uint32_t>(options.max_levels)};
+  add(settings.data(), sizeof settings);
+  const float diagonal = scene.bounds.diagonal();
+  add(&diagonal, sizeof diagonal);
+  const std::uint64_t vertices = scene.positions.size();
+  add(&vertices, sizeof vertices);
+  add(scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
+  // The opaque triangles as (index, a, b, c), in order.
+  std::vector<std::uint32_t> chunk;
+  for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
+    if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
+    const glm::uvec3 v = scene.triangles[t];
+    chunk.insert(chunk.end(), {static_cast<std::uint32_t>(t), v.x, v.y, v.z});
+    if (chunk.size() >= 4096 || t + 1 == scene.triangle_count()) {
+      add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
+      chunk.clear();
+    }
+  }
+  add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
+  const XXH128_hash_t h = XXH3_128bits_digest(state.get());
+  return {h.low64, h.high64};
+}
+
+const char* outcome_name(CacheOutcome outcome) {
+  switch (outcome) {
+  case CacheOutcome::Off:
+    return "off";
+  case CacheOutcome::Hit:
+    return "hit";
+  case CacheOutcome::Written:
+    return "written";
+  case CacheOutcome::Rebuilt:
+    return "rebuilt";
+  case CacheOutcome::Unwritable:
+    return "unwritable";
+  }
+  return "?";
+}
+
+std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles) {
+  if (c.original_indices > c.indices.size() || c.original_indices % 3 != 0)
+    return "the original part exceeds the indices";
+  for (std::uint32_t i : c.indices)
+    if (i >= vertices) return "an index past the vertices";
+  if (std::string why = check_nodes(c); !why.empty()) return why;
+  for (const ClusterLevel& l : c.levels)
+    if (!std::isfinite(l.error) || l.count % 3 != 0 ||
+        std::uint64_t{l.first} + l.count > c.indices.size())
+      return "a level outside the indices";
+  for (std::int32_t r : c.roots)
+    if (r < 0 || static_cast<std::size_t>(r) >= c.nodes.size()) return "a root out of range";
+  for (std::size_t k = 0; k < c.triangles.size(); ++k)
+    if (c.triangles[k] >= triangles || (k > 0 && c.triangles[k] <= c.triangles[k - 1]))
+      return "triangles not ascending or past the scene's";
+  if (c.nodes.empty() != c.roots.empty()) return "roots without nodes";
+  return "";
+}
+
+MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
+                                  const fs::path& folder, StageTimes* times, CacheResult* result) {
+  CacheResult own;
+  CacheResult& out = result ? *result : own;
+  out = {};
+  if (folder.empty()) return build_mesh_clusters(scene, options, times);
+  StageTimes local;
+  StageTimes& stages = times ? *times : local;
+  auto start = StageTimes::Clock::now();
+  const ClusterKey key = cluster_key(scene, options);
+  const fs::path path = folder / (key.hex() + ".lod");
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    std::string why;
+    MeshClusters c = read_file(path, key, scene.positions.size(), scene.triangle_count(), why);
+    stages.lap("cache read", start);
+    if (why.empty()) {
+      out.outcome = CacheOutcome::Hit;
+      fs::last_write_time(path, fs::file_time_type::clock::now(), ec); // a use
+      return c;
+    }
+    out = {CacheOutcome::Rebuilt, why};
+  }
+  MeshClusters c = build_mesh_clusters(scene, options, &stages);
+  start = StageTimes::Clock::now();
+  const fs::path temporary =
+      folder / fmt::format("{}.lod.tmp.{}.{}", key.hex(), ::getpid(),
+                           std::chrono::steady_clock::now().time_since_epoch().count());
+  fs::create_directories(folder, ec);
+  if (ec || !write_file(temporary, c, key)) {
+    fs::remove(temporary, ec);
+    out = {CacheOutcome::Unwritable, fmt::format("cannot write {}", temporary.string())};
+  } else {
+    fs::rename(temporary, path, ec);
+    if (ec) {
+      fs::remove(temporary, ec);
+      out = {CacheOutcome::Unwritable, fmt::format("cannot write {}", path.string())};
+    } else if (out.outcome == CacheOutcome::Off) {
+      out.outcome = CacheOutcome::Written;
+    }
+    trim_folder(folder);
+  }
+  stages.lap("cache write", start);
+  return c;
+}
+
+} // namespace irad

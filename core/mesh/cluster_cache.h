@@ -1,0 +1,70 @@
+#pragma once
+// The shadow hierarchy (core/mesh/mesh_clusters.h) kept on disk between runs: building it is the
+// one-time cost of a big scene (seconds per million triangles), reading it back a fraction of
+// that.
+//
+// A file per hierarchy, FOLDER/<key>.lod, the key a 128-bit XXH3 hash of everything the build
+// reads: the positions, the opaque triangles (their indices and order), the scene's diagonal (the
+// planar reduction's tolerance), the resolved ClusterOptions (not the threads: the hierarchy is
+// the same on any number), this file format's version and meshoptimizer's. Written atomically
+// (a temporary file in the folder, renamed into place), so a reader sees a whole file or none.
+//
+// Never trusted: a file is used only when its magic, version, key and sizes match, its XXH3-64
+// checksum over all it holds is right, and the hierarchy passes validate_clusters (every index
+// names a vertex, every range lies inside its array, children after their parents); anything
+// else (stale, foreign, truncated, bit-flipped) is rebuilt and written over. The folder is kept
+// below kCacheBytes by removing the files least recently used.
+#include "core/mesh/mesh_clusters.h"
+#include "core/util/stage_times.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace irad {
+
+// $XDG_CACHE_HOME/irad/hierarchy, else $HOME/.cache/irad/hierarchy (XDG's default); empty when
+// neither variable is set (no cache).
+std::filesystem::path default_cache_folder();
+
+struct ClusterKey {
+  std::uint64_t low = 0, high = 0;
+  std::string hex() const; // 32 hexadecimal digits, high first
+  bool operator==(const ClusterKey&) const = default;
+};
+
+// The key of build_mesh_clusters(scene, options) (leaf_triangles 0 resolved as the build does).
+ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options);
+
+// What the cache did for one hierarchy.
+enum class CacheOutcome {
+  Off,        // no folder: built, not written
+  Hit,        // read back
+  Written,    // not there: built and written
+  Rebuilt,    // there but unusable (CacheResult::reason): built and written over
+  Unwritable, // built; the folder or file could not be written (CacheResult::reason)
+};
+struct CacheResult {
+  CacheOutcome outcome = CacheOutcome::Off;
+  std::string reason; // why a file was not used, or could not be written
+};
+const char* outcome_name(CacheOutcome outcome); // "off", "hit", "written", "rebuilt", ...
+
+// Checks what a reader must before it draws from c: every index below `vertices`, every node's
+// ranges inside `indices` and `levels`, children numbered after their parents, the leaves'
+// ranges tiling [0, original_indices), roots in range, the triangles ascending and below
+// `triangles`, errors and bounds finite. Returns what is wrong, or "" when nothing is.
+std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles);
+
+// build_mesh_clusters through the cache in `folder` (empty: off). times gets the build's stages,
+// or "cache read"; then "cache write" when it wrote. Throws only what the build throws: a
+// cache that cannot be read or written is reported in `result`, never an error.
+MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
+                                  const std::filesystem::path& folder, StageTimes* times = nullptr,
+                                  CacheResult* result = nullptr);
+
+// The most bytes the cache folder keeps: after a write, the least recently used files (a hit
+// counts as a use) go until the rest fit.
+inline constexpr std::uintmax_t kCacheBytes = std::uintmax_t{4} << 30;
+
+} // namespace irad

@@ -1,0 +1,231 @@
+// The shadow hierarchy's cache (core/mesh/cluster_cache.h): a hit gives the hierarchy the build
+// gives; a file that is truncated, bit-flipped, of another scene or another version is never
+// used but rebuilt and written over; a folder that cannot be written costs only the write; the
+// renderer draws the same image from a hit as from a build.
+#include "core/camera/view.h"
+#include "core/gltf/loader.h"
+#include "core/mesh/cluster_cache.h"
+#include "core/mesh/sphere_mesh.h"
+#include "core/scene/scene_builder.h"
+#include "raster/raster_renderer.h"
+#include "tests/test_paths.h"
+#include "walk/quasi_random_walk.h"
+
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <limits>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace irad {
+namespace IRAD_UNITY_ID {
+
+namespace fs = std::filesystem;
+
+Scene two_spheres() {
+  Scene s;
+  add_sphere(s, {0.0f, 0.0f, 0.0f}, 1.0f, 32, add_material(s, glm::vec3(0.5f)));
+  add_sphere(s, {3.0f, 0.0f, 0.0f}, 0.5f, 16, add_material(s, glm::vec3(0.5f)));
+  finish(s);
+  return s;
+}
+
+bool same(const MeshClusters& a, const MeshClusters& b) {
+  if (a.indices != b.indices || a.roots != b.roots || a.triangles != b.triangles ||
+      a.original_indices != b.original_indices || a.nodes.size() != b.nodes.size() ||
+      a.levels.size() != b.levels.size())
+    return false;
+  for (std::size_t k = 0; k < a.nodes.size(); ++k) {
+    const ClusterNode &x = a.nodes[k], &y = b.nodes[k];
+    if (x.error != y.error || x.mesh_first != y.mesh_first || x.mesh_count != y.mesh_count ||
+        x.leaf_first != y.leaf_first || x.leaf_count != y.leaf_count ||
+        x.children[0] != y.children[0] || x.children[1] != y.children[1] ||
+        x.levels_first != y.levels_first || x.levels_count != y.levels_count ||
+        x.bounds.lo != y.bounds.lo || x.bounds.hi != y.bounds.hi)
+      return false;
+  }
+  for (std::size_t k = 0; k < a.levels.size(); ++k)
+    if (a.levels[k].error != b.levels[k].error || a.levels[k].first != b.levels[k].first ||
+        a.levels[k].count != b.levels[k].count)
+      return false;
+  return true;
+}
+
+class ClusterCache : public ::testing::Test {
+protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() / ("irad_cluster_cache_" + std::to_string(::getpid()));
+    fs::remove_all(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  // The one file the folder holds.
+  fs::path file() const {
+    std::vector<fs::path> files;
+    for (const fs::directory_entry& e : fs::directory_iterator(folder_)) files.push_back(e.path());
+    EXPECT_EQ(files.size(), 1u);
+    return files.empty() ? fs::path() : files[0];
+  }
+  MeshClusters cached(const Scene& s, CacheResult& result, StageTimes* times = nullptr) const {
+    return cached_mesh_clusters(s, options_, folder_, times, &result);
+  }
+
+  fs::path folder_;
+  ClusterOptions options_{128, true};
+};
+
+TEST_F(ClusterCache, AHitGivesWhatTheBuildGives) {
+  const Scene s = two_spheres();
+  const MeshClusters built = build_mesh_clusters(s, options_);
+  CacheResult result;
+  EXPECT_TRUE(same(cached(s, result), built));
+  EXPECT_EQ(result.outcome, CacheOutcome::Written);
+  EXPECT_EQ(file().filename().string(), cluster_key(s, options_).hex() + ".lod");
+  StageTimes times;
+  EXPECT_TRUE(same(cached(s, result, &times), built));
+  EXPECT_EQ(result.outcome, CacheOutcome::Hit);
+  ASSERT_EQ(times.stages().size(), 1u);
+  EXPECT_EQ(times.stages()[0].first, "cache read");
+  // Off: built, nothing written.
+  fs::remove_all(folder_);
+  EXPECT_TRUE(same(cached_mesh_clusters(s, options_, {}, nullptr, &result), built));
+  EXPECT_EQ(result.outcome, CacheOutcome::Off);
+  EXPECT_FALSE(fs::exists(folder_));
+}
+
+TEST_F(ClusterCache, TheKeyFollowsWhatTheBuildReads) {
+  const Scene s = two_spheres();
+  const ClusterKey key = cluster_key(s, options_);
+  EXPECT_EQ(key, cluster_key(two_spheres(), options_));
+  ClusterOptions threads = options_;
+  threads.threads = 1; // the same hierarchy on any number
+  EXPECT_EQ(key, cluster_key(s, threads));
+  ClusterOptions leaves = options_;
+  leaves.leaf_triangles = 256;
+  EXPECT_NE(key, cluster_key(s, leaves));
+  ClusterOptions cull = options_;
+  cull.simplify = false;
+  EXPECT_NE(key, cluster_key(s, cull));
+  Scene moved = two_spheres();
+  moved.positions[7].y += 1e-6f;
+  EXPECT_NE(key, cluster_key(moved, options_));
+  Scene masked = two_spheres();
+  masked.materials[1].alpha_mode = AlphaMode::Mask; // out of the hierarchy
+  EXPECT_NE(key, cluster_key(masked, options_));
+}
+
+// A truncated file, a flipped bit anywhere (header, indices, nodes, checksum), a file of another
+// scene under this one's name: each is rebuilt, written over, and the result is the build's.
+TEST_F(ClusterCache, ABadFileIsRebuiltNeverTrusted) {
+  const Scene s = two_spheres();
+  const MeshClusters built = build_mesh_clusters(s, options_);
+  CacheResult result;
+  cached(s, result);
+  const fs::path path = file();
+  const std::uintmax_t size = fs::file_size(path);
+  std::vector<char> good(size);
+  std::ifstream(path, std::ios::binary).read(good.data(), static_cast<std::streamsize>(size));
+  const auto write = [&](const std::vector<char>& bytes) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  };
+  const auto expect_rebuilt = [&](const std::string& what) {
+    const MeshClusters c = cached(s, result);
+    EXPECT_EQ(result.outcome, CacheOutcome::Rebuilt) << what;
+    EXPECT_FALSE(result.reason.empty()) << what;
+    EXPECT_TRUE(same(c, built)) << what;
+    EXPECT_EQ(fs::file_size(path), size) << what << ": written over";
+  };
+  for (std::uintmax_t cut : {std::uintmax_t{0}, std::uintmax_t{40}, size / 2, size - 1}) {
+    write(std::vector<char>(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(cut)));
+    expect_rebuilt("truncated to " + std::to_string(cut));
+  }
+  for (std::uintmax_t at :
+       {std::uintmax_t{3}, std::uintmax_t{10}, std::uintmax_t{20}, std::uintmax_t{40},
+        std::uintmax_t{100}, size / 3, size / 2, size - 12, size - 1}) {
+    std::vector<char> flipped = good;
+    flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
+    write(flipped);
+    expect_rebuilt("bit flipped at byte " + std::to_string(at));
+  }
+  // Another scene's file under this name: its key differs.
+  Scene other = two_spheres();
+  other.positions[0].x += 0.25f;
+  fs::remove_all(folder_);
+  cached(other, result);
+  fs::rename(file(), path);
+  expect_rebuilt("another scene's file");
+  // Extra bytes after the checksum.
+  std::vector<char> padded = good;
+  padded.push_back(0);
+  write(padded);
+  expect_rebuilt("padded");
+  // And the good file again: a hit.
+  write(good);
+  EXPECT_TRUE(same(cached(s, result), built));
+  EXPECT_EQ(result.outcome, CacheOutcome::Hit);
+}
+
+TEST_F(ClusterCache, AFolderThatCannotBeWrittenCostsOnlyTheWrite) {
+  const Scene s = two_spheres();
+  std::ofstream(folder_.string()) << "a file where the folder should be";
+  CacheResult result;
+  const MeshClusters c = cached_mesh_clusters(s, options_, folder_ / "sub", nullptr, &result);
+  EXPECT_EQ(result.outcome, CacheOutcome::Unwritable);
+  EXPECT_NE(result.reason.find("cannot write"), std::string::npos) << result.reason;
+  EXPECT_TRUE(same(c, build_mesh_clusters(s, options_)));
+  fs::remove(folder_);
+}
+
+TEST(ClusterCacheValidation, NamesWhatIsWrong) {
+  const Scene s = two_spheres();
+  const MeshClusters good = build_mesh_clusters(s, ClusterOptions{128, true});
+  const std::size_t vertices = s.positions.size(), triangles = s.triangle_count();
+  EXPECT_EQ(validate_clusters(good, vertices, triangles), "");
+  MeshClusters c = good;
+  c.indices[5] = static_cast<std::uint32_t>(vertices);
+  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  c = good;
+  c.nodes[0].children[1] = 0; // a cycle
+  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  c = good;
+  c.nodes.back().levels_first = static_cast<std::uint32_t>(c.levels.size());
+  c.nodes.back().levels_count = 1;
+  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  c = good;
+  c.levels[0].count = static_cast<std::uint32_t>(c.indices.size()) + 3;
+  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  c = good;
+  c.triangles.back() = static_cast<std::uint32_t>(triangles);
+  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  c = good;
+  c.nodes[1].error = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+}
+
+// The raster through the cache: the image from a hit is the image from the build, bit for bit
+// (the Cornell box with a sphere of 9800 triangles, which the faces draw simplified).
+TEST_F(ClusterCache, TheRasterDrawsTheSameImageFromAHit) {
+  Log log([](const std::string&) {});
+  Scene s = load_gltf(fs::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf", log);
+  add_sphere(s, {0.3f, 0.33f, 0.3f}, 0.09f, 50, add_material(s, glm::vec3(0.7f)));
+  finish(s);
+  const RayScene rays(s);
+  const VplSet vpls = quasi_random_walk(s, rays, {16, 64}, log);
+  const View view = make_view(s.cameras.at(0), s.bounds, 64, 64);
+  RasterOptions o;
+  o.interleave = 1;
+  o.hierarchy_cache = folder_;
+  RasterRenderer first(s, o);
+  const Image built = first.render(view, vpls);
+  EXPECT_EQ(first.hierarchy_cache().outcome, CacheOutcome::Written);
+  RasterRenderer second(s, o);
+  const Image hit = second.render(view, vpls);
+  EXPECT_EQ(second.hierarchy_cache().outcome, CacheOutcome::Hit);
+  EXPECT_TRUE(built.pixels() == hit.pixels());
+}
+
+} // namespace IRAD_UNITY_ID
+} // namespace irad
