@@ -232,18 +232,26 @@ private:
   std::vector<std::vector<std::uint32_t>> maps_;
 };
 
-// The nodes by height (leaves 0, a parent one above its higher child), lowest first: a node's
-// children all lie in the groups before its own.
-std::vector<std::vector<std::int32_t>> nodes_by_height(const MeshClusters& out) {
+// Each node's height: leaves 0, a parent one above its higher child.
+std::vector<int> node_heights(const MeshClusters& out) {
   std::vector<int> height(out.nodes.size(), 0);
-  std::vector<std::vector<std::int32_t>> groups(1);
   for (std::size_t n = out.nodes.size(); n-- > 0;) { // children after their parents
     const ClusterNode& node = out.nodes[n];
     if (!node.leaf())
       height[n] = 1 + std::max(height[static_cast<std::size_t>(node.children[0])],
                                height[static_cast<std::size_t>(node.children[1])]);
-    if (static_cast<std::size_t>(height[n]) >= groups.size()) groups.resize(height[n] + 1u);
-    groups[static_cast<std::size_t>(height[n])].push_back(static_cast<std::int32_t>(n));
+  }
+  return height;
+}
+
+// The nodes by height, lowest first: a node's children all lie in the groups before its own.
+std::vector<std::vector<std::int32_t>> nodes_by_height(const MeshClusters& out) {
+  const std::vector<int> height = node_heights(out);
+  std::vector<std::vector<std::int32_t>> groups(1);
+  for (std::size_t n = out.nodes.size(); n-- > 0;) {
+    const auto h = static_cast<std::size_t>(height[n]);
+    if (h >= groups.size()) groups.resize(h + 1);
+    groups[h].push_back(static_cast<std::int32_t>(n));
   }
   return groups;
 }
@@ -300,17 +308,48 @@ struct NodeLevels {
   std::vector<std::uint32_t> indices;
 };
 
+// A component root's levels start from the cut of its tree through the nodes of at most this
+// height: their meshes, each about 2^-height of its region's triangles, are the whole
+// component's at a quarter of the cost of simplifying the original triangles that far.
+constexpr int kWholeCutHeight = 2;
+
+// The meshes of the cut below `root` through the nodes of height at most kWholeCutHeight, joined:
+// one seamless mesh of the component (neighbouring regions share their locked borders);
+// `error`: the largest of theirs.
+std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root,
+                                       const std::vector<int>& height, float& error) {
+  std::vector<std::uint32_t> mesh;
+  error = 0.0f;
+  std::vector<std::size_t> stack{root};
+  while (!stack.empty()) {
+    const std::size_t n = stack.back();
+    stack.pop_back();
+    const ClusterNode& node = out.nodes[n];
+    if (height[n] > kWholeCutHeight) {
+      stack.push_back(static_cast<std::size_t>(node.children[1]));
+      stack.push_back(static_cast<std::size_t>(node.children[0]));
+      continue;
+    }
+    mesh.insert(mesh.end(), out.indices.begin() + node.mesh_first,
+                out.indices.begin() + node.mesh_first + node.mesh_count);
+    error = std::max(error, node.error);
+  }
+  return mesh;
+}
+
 // Its mesh halved again and again (the border still locked) while that removes at least a tenth
-// of the triangles. A root of one connected component (`whole`) starts from its original
-// triangles instead and quarters them: no region border inside it is locked, so a closed surface
+// of the triangles. A root of one connected component (`whole`) starts from the shallow cut of
+// its tree instead and quarters it: no region border inside it is locked, so a closed surface
 // simplifies as far as its error allows.
 NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size_t n, bool whole,
-                          int max_levels, float base_error, std::vector<std::uint32_t>& local_of) {
+                          int max_levels, const std::vector<int>& height,
+                          std::vector<std::uint32_t>& local_of) {
   const ClusterNode& node = out.nodes[n];
-  const std::uint32_t first = whole ? node.leaf_first : node.mesh_first;
-  const std::uint32_t count = whole ? node.leaf_count : node.mesh_count;
-  std::vector<std::uint32_t> mesh(out.indices.begin() + first, out.indices.begin() + first + count);
-  float error = whole ? base_error : node.error;
+  float error = node.error;
+  std::vector<std::uint32_t> mesh =
+      whole ? shallow_cut(out, n, height, error)
+            : std::vector<std::uint32_t>(out.indices.begin() + node.mesh_first,
+                                         out.indices.begin() + node.mesh_first + node.mesh_count);
   NodeLevels result;
   const auto keep = [&] {
     result.levels.push_back({error, static_cast<std::uint32_t>(result.indices.size()),
@@ -340,15 +379,16 @@ NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size
 // Every node's coarser levels, in parallel (the component roots first: the longest tasks), then
 // appended in node order: the same result on any number of threads.
 void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
-                        const std::vector<bool>& whole, float base_error, unsigned threads) {
+                        const std::vector<bool>& whole, unsigned threads) {
   std::vector<std::size_t> order(out.nodes.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_partition(order.begin(), order.end(), [&](std::size_t n) { return whole[n]; });
   std::vector<NodeLevels> levels(out.nodes.size());
+  const std::vector<int> height = node_heights(out);
   LocalMaps local(scene.positions.size(), worker_count(threads, static_cast<int>(order.size())));
   parallel_tasks(static_cast<int>(order.size()), threads, [&](int k, unsigned worker) {
     const std::size_t n = order[static_cast<std::size_t>(k)];
-    levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, base_error, local.of(worker));
+    levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, height, local.of(worker));
   });
   for (std::size_t n = 0; n < out.nodes.size(); ++n) {
     ClusterNode& node = out.nodes[n];
@@ -431,7 +471,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   simplify_inner_nodes(scene, b.out, options.simplify, options.threads);
   start = stages.lap("inner", start);
   if (options.simplify)
-    add_coarser_levels(scene, b.out, options.max_levels, whole, b.leaf_error, options.threads);
+    add_coarser_levels(scene, b.out, options.max_levels, whole, options.threads);
   stages.lap("levels", start);
   return std::move(b.out);
 }

@@ -24,9 +24,14 @@
 // from far.
 //
 // The trees: one per large connected component (welded), and one for all the small ones. A
-// component's root also keeps levels of the whole component, simplified from its original
-// triangles with only the component's own open edges locked: a face that sees the component
-// from far draws one of them (one mesh, no seams), one that sees it from near a cut of its tree.
+// component's root also keeps levels of the whole component, with only the component's own open
+// edges locked: a face that sees the component from far draws one of them (one mesh, no seams),
+// one that sees it from near a cut of its tree. They are simplified from the cut through the
+// nodes two above the leaves (about a quarter of the triangles; error: the largest of those
+// nodes'), in a fifth of the time the original triangles take (scripts/make_large_glb.py's
+// 2M-triangle terrain: 0.65 s against 3.7 s). On tests/test_shadow_lod.cpp's spheres the faces
+// of 16 VPLs draw 26,744 triangles (34,548 with levels from the original triangles) at relMSE
+// 1.24e-5 against the full meshes (1.15e-5).
 //
 // Crack-free by construction: a node's open edges, the border of its region, are locked in its
 // simplification, and every region's border is part of the borders of the regions below it
