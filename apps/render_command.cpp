@@ -164,6 +164,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
       {"vpls_planned", r.vpls.planned},
       {"passes", r.passes},
       {"single_passes", r.single_passes},
+      {"shadow_triangles", r.shadow_triangles},
       {"edge_pixels", r.edge_pixels},
       {"unsure_pixels", r.unsure_pixels},
       {"paths", r.vpls.paths},

@@ -201,6 +201,7 @@ void run_raster(Stages& s, const RayScene& rays) {
   const StageTimes setup = raster.setup_times();
   for (const auto& stage : setup.stages()) s.r.seconds.raster_setup.push_back(stage);
   s.r.passes = timings.passes;
+  s.r.shadow_triangles = timings.shadow_triangles;
   s.r.single_passes = timings.single_passes;
   s.r.edge_pixels = timings.edge_pixels;
   s.r.unsure_pixels = timings.unsure_pixels;
@@ -480,6 +481,7 @@ void run_rounds(Stages& s, const RayScene& rays) {
     s.r.glossy_on_screen += rm.glossy_on_screen;
     s.r.glossy_exact += rm.glossy_exact;
     s.r.passes += rm.passes;
+    s.r.shadow_triangles += rm.shadow_triangles;
     s.r.single_passes += rm.single_passes;
     s.r.edge_pixels = std::max(s.r.edge_pixels, rm.edge_pixels);
     s.r.unsure_pixels = std::max(s.r.unsure_pixels, rm.unsure_pixels);

@@ -135,6 +135,8 @@ struct RenderResult {
                           // the loading)
   bool cancelled = false; // stopped early by a cancellation
   std::size_t passes = 0; // VPL passes drawn (raster)
+  // Triangles the batched shadow faces drew from the shadow hierarchy (raster; RasterTimings)
+  std::size_t shadow_triangles = 0;
   // Of them, those drawn one VPL at a time (--batch 1, the reference; RasterTimings)
   std::size_t single_passes = 0;
   // Interleaved with RasterOptions::edge_pixels: the edge pixels shaded or traced (per image),
