@@ -7,9 +7,19 @@ base colour is a small checkerboard PNG (so the loader keeps TEXCOORD_0),
 seen by one perspective camera. The file is written where -o says (the build tree; never commit
 it). Plain Python (no numpy): some seconds for the 2M file.
 
+--textures N (1 to QUADS, default 1) splits the terrain into N primitives, contiguous bands of
+quad rows as even as possible (each band with its own POSITION/NORMAL/TEXCOORD_0 accessors over
+its rows of vertices, the boundary rows duplicated, and uint32 indices), each with its own
+material and its own 64 x 64 checkerboard PNG (a per-band hue and cell size), every PNG a
+separate image and texture embedded in the binary chunk; TEXCOORD_0 spans the whole grid, so
+each band shows its own strip of its texture. --textures 1 writes one terrain primitive with the
+16 x 16 checkerboard above.
+
   python3 scripts/make_large_glb.py -o build/large_2m.glb [--quads 1000]
+  python3 scripts/make_large_glb.py -o build/textured_200k.glb --quads 320 --textures 256
 """
 import argparse
+import colorsys
 import math
 import json
 import pathlib
@@ -50,15 +60,46 @@ def terrain(q):
     return pos, nrm, uv, idx
 
 
-def checker_png(side=16):
-    """An RGB PNG of side x side texels, a two-tone checkerboard (the terrain's base colour)."""
+def checker_png(side=16, cell=2, light=(200, 190, 160), dark=(120, 140, 90)):
+    """An RGB PNG of side x side texels, a two-tone checkerboard of cell x cell texel squares
+    (the terrain's base colour)."""
     def chunk(kind, data):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-    rows = b"".join(b"\x00" + b"".join(bytes((200, 190, 160) if (x // 2 + y // 2) % 2 else
-                                             (120, 140, 90)) for x in range(side))
-                    for y in range(side))
+    light, dark = bytes(light), bytes(dark)
+    # The two kinds of row (filter byte 0, then the texels), by the parity of y // cell.
+    kinds = [b"\x00" + b"".join(light if (x // cell + par) % 2 else dark for x in range(side))
+             for par in (0, 1)]
+    rows = b"".join(kinds[(y // cell) % 2] for y in range(side))
     return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", side, side, 8, 2, 0, 0, 0)) +
             chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
+
+
+def band_png(k, n):
+    """The checkerboard of band k of n: a hue by k / n, a cell of 4, 8 or 16 texels by k."""
+    h = k / n
+    light = [round(255 * v) for v in colorsys.hsv_to_rgb(h, 0.45, 0.95)]
+    dark = [round(255 * v) for v in colorsys.hsv_to_rgb(h, 0.85, 0.6)]
+    return checker_png(side=64, cell=4 << (k % 3), light=light, dark=dark)
+
+
+def bands(pos, nrm, uv, q, n_bands):
+    """Splits the terrain's vertex arrays (q + 1 rows of q + 1 vertices) into n_bands contiguous
+    bands of quad rows, as even as possible; each band keeps its rows of vertices (both boundary
+    rows) and gets its own uint32 indices."""
+    n = q + 1
+    out = []
+    for k in range(n_bands):
+        r0, r1 = k * q // n_bands, (k + 1) * q // n_bands
+        bp, bn, bu = (pos[r0 * n * 3:(r1 + 1) * n * 3], nrm[r0 * n * 3:(r1 + 1) * n * 3],
+                      uv[r0 * n * 2:(r1 + 1) * n * 2])
+        idx = array("I")
+        for r in range(r1 - r0):
+            for c in range(q):
+                a = r * n + c
+                # Counter-clockwise seen from above (+y).
+                idx.extend((a, a + n, a + 1, a + 1, a + n, a + n + 1))
+        out.append((bp, bn, bu, idx))
+    return out
 
 
 def panel():
@@ -94,15 +135,28 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("-o", "--output", required=True)
     p.add_argument("--quads", type=int, default=1000, help="grid side in quads (default 1000)")
+    p.add_argument("--textures", type=int, default=1,
+                   help="terrain bands, each with its own material and PNG (1 to QUADS, default 1)")
     args = p.parse_args()
+    if args.quads < 1:
+        p.error("--quads must be at least 1")
+    if not 1 <= args.textures <= args.quads:
+        p.error(f"--textures must be between 1 and QUADS ({args.quads}), not {args.textures}")
+    n_tex = args.textures
+    if n_tex == 1:
+        terrain_mats = [{"name": "terrain", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.9, 0.9, 0.9, 1], "baseColorTexture": {"index": 0},
+            "metallicFactor": 0,
+            "roughnessFactor": 1}}]
+    else:
+        terrain_mats = [{"name": f"terrain {k}", "pbrMetallicRoughness": {
+            "baseColorFactor": [0.9, 0.9, 0.9, 1], "baseColorTexture": {"index": k},
+            "metallicFactor": 0,
+            "roughnessFactor": 1}} for k in range(n_tex)]
 
     doc = {"asset": {"version": "2.0", "generator": "irad scripts/make_large_glb.py"},
            "extensionsUsed": ["KHR_materials_emissive_strength"],
-           "buffers": [], "bufferViews": [], "accessors": [], "meshes": [], "materials": [
-               {"name": "terrain", "pbrMetallicRoughness": {
-                   "baseColorFactor": [0.9, 0.9, 0.9, 1], "baseColorTexture": {"index": 0},
-                   "metallicFactor": 0,
-                   "roughnessFactor": 1}},
+           "buffers": [], "bufferViews": [], "accessors": [], "meshes": [], "materials": terrain_mats + [
                {"name": "panel", "pbrMetallicRoughness": {
                    "baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
                 "emissiveFactor": [1, 0.95, 0.9],
@@ -129,18 +183,26 @@ def main():
         return len(doc["accessors"]) - 1
 
     prims = []
-    for material, (pos, nrm, uv, idx) in enumerate([terrain(args.quads), panel()]):
+    if n_tex == 1:
+        parts = [terrain(args.quads)]
+    else:
+        parts = bands(*terrain(args.quads)[:3], args.quads, n_tex)
+    for material, (pos, nrm, uv, idx) in enumerate(parts + [panel()]):
         prims.append({"attributes": {
             "POSITION": accessor(pos, 5126, "VEC3", 34962, bounds=True),
             "NORMAL": accessor(nrm, 5126, "VEC3", 34962),
             "TEXCOORD_0": accessor(uv, 5126, "VEC2", 34962)},
             "indices": accessor(idx, 5125, "SCALAR", 34963), "material": material, "mode": 4})
     doc["meshes"].append({"name": "terrain", "primitives": prims})
-    png = array("B", checker_png())
-    doc["images"] = [{"bufferView": len(doc["bufferViews"]), "mimeType": "image/png"}]
-    view(png, None)
-    del doc["bufferViews"][-1]["target"]
-    doc["textures"] = [{"source": 0}]
+    nverts = sum(len(part[0]) // 3 for part in parts) + 4
+    del parts
+    doc["images"], doc["textures"] = [], []
+    for k in range(n_tex):
+        png = array("B", checker_png() if n_tex == 1 else band_png(k, n_tex))
+        doc["images"].append({"bufferView": len(doc["bufferViews"]), "mimeType": "image/png"})
+        view(png, None)
+        del doc["bufferViews"][-1]["target"]
+        doc["textures"].append({"source": k})
     doc["cameras"] = [{"type": "perspective", "perspective": {
         "yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1, "zfar": 100}}]
     # The camera at (0, 9, 17) looking at the origin: a rotation about x by -atan(9/17).
@@ -153,7 +215,8 @@ def main():
     out = pathlib.Path(args.output)
     total = write_glb(doc, blob, out)
     tris = 2 * args.quads * args.quads + 2
-    print(f"{out}: {tris} triangles, {(args.quads + 1) ** 2 + 4} vertices, {total} bytes")
+    tex = f", {n_tex} textures" if n_tex > 1 else ""
+    print(f"{out}: {tris} triangles, {nverts} vertices{tex}, {total} bytes")
 
 
 if __name__ == "__main__":

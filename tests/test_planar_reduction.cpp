@@ -2,6 +2,7 @@
 // folded, closed and holed grids, and that it changes no surface: areas, the integral of the
 // normal, watertightness, and heights along vertical rays on a height field with flat, sloped
 // and bumpy parts against the original triangles.
+#include "core/mesh/flat_components.h"
 #include "core/mesh/planar_reduction.h"
 
 #include <algorithm>
@@ -168,6 +169,55 @@ TEST(PlanarReduction, CurvedSurfaceUnchanged) {
   EXPECT_EQ(r.triangles.size(), m.triangles.size());
 }
 
+// reduce_flat_components (core/mesh/flat_components.h): a flat grid, a curved one and a flat
+// grid with a curved cap (one component) side by side. The reduction runs on the flat grid and
+// on the capped one, which sampling finds flat, exactly as alone; the curved grid comes out
+// unchanged after them.
+TEST(PlanarReduction, OnlyComponentsWithFlatPartsAreReduced) {
+  Mesh flat, curved, capped, all;
+  const auto bowl = [](float x, float y) { return 0.3f * x * x + 0.2f * y * y + 0.1f * x * y; };
+  const auto add_curved = [&](Mesh& m, const glm::vec3& o) {
+    const int n = 16;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const auto at = [&](int a, int b) {
+          const float x = float(a) / n, y = float(b) / n;
+          return m.vertex(o + glm::vec3(x, y, bowl(x, y)));
+        };
+        const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+        m.triangles.push_back({a, b, c});
+        m.triangles.push_back({a, c, d});
+      }
+  };
+  for (Mesh* m : {&flat, &all}) m->grid({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 12);
+  for (Mesh* m : {&curved, &all}) add_curved(*m, {3, 0, 0});
+  for (Mesh* m : {&capped, &all}) {
+    m->grid({6, 0, 0}, {1, 0, 0}, {0, 1, 0}, 16); // a corner shared with the cap: one component
+    add_curved(*m, {6, 0, 0});
+  }
+  const PlanarReduction alone_flat = reduce_planar(flat.positions, flat.triangles, 1e-6f);
+  ASSERT_EQ(alone_flat.triangles.size(), 2u);
+  const PlanarReduction r = reduce_flat_components(all.positions, all.triangles, 1e-6f);
+  // The curved grid's 512 triangles last, as they were.
+  ASSERT_GT(r.triangles.size(), curved.triangles.size());
+  const std::vector<glm::uvec3> tail(r.triangles.end() - 512, r.triangles.end());
+  const std::vector<glm::uvec3> curved_in_all(all.triangles.begin() + 288,
+                                              all.triangles.begin() + 800);
+  EXPECT_EQ(tail, curved_in_all);
+  // The flat and the capped components reduced as reduce_planar reduces them together.
+  std::vector<glm::uvec3> reducible(all.triangles.begin(), all.triangles.begin() + 288);
+  reducible.insert(reducible.end(), all.triangles.begin() + 800, all.triangles.end());
+  const PlanarReduction expected = reduce_planar(all.positions, reducible, 1e-6f);
+  EXPECT_EQ(std::vector<glm::uvec3>(r.triangles.begin(), r.triangles.end() - 512),
+            expected.triangles);
+  EXPECT_EQ(r.collapses, expected.collapses);
+  EXPECT_GT(r.collapses, 0u);
+  // Nothing flat at all: the triangles unchanged.
+  const PlanarReduction none = reduce_flat_components(curved.positions, curved.triangles, 1e-6f);
+  EXPECT_EQ(none.triangles, curved.triangles);
+  EXPECT_EQ(none.collapses, 0u);
+}
+
 // The height of the surface above (x, y) along a vertical ray, if a triangle covers it.
 std::optional<double> height_at(const Mesh& m, const std::vector<glm::uvec3>& tris, double x,
                                 double y) {
@@ -223,5 +273,5 @@ TEST(PlanarReduction, HeightFieldKeepsEveryHeight) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -1,5 +1,6 @@
 #include "core/mesh/mesh_clusters.h"
 
+#include "core/mesh/flat_components.h"
 #include "core/mesh/planar_reduction.h"
 #include "core/util/parallel_rows.h"
 
@@ -31,23 +32,10 @@ std::vector<std::uint32_t> weld_positions(const Scene& scene) {
 constexpr std::uint32_t kRestGroup = ~0u;
 std::vector<std::uint32_t> component_groups(const std::vector<glm::uvec3>& triangles,
                                             std::size_t vertices, std::uint32_t least) {
-  std::vector<std::uint32_t> parent(vertices);
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const glm::uvec3& t : triangles) {
-    const std::uint32_t a = find(t.x);
-    parent[find(t.y)] = a;
-    parent[find(t.z)] = a;
-  }
-  std::vector<std::uint32_t> size(vertices, 0), group(triangles.size());
-  for (const glm::uvec3& t : triangles) ++size[find(t.x)];
-  for (std::size_t k = 0; k < triangles.size(); ++k) {
-    const std::uint32_t c = find(triangles[k].x);
-    group[k] = size[c] >= least ? c : kRestGroup;
-  }
+  std::vector<std::uint32_t> group = triangle_components(triangles, vertices);
+  std::vector<std::uint32_t> size(vertices, 0);
+  for (std::uint32_t c : group) ++size[c];
+  for (std::uint32_t& g : group) g = size[g] >= least ? g : kRestGroup;
   return group;
 }
 
@@ -437,7 +425,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     // Flat parts first reduced exactly (to 2 kPlanar of the surface): the regions' locked
     // borders then cost what their outlines need, not the tessellation's resolution.
     const float epsilon = kPlanar * scene.bounds.diagonal();
-    PlanarReduction reduced = reduce_planar(scene.positions, b.triangles, epsilon);
+    PlanarReduction reduced = reduce_flat_components(scene.positions, b.triangles, epsilon);
     if (reduced.collapses > 0 || reduced.triangles.size() < b.triangles.size()) {
       b.triangles = std::move(reduced.triangles);
       b.leaf_error = 2.0f * epsilon;

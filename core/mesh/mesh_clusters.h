@@ -5,7 +5,8 @@
 //
 // The base: with ClusterOptions::simplify, the triangles after the exact planar reduction
 // (core/mesh/planar_reduction.h: flat parts down to what their outlines need, within 2e-6 of the
-// scene's diagonal, which is the leaves' error); without, the scene's own triangles (error 0).
+// scene's diagonal, which is the leaves' error) of the components that have flat parts
+// (core/mesh/flat_components.h); without, the scene's own triangles (error 0).
 // Without it, a region cut through a finely tessellated wall keeps its border at the full
 // resolution in every level above: thousands of triangles per face on the 2.1M-triangle flat
 // scale scene (docs/performance.md).

@@ -1,0 +1,33 @@
+#pragma once
+// reduce_planar (core/mesh/planar_reduction.h) only where it can find something. Its patch
+// growth visits every triangle in order of area, a random walk through memory that costs more
+// than the rest of the shadow hierarchy's build on a large curved mesh, where it finds nothing
+// (a 10M-triangle terrain: 23 s of 54). So each connected component (triangles joined through
+// shared vertices) is sampled first: up to kFlatSamples of its triangles, evenly spaced, each
+// asked whether one of its vertices has its whole fan within epsilon of the triangle's plane and
+// facing its way (a vertex a patch could lose). A component where at least 1/kFlatShare of the
+// samples have one is reduced; the others come out unchanged. Sampling can miss the rare flat
+// spots of a curved component: they then keep their triangles, which costs shadow faces
+// triangles, never correctness.
+#include "core/mesh/planar_reduction.h"
+
+#include <cstddef>
+
+namespace irad {
+
+inline constexpr std::size_t kFlatSamples = 512;
+// A component is reduced when at least 1/kFlatShare of its samples have a planar vertex.
+inline constexpr std::uint32_t kFlatShare = 16;
+
+// Each triangle's connected component through shared vertices, named by a vertex of it (the
+// same vertex for every triangle of one component).
+std::vector<std::uint32_t> triangle_components(const std::vector<glm::uvec3>& triangles,
+                                               std::size_t vertices);
+
+// reduce_planar over the components that sampling finds flat parts in; their reduced triangles
+// first, then the other components' triangles unchanged, in their order. patches and collapses
+// are the reduction's. Every component flat: reduce_planar(positions, triangles, epsilon).
+PlanarReduction reduce_flat_components(const std::vector<glm::vec3>& positions,
+                                       const std::vector<glm::uvec3>& triangles, float epsilon);
+
+} // namespace irad
