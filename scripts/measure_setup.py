@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Profiles the one-time stages of a render, load to first VPL: for each GLB, `irad render` with
+the default options at --size (256x256) three times, the raster with an empty shadow hierarchy
+cache (cold), the raster again (warm: the hierarchy read back), and rt-vpl over the same VPLs,
+each in a fresh process with its --stats. Prints a Markdown table per file: every stage's
+seconds and share of the whole process (wall clock, /usr/bin/time), the peak resident memory,
+and the passes (what the raster stage spends after its set-up). The cache lives in a temporary
+XDG_CACHE_HOME, never the user's. docs/performance.md "Big scenes" quotes its output.
+
+  LP_NUM_THREADS=2 python3 scripts/measure_setup.py build/sphere_box_2m.glb [more.glb ...]
+      [--irad build/bin/irad] [--size 256x256]
+"""
+import argparse
+import json
+import os
+import pathlib
+import re
+import subprocess
+import sys
+import tempfile
+
+
+def run(irad, scene, size, estimator, cache, out):
+    """One render; returns (stats, wall seconds, peak KiB)."""
+    stats = out / "stats.json"
+    env = dict(os.environ, XDG_CACHE_HOME=str(cache))
+    cmd = ["/usr/bin/time", "-f", "TIME %e %M", irad, "render", scene, "--size", size,
+           "--estimator", estimator, "-o", str(out / "image.exr"), "--stats", str(stats), "-q"]
+    done = subprocess.run(cmd, env=env, capture_output=True, text=True, check=True)
+    wall, peak = re.search(r"TIME ([0-9.]+) ([0-9]+)", done.stderr).groups()
+    return json.loads(stats.read_text()), float(wall), int(peak)
+
+
+def rows(stats, wall):
+    """(stage, seconds) of one run, the raster's set-up stages inside its raster stage."""
+    s = stats["seconds"]
+    out = [("load (glTF, BVH)", s["load"]), ("walk", s["walk"])]
+    if "cluster" in s:
+        out.append(("clusters (rows, columns)", s["cluster"]))
+    if "raster" in s:
+        setup = 0.0
+        for name, t in s.get("raster_setup", []):
+            out.append((name, t))
+            setup += t
+        out.append(("passes (shadow maps, shading, resolve)", s["raster"] - setup))
+    else:
+        out.append(("trace", s["trace"]))
+    for key in ("compensation", "glossy"):
+        if key in s:
+            out.append((key, s[key]))
+    out.append(("rest (process start, writing, exit)", wall - s["total"]))
+    return out
+
+
+def table(scene, runs):
+    names = []  # every run's stages, each new one after the stage that precedes it in its run
+    for _, stats, wall, _ in runs:
+        at = 0
+        for name, _ in rows(stats, wall):
+            if name in names:
+                at = names.index(name) + 1
+            else:
+                names.insert(at, name)
+                at += 1
+    header = " | ".join(f"{label} s | share" for label, *_ in runs)
+    lines = [f"**{pathlib.Path(scene).name}** "
+             f"({runs[0][1]['triangles']:,} triangles, {runs[0][1]['vpls']} VPLs)", "",
+             f"| stage | {header} |", "| --- |" + " --- | --- |" * len(runs)]
+    by_run = [dict(rows(stats, wall)) for _, stats, wall, _ in runs]
+    for name in names:
+        cells = []
+        for (_, _, wall, _), r in zip(runs, by_run):
+            t = r.get(name)
+            cells.append("|" if t is None else f"{t:.2f} | {100 * t / wall:.0f} %")
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    lines.append("| **whole process** | " +
+                 " | ".join(f"**{wall:.2f}** | 100 %" for _, _, wall, _ in runs) + " |")
+    lines.append("| peak resident memory | " +
+                 " | ".join(f"{peak / 1024:.0f} MiB |" for *_, peak in runs) + " |")
+    outcome = [stats.get("hierarchy_cache", {}).get("outcome", "-") for _, stats, _, _ in runs]
+    lines.append("")
+    lines.append("hierarchy cache: " + ", ".join(outcome) + "; shadow triangles per VPL: " +
+                 f"{runs[0][1]['shadow_triangles'] / max(1, runs[0][1]['vpls']):.0f}")
+    return "\n".join(lines)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--irad", default="build/bin/irad")
+    ap.add_argument("--size", default="256x256")
+    args = ap.parse_args()
+    for scene in args.scenes:
+        with tempfile.TemporaryDirectory(prefix="irad_setup_") as tmp:
+            tmp = pathlib.Path(tmp)
+            runs = []
+            for label, estimator in (("raster cold", "raster"), ("raster warm", "raster"),
+                                     ("rt-vpl", "rt-vpl")):
+                stats, wall, peak = run(args.irad, scene, args.size, estimator, tmp / "cache", tmp)
+                runs.append((label, stats, wall, peak))
+                print(f"{scene}: {label} {wall:.2f} s", file=sys.stderr)
+            print(table(scene, runs))
+            print()
+
+
+if __name__ == "__main__":
+    main()
