@@ -39,16 +39,21 @@ std::vector<std::uint32_t> component_groups(const std::vector<glm::uvec3>& trian
   return group;
 }
 
+// What the tree is built over, shared by the Builders of its subtrees.
+struct TreeInput {
+  std::vector<glm::uvec3> triangles; // welded, in the order `order` permutes
+  std::vector<glm::vec3> centroids;
+  std::vector<std::uint32_t> order; // each Builder permutes its own range of it
+  float leaf_error = 0.0f; // of the planar reduction the leaves hold (0: the scene's triangles)
+};
+
 struct Builder {
   const Scene& scene;
   const ClusterOptions& options;
-  std::vector<glm::uvec3> triangles; // welded, in the order `order` permutes
-  std::vector<glm::vec3> centroids;
-  std::vector<std::uint32_t> order;
-  float leaf_error = 0.0f; // of the planar reduction the leaves hold (0: the scene's triangles)
-  MeshClusters out;
+  TreeInput& in;
+  MeshClusters out; // nodes and indices of its subtrees, numbered from 0
 
-  // Splits order[begin, end) in two (returns where the second part starts): the binned
+  // Splits in.order[begin, end) in two (returns where the second part starts): the binned
   // surface-area heuristic over the centroids (kBins bins per axis; cost = area(box) x count of
   // each side), so that a few large triangles (a room's walls) get regions of their own and do not
   // stretch the boxes of the small ones, which would keep these at full detail (the distance to
@@ -58,7 +63,7 @@ struct Builder {
     constexpr int kBins = 16;
     const glm::vec3 extent = centre.hi - centre.lo;
     const auto bin_of = [&](std::uint32_t t, int axis) {
-      const float u = (centroids[t][axis] - centre.lo[axis]) / extent[axis];
+      const float u = (in.centroids[t][axis] - centre.lo[axis]) / extent[axis];
       return std::clamp(static_cast<int>(u * kBins), 0, kBins - 1);
     };
     const auto area = [](const Bounds& b) {
@@ -73,10 +78,10 @@ struct Builder {
       Bounds boxes[kBins];
       std::size_t counts[kBins] = {};
       for (std::size_t k = begin; k < end; ++k) {
-        const std::uint32_t t = order[k];
+        const std::uint32_t t = in.order[k];
         const int b = bin_of(t, axis);
         ++counts[b];
-        for (int c = 0; c < 3; ++c) boxes[b].extend(scene.positions[triangles[t][c]]);
+        for (int c = 0; c < 3; ++c) boxes[b].extend(scene.positions[in.triangles[t][c]]);
       }
       // right[b]: bins b.. merged.
       Bounds right[kBins + 1];
@@ -106,36 +111,37 @@ struct Builder {
         }
       }
     }
-    const auto first = order.begin() + static_cast<std::ptrdiff_t>(begin);
-    const auto last = order.begin() + static_cast<std::ptrdiff_t>(end);
+    const auto first = in.order.begin() + static_cast<std::ptrdiff_t>(begin);
+    const auto last = in.order.begin() + static_cast<std::ptrdiff_t>(end);
     if (best_axis >= 0)
       return static_cast<std::size_t>(
           std::partition(first, last,
                          [&](std::uint32_t t) { return bin_of(t, best_axis) <= best_bin; }) -
-          order.begin());
+          in.order.begin());
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
                      : extent.y >= extent.z                       ? 1
                                                                   : 2;
     const std::size_t mid = begin + (end - begin) / 2;
-    std::nth_element(
-        first, order.begin() + static_cast<std::ptrdiff_t>(mid), last,
-        [&](std::uint32_t a, std::uint32_t b) { return centroids[a][axis] < centroids[b][axis]; });
+    std::nth_element(first, in.order.begin() + static_cast<std::ptrdiff_t>(mid), last,
+                     [&](std::uint32_t a, std::uint32_t b) {
+                       return in.centroids[a][axis] < in.centroids[b][axis];
+                     });
     return mid;
   }
 
-  // Node over order[begin, end): a leaf writes its triangles to the original part, in
+  // Node over in.order[begin, end): a leaf writes its triangles to the original part, in
   // depth-first order, so every subtree's leaves are contiguous there.
   std::int32_t build(std::size_t begin, std::size_t end) {
     const auto id = static_cast<std::int32_t>(out.nodes.size());
     out.nodes.emplace_back();
     Bounds centre;
-    for (std::size_t k = begin; k < end; ++k) centre.extend(centroids[order[k]]);
+    for (std::size_t k = begin; k < end; ++k) centre.extend(in.centroids[in.order[k]]);
     if (end - begin <= options.leaf_triangles) {
       ClusterNode& node = out.nodes.back();
-      node.error = leaf_error;
+      node.error = in.leaf_error;
       node.leaf_first = node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
       for (std::size_t k = begin; k < end; ++k) {
-        const glm::uvec3& t = triangles[order[k]];
+        const glm::uvec3& t = in.triangles[in.order[k]];
         for (int c = 0; c < 3; ++c) {
           out.indices.push_back(t[c]);
           node.bounds.extend(scene.positions[t[c]]);
@@ -147,6 +153,12 @@ struct Builder {
     const std::size_t mid = split(begin, end, centre);
     const std::int32_t c0 = build(begin, mid);
     const std::int32_t c1 = build(mid, end);
+    join(id, c0, c1);
+    return id;
+  }
+
+  // Node id as the parent of c0 and c1.
+  void join(std::int32_t id, std::int32_t c0, std::int32_t c1) {
     ClusterNode& node = out.nodes[static_cast<std::size_t>(id)];
     const ClusterNode &a = out.nodes[static_cast<std::size_t>(c0)],
                       &b = out.nodes[static_cast<std::size_t>(c1)];
@@ -157,7 +169,43 @@ struct Builder {
     node.bounds.extend(b.bounds.hi);
     node.leaf_first = a.leaf_first;
     node.leaf_count = a.leaf_count + b.leaf_count;
+  }
+
+  // build(begin, end), the two subtrees below each node of the top `depth` levels built on two
+  // threads, each by its own Builder, then appended in depth-first order: the same nodes and
+  // indices as build's.
+  std::int32_t build_parallel(std::size_t begin, std::size_t end, int depth) {
+    if (depth <= 0 || end - begin <= options.leaf_triangles) return build(begin, end);
+    const auto id = static_cast<std::int32_t>(out.nodes.size());
+    out.nodes.emplace_back();
+    Bounds centre;
+    for (std::size_t k = begin; k < end; ++k) centre.extend(in.centroids[in.order[k]]);
+    const std::size_t mid = split(begin, end, centre);
+    Builder halves[2] = {{scene, options, in, {}}, {scene, options, in, {}}};
+    const std::size_t ranges[3] = {begin, mid, end};
+    parallel_tasks(2, 2, [&](int h, unsigned) {
+      const auto k = static_cast<std::size_t>(h);
+      halves[k].build_parallel(ranges[k], ranges[k + 1], depth - 1);
+    });
+    const std::int32_t c0 = append(halves[0].out);
+    join(id, c0, append(halves[1].out));
     return id;
+  }
+
+  // Appends a subtree another Builder built (its nodes and indices numbered from 0); returns its
+  // root's id here.
+  std::int32_t append(const MeshClusters& sub) {
+    const auto node_offset = static_cast<std::int32_t>(out.nodes.size());
+    const auto index_offset = static_cast<std::uint32_t>(out.indices.size());
+    for (ClusterNode n : sub.nodes) {
+      for (std::int32_t& c : n.children)
+        if (c >= 0) c += node_offset;
+      n.leaf_first += index_offset;
+      if (n.leaf()) n.mesh_first += index_offset; // an inner node's mesh comes later
+      out.nodes.push_back(n);
+    }
+    out.indices.insert(out.indices.end(), sub.indices.begin(), sub.indices.end());
+    return node_offset;
   }
 };
 
@@ -412,46 +460,50 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   ClusterOptions options = requested;
   if (options.leaf_triangles == 0)
     options.leaf_triangles = automatic_leaf_triangles(scene.triangle_count());
-  Builder b{scene, options, {}, {}, {}, 0.0f, {}};
+  TreeInput in;
+  Builder b{scene, options, in, {}};
   const std::vector<std::uint32_t> welded = weld_positions(scene);
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
     if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
     const glm::uvec3 v = scene.triangles[t];
     b.out.triangles.push_back(static_cast<std::uint32_t>(t));
-    b.triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
+    in.triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
   }
   start = stages.lap("weld", start);
   if (options.simplify) {
     // Flat parts first reduced exactly (to 2 kPlanar of the surface): the regions' locked
     // borders then cost what their outlines need, not the tessellation's resolution.
     const float epsilon = kPlanar * scene.bounds.diagonal();
-    PlanarReduction reduced = reduce_flat_components(scene.positions, b.triangles, epsilon);
-    if (reduced.collapses > 0 || reduced.triangles.size() < b.triangles.size()) {
-      b.triangles = std::move(reduced.triangles);
-      b.leaf_error = 2.0f * epsilon;
+    PlanarReduction reduced = reduce_flat_components(scene.positions, in.triangles, epsilon);
+    if (reduced.collapses > 0 || reduced.triangles.size() < in.triangles.size()) {
+      in.triangles = std::move(reduced.triangles);
+      in.leaf_error = 2.0f * epsilon;
     }
   }
   start = stages.lap("planar", start);
-  for (const glm::uvec3& v : b.triangles)
-    b.centroids.push_back((scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) /
-                          3.0f);
-  if (b.triangles.empty()) return std::move(b.out);
+  for (const glm::uvec3& v : in.triangles)
+    in.centroids.push_back((scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) /
+                           3.0f);
+  if (in.triangles.empty()) return std::move(b.out);
   // One tree per connected component of at least a leaf's triangles, one for all the others.
   const std::vector<std::uint32_t> group =
-      component_groups(b.triangles, scene.positions.size(), options.leaf_triangles);
-  b.order.resize(b.triangles.size());
-  std::iota(b.order.begin(), b.order.end(), 0u);
-  std::stable_sort(b.order.begin(), b.order.end(),
+      component_groups(in.triangles, scene.positions.size(), options.leaf_triangles);
+  in.order.resize(in.triangles.size());
+  std::iota(in.order.begin(), in.order.end(), 0u);
+  std::stable_sort(in.order.begin(), in.order.end(),
                    [&](std::uint32_t x, std::uint32_t y) { return group[x] < group[y]; });
-  b.out.indices.reserve(3 * b.triangles.size());
+  b.out.indices.reserve(3 * in.triangles.size());
   std::vector<bool> whole;
-  for (std::size_t begin = 0; begin < b.order.size();) {
+  // The top levels split on one thread, the subtrees below them on as many as the build has.
+  int depth = 0;
+  while ((1u << depth) < worker_count(options.threads, 1 << 30)) ++depth;
+  for (std::size_t begin = 0; begin < in.order.size();) {
     std::size_t end = begin + 1;
-    while (end < b.order.size() && group[b.order[end]] == group[b.order[begin]]) ++end;
-    const std::int32_t root = b.build(begin, end);
+    while (end < in.order.size() && group[in.order[end]] == group[in.order[begin]]) ++end;
+    const std::int32_t root = b.build_parallel(begin, end, depth);
     b.out.roots.push_back(root);
     whole.resize(b.out.nodes.size(), false);
-    whole[static_cast<std::size_t>(root)] = group[b.order[begin]] != kRestGroup;
+    whole[static_cast<std::size_t>(root)] = group[in.order[begin]] != kRestGroup;
     begin = end;
   }
   b.out.original_indices = b.out.indices.size();
