@@ -1,0 +1,242 @@
+#include "core/mesh/cluster_levels.h"
+
+#include "core/util/parallel_rows.h"
+
+#include <algorithm>
+#include <meshoptimizer.h>
+#include <numeric>
+
+namespace irad {
+
+namespace {
+
+// Relative error (of the mesh's extent) below which meshoptimizer's collapses count as exact.
+constexpr float kExact = 1e-6f;
+
+// `input` simplified to 1/divisor of its triangles (divisor 0: as far as target_error, relative
+// to the extent, allows), its open edges (the region's border) locked;
+// error: this step's (world units).
+struct Simplified {
+  std::vector<std::uint32_t> indices;
+  float error = 0.0f;
+};
+Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& input,
+                          std::vector<std::uint32_t>& local_of, std::size_t divisor = 2,
+                          float target_error = 1.0f) {
+  // A compact vertex array of the vertices used (meshoptimizer scales by all it is given).
+  std::vector<std::uint32_t> global, local(input.size());
+  std::vector<glm::vec3> positions;
+  for (std::size_t k = 0; k < input.size(); ++k) {
+    std::uint32_t& l = local_of[input[k]];
+    if (l == ~0u) {
+      l = static_cast<std::uint32_t>(global.size());
+      global.push_back(input[k]);
+      positions.push_back(scene.positions[input[k]]);
+    }
+    local[k] = l;
+  }
+  for (std::uint32_t g : global) local_of[g] = ~0u;
+  Simplified s;
+  std::vector<std::uint32_t> dest(input.size());
+  const std::size_t target = divisor == 0 ? 0 : input.size() / (3 * divisor) * 3;
+  float relative = 0.0f;
+  const std::size_t count = meshopt_simplify(
+      dest.data(), local.data(), local.size(), &positions[0].x, positions.size(), sizeof(glm::vec3),
+      target, target_error, meshopt_SimplifyLockBorder, &relative);
+  s.error = relative * meshopt_simplifyScale(&positions[0].x, positions.size(), sizeof(glm::vec3));
+  s.indices.resize(count);
+  for (std::size_t k = 0; k < count; ++k) s.indices[k] = global[dest[k]];
+  return s;
+}
+
+// Per worker of parallel_tasks, simplify_union's map from scene vertex to compact index (all
+// ~0u between calls), made on the worker's first task.
+class LocalMaps {
+public:
+  LocalMaps(std::size_t vertices, unsigned workers) : vertices_(vertices), maps_(workers) {}
+  std::vector<std::uint32_t>& of(unsigned worker) {
+    std::vector<std::uint32_t>& m = maps_[worker];
+    if (m.empty()) m.assign(vertices_, ~0u);
+    return m;
+  }
+
+private:
+  std::size_t vertices_;
+  std::vector<std::vector<std::uint32_t>> maps_;
+};
+
+// Each node's height: leaves 0, a parent one above its higher child.
+std::vector<int> node_heights(const MeshClusters& out) {
+  std::vector<int> height(out.nodes.size(), 0);
+  for (std::size_t n = out.nodes.size(); n-- > 0;) { // children after their parents
+    const ClusterNode& node = out.nodes[n];
+    if (!node.leaf())
+      height[n] = 1 + std::max(height[static_cast<std::size_t>(node.children[0])],
+                               height[static_cast<std::size_t>(node.children[1])]);
+  }
+  return height;
+}
+
+// The nodes by height, lowest first: a node's children all lie in the groups before its own.
+std::vector<std::vector<std::int32_t>> nodes_by_height(const MeshClusters& out) {
+  const std::vector<int> height = node_heights(out);
+  std::vector<std::vector<std::int32_t>> groups(1);
+  for (std::size_t n = out.nodes.size(); n-- > 0;) {
+    const auto h = static_cast<std::size_t>(height[n]);
+    if (h >= groups.size()) groups.resize(h + 1);
+    groups[h].push_back(static_cast<std::int32_t>(n));
+  }
+  return groups;
+}
+
+// One node's coarser levels (add_coarser_levels), meshes one after another in `indices`.
+struct NodeLevels {
+  std::vector<ClusterLevel> levels; // first: offsets into `indices`
+  std::vector<std::uint32_t> indices;
+};
+
+// A component root's levels start from the cut of its tree through the nodes of at most this
+// height: their meshes, each about 2^-height of its region's triangles, are the whole
+// component's at a quarter of the cost of simplifying the original triangles that far.
+constexpr int kWholeCutHeight = 2;
+
+// The meshes of the cut below `root` through the nodes of height at most kWholeCutHeight, joined:
+// one seamless mesh of the component (neighbouring regions share their locked borders);
+// `error`: the largest of theirs.
+std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root,
+                                       const std::vector<int>& height, float& error) {
+  std::vector<std::uint32_t> mesh;
+  error = 0.0f;
+  std::vector<std::size_t> stack{root};
+  while (!stack.empty()) {
+    const std::size_t n = stack.back();
+    stack.pop_back();
+    const ClusterNode& node = out.nodes[n];
+    if (height[n] > kWholeCutHeight) {
+      stack.push_back(static_cast<std::size_t>(node.children[1]));
+      stack.push_back(static_cast<std::size_t>(node.children[0]));
+      continue;
+    }
+    mesh.insert(mesh.end(), out.indices.begin() + node.mesh_first,
+                out.indices.begin() + node.mesh_first + node.mesh_count);
+    error = std::max(error, node.error);
+  }
+  return mesh;
+}
+
+// Its mesh halved again and again (the border still locked) while that removes at least a tenth
+// of the triangles. A root of one connected component (`whole`) starts from the shallow cut of
+// its tree instead and quarters it: no region border inside it is locked, so a closed surface
+// simplifies as far as its error allows.
+NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size_t n, bool whole,
+                          int max_levels, const std::vector<int>& height,
+                          std::vector<std::uint32_t>& local_of) {
+  const ClusterNode& node = out.nodes[n];
+  float error = node.error;
+  std::vector<std::uint32_t> mesh =
+      whole ? shallow_cut(out, n, height, error)
+            : std::vector<std::uint32_t>(out.indices.begin() + node.mesh_first,
+                                         out.indices.begin() + node.mesh_first + node.mesh_count);
+  NodeLevels result;
+  const auto keep = [&] {
+    result.levels.push_back({error, static_cast<std::uint32_t>(result.indices.size()),
+                             static_cast<std::uint32_t>(mesh.size())});
+    result.indices.insert(result.indices.end(), mesh.begin(), mesh.end());
+  };
+  // First what simplifies without error (coplanar triangles: flat walls to their borders),
+  // then quarters or halves, whatever that costs.
+  if (!mesh.empty()) {
+    Simplified s = simplify_union(scene, mesh, local_of, 0, kExact);
+    if (10 * s.indices.size() <= 9 * mesh.size()) {
+      error += s.error;
+      mesh = std::move(s.indices);
+      keep();
+    }
+  }
+  for (int l = 0; l < max_levels && !mesh.empty(); ++l) {
+    Simplified s = simplify_union(scene, mesh, local_of, whole ? 4 : 2);
+    if (10 * s.indices.size() > 9 * mesh.size()) break;
+    error += s.error;
+    mesh = std::move(s.indices);
+    keep();
+  }
+  return result;
+}
+
+} // namespace
+
+// The inner nodes' meshes, height by height (each height's nodes in parallel: a node reads only
+// its children's meshes), then appended in node order: the same result on any number of threads.
+void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, unsigned threads) {
+  std::vector<std::vector<std::uint32_t>> meshes(out.nodes.size());
+  LocalMaps local(scene.positions.size(),
+                  worker_count(threads, static_cast<int>(out.nodes.size())));
+  const auto mesh_of = [&](std::int32_t n) {
+    const ClusterNode& c = out.nodes[static_cast<std::size_t>(n)];
+    const std::vector<std::uint32_t>& m = meshes[static_cast<std::size_t>(n)];
+    return c.leaf() ? std::vector<std::uint32_t>(out.indices.begin() + c.mesh_first,
+                                                 out.indices.begin() + c.mesh_first + c.mesh_count)
+                    : m;
+  };
+  const auto simplify_node = [&](std::size_t n, unsigned worker) {
+    ClusterNode& node = out.nodes[n];
+    std::vector<std::uint32_t> input = mesh_of(node.children[0]);
+    const std::vector<std::uint32_t> second = mesh_of(node.children[1]);
+    input.insert(input.end(), second.begin(), second.end());
+    const float below = std::max(out.nodes[static_cast<std::size_t>(node.children[0])].error,
+                                 out.nodes[static_cast<std::size_t>(node.children[1])].error);
+    node.error = below;
+    if (simplify && !input.empty()) {
+      Simplified s = simplify_union(scene, input, local.of(worker));
+      if (s.indices.size() < input.size()) {
+        input = std::move(s.indices);
+        node.error = below + s.error;
+      }
+    }
+    meshes[n] = std::move(input);
+  };
+  const std::vector<std::vector<std::int32_t>> groups = nodes_by_height(out);
+  for (std::size_t h = 1; h < groups.size(); ++h) {
+    const std::vector<std::int32_t>& group = groups[h];
+    parallel_tasks(static_cast<int>(group.size()), threads, [&](int k, unsigned worker) {
+      simplify_node(static_cast<std::size_t>(group[static_cast<std::size_t>(k)]), worker);
+    });
+  }
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) {
+    ClusterNode& node = out.nodes[n];
+    if (node.leaf()) continue;
+    node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
+    node.mesh_count = static_cast<std::uint32_t>(meshes[n].size());
+    out.indices.insert(out.indices.end(), meshes[n].begin(), meshes[n].end());
+  }
+}
+
+// Every node's coarser levels, in parallel (the component roots first: the longest tasks), then
+// appended in node order: the same result on any number of threads.
+void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
+                        const std::vector<bool>& whole, unsigned threads) {
+  std::vector<std::size_t> order(out.nodes.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t n) { return whole[n]; });
+  std::vector<NodeLevels> levels(out.nodes.size());
+  const std::vector<int> height = node_heights(out);
+  LocalMaps local(scene.positions.size(), worker_count(threads, static_cast<int>(order.size())));
+  parallel_tasks(static_cast<int>(order.size()), threads, [&](int k, unsigned worker) {
+    const std::size_t n = order[static_cast<std::size_t>(k)];
+    levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, height, local.of(worker));
+  });
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) {
+    ClusterNode& node = out.nodes[n];
+    node.levels_first = static_cast<std::uint32_t>(out.levels.size());
+    const auto base = static_cast<std::uint32_t>(out.indices.size());
+    for (ClusterLevel level : levels[n].levels) {
+      level.first += base;
+      out.levels.push_back(level);
+    }
+    out.indices.insert(out.indices.end(), levels[n].indices.begin(), levels[n].indices.end());
+    node.levels_count = static_cast<std::uint32_t>(levels[n].levels.size());
+    levels[n] = {};
+  }
+}
+
+} // namespace irad
