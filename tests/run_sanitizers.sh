@@ -74,11 +74,16 @@ slow=(
 )
 default_filter="*-$(IFS=:; echo "${slow[*]}")"
 filter=${1:-$default_filter}
-# Two shards side by side: once the rest of the suite is done, both cores run this.
+# Two shards side by side: once the rest of the suite is done, both cores run this. Each shard
+# has its own temporary folder (gtest's TempDir and std::filesystem's), so that the tests' fixed
+# file names meet neither the other shard's nor those of the Release suite running beside it.
 pids=()
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
 for shard in 0 1; do
-  GTEST_TOTAL_SHARDS=2 GTEST_SHARD_INDEX=$shard \
-    build-asan/bin/irad_tests --gtest_filter="$filter" --gtest_brief=1 &
+  mkdir -p "$scratch/$shard"
+  TMPDIR="$scratch/$shard" TEST_TMPDIR="$scratch/$shard" GTEST_TOTAL_SHARDS=2 \
+    GTEST_SHARD_INDEX=$shard build-asan/bin/irad_tests --gtest_filter="$filter" --gtest_brief=1 &
   pids+=($!)
 done
 status=0
