@@ -3,9 +3,9 @@
 the default options at --size (256x256) three times, the raster with an empty shadow hierarchy
 cache (cold), the raster again (warm: the hierarchy read back), and rt-vpl over the same VPLs,
 each in a fresh process with its --stats. Prints a Markdown table per file: every stage's
-seconds and share of the whole process (wall clock, /usr/bin/time), the peak resident memory,
-and the passes (what the raster stage spends after its set-up). The cache lives in a temporary
-XDG_CACHE_HOME, never the user's. docs/performance.md "Big scenes" quotes its output.
+seconds and share of the whole process (wall clock), the peak resident memory (the process's
+own, from wait4), and the passes (what the raster stage spends after its set-up). The cache
+lives in a temporary XDG_CACHE_HOME, never the user's. docs/performance.md "Big scenes" quotes its output.
 
   LP_NUM_THREADS=2 python3 scripts/measure_setup.py build/sphere_box_2m.glb [more.glb ...]
       [--irad build/bin/irad] [--size 256x256]
@@ -14,21 +14,26 @@ import argparse
 import json
 import os
 import pathlib
-import re
 import subprocess
 import sys
 import tempfile
+import time
 
 
 def run(irad, scene, size, estimator, cache, out):
-    """One render; returns (stats, wall seconds, peak KiB)."""
+    """One render; returns (stats, wall seconds, peak KiB: the child's own ru_maxrss)."""
     stats = out / "stats.json"
     env = dict(os.environ, XDG_CACHE_HOME=str(cache))
-    cmd = ["/usr/bin/time", "-f", "TIME %e %M", irad, "render", scene, "--size", size,
-           "--estimator", estimator, "-o", str(out / "image.exr"), "--stats", str(stats), "-q"]
-    done = subprocess.run(cmd, env=env, capture_output=True, text=True, check=True)
-    wall, peak = re.search(r"TIME ([0-9.]+) ([0-9]+)", done.stderr).groups()
-    return json.loads(stats.read_text()), float(wall), int(peak)
+    cmd = [irad, "render", scene, "--size", size, "--estimator", estimator,
+           "-o", str(out / "image.exr"), "--stats", str(stats), "-q"]
+    start = time.monotonic()
+    child = subprocess.Popen(cmd, env=env)
+    _, status, usage = os.wait4(child.pid, 0)
+    wall = time.monotonic() - start
+    child.returncode = os.waitstatus_to_exitcode(status)
+    if child.returncode != 0:
+        sys.exit(f"measure_setup: {' '.join(cmd)} exited with {child.returncode}")
+    return json.loads(stats.read_text()), wall, usage.ru_maxrss
 
 
 def rows(stats, wall):
