@@ -1,6 +1,6 @@
 #pragma once
 // Wall-clock seconds of named stages, in the order they ran: what a one-time set-up (the shadow
-// hierarchy, the GL upload) costs, part by part, for the stats and `irad bench --load`.
+// hierarchy, the GL upload) costs, part by part, for --stats (seconds.raster_setup).
 #include <chrono>
 #include <string>
 #include <utility>
@@ -32,11 +32,6 @@ public:
     return now;
   }
   const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
-  double total() const {
-    double t = 0.0;
-    for (const auto& stage : stages_) t += stage.second;
-    return t;
-  }
 
 private:
   std::vector<std::pair<std::string, double>> stages_;
