@@ -111,6 +111,21 @@ def panel():
     return pos, nrm, uv, idx
 
 
+def append_view(doc, blob, arr, target=None):
+    """Appends arr's bytes (an array, little-endian as on x86 and ARM) to blob, 4-byte aligned, as
+    a bufferView of buffer 0 with `target` (None: no target, e.g. an image); returns the view's
+    index."""
+    while len(blob) % 4:
+        blob.append(0)
+    data = arr.tobytes()
+    v = {"buffer": 0, "byteOffset": len(blob), "byteLength": len(data)}
+    if target is not None:
+        v["target"] = target
+    doc["bufferViews"].append(v)
+    blob.extend(data)
+    return len(doc["bufferViews"]) - 1
+
+
 def write_glb(doc, blob, out):
     """Writes doc (its buffer 0 the GLB's binary chunk, byteLength set here) and blob (a
     bytearray, padded to 4 bytes here) as a GLB 2.0 file at out, through a temporary file renamed
@@ -163,19 +178,10 @@ def main():
                 "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 8}}}]}
     blob = bytearray()
 
-    def view(arr, target):
-        while len(blob) % 4:
-            blob.append(0)
-        data = arr.tobytes()  # little-endian (x86, ARM)
-        doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data),
-                                   "target": target})
-        blob.extend(data)
-        return len(doc["bufferViews"]) - 1
-
     def accessor(arr, ctype, kind, target, bounds=False):
         width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[kind]
-        a = {"bufferView": view(arr, target), "componentType": ctype, "count": len(arr) // width,
-             "type": kind}
+        a = {"bufferView": append_view(doc, blob, arr, target), "componentType": ctype,
+             "count": len(arr) // width, "type": kind}
         if bounds:
             a["min"] = [min(arr[k::width]) for k in range(width)]
             a["max"] = [max(arr[k::width]) for k in range(width)]
@@ -199,9 +205,7 @@ def main():
     doc["images"], doc["textures"] = [], []
     for k in range(n_tex):
         png = array("B", checker_png() if n_tex == 1 else band_png(k, n_tex))
-        doc["images"].append({"bufferView": len(doc["bufferViews"]), "mimeType": "image/png"})
-        view(png, None)
-        del doc["bufferViews"][-1]["target"]
+        doc["images"].append({"bufferView": append_view(doc, blob, png), "mimeType": "image/png"})
         doc["textures"].append({"source": k})
     doc["cameras"] = [{"type": "perspective", "perspective": {
         "yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1, "zfar": 100}}]

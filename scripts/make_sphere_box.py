@@ -28,7 +28,7 @@ import pathlib
 import struct
 import sys
 
-from make_large_glb import write_glb
+from make_large_glb import append_view, write_glb
 
 from array import array
 
@@ -175,19 +175,10 @@ def main():
           f"{rings} rings x {segments} segments", file=sys.stderr)
     pos, nrm, idx = sphere(center, radius, rings, segments)
 
-    def view(arr, target):
-        while len(blob) % 4:
-            blob.append(0)
-        data = arr.tobytes()  # little-endian (x86, ARM)
-        doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data),
-                                   "target": target})
-        blob.extend(data)
-        return len(doc["bufferViews"]) - 1
-
     def accessor(arr, ctype, kind, target, name, bounds=False):
         width = {"SCALAR": 1, "VEC3": 3}[kind]
-        a = {"name": name, "bufferView": view(arr, target), "componentType": ctype,
-             "count": len(arr) // width, "type": kind}
+        a = {"name": name, "bufferView": append_view(doc, blob, arr, target),
+             "componentType": ctype, "count": len(arr) // width, "type": kind}
         if bounds:
             a["min"] = [min(arr[k::width]) for k in range(width)]
             a["max"] = [max(arr[k::width]) for k in range(width)]

@@ -91,7 +91,6 @@ public:
     out_.close();
     return static_cast<bool>(out_);
   }
-  bool good() const { return static_cast<bool>(out_); }
 
 private:
   std::ofstream out_;
@@ -115,14 +114,12 @@ public:
     v.resize(n);
     return bytes(v.data(), n * sizeof(T));
   }
-  // Whether the stored checksum follows and matches, and nothing comes after it.
+  // Whether the stored checksum follows and matches (the caller checked the file's size).
   bool checksum_matches() {
     std::uint64_t stored = 0;
     in_.read(reinterpret_cast<char*>(&stored), sizeof stored);
-    if (!in_ || stored != XXH3_64bits_digest(state_.get())) return false;
-    return in_.peek() == std::char_traits<char>::eof();
+    return in_ && stored == XXH3_64bits_digest(state_.get());
   }
-  bool good() const { return static_cast<bool>(in_); }
 
 private:
   std::ifstream in_;
@@ -185,7 +182,7 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t 
   const std::uintmax_t size = fs::file_size(path, ec);
   HashedReader r(path);
   Header h{};
-  if (ec || !r.good() || !r.bytes(&h, sizeof h)) {
+  if (ec || !r.bytes(&h, sizeof h)) {
     why = "unreadable or shorter than its header";
     return c;
   }
@@ -321,7 +318,7 @@ ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
     if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
     const glm::uvec3 v = scene.triangles[t];
     chunk.insert(chunk.end(), {static_cast<std::uint32_t>(t), v.x, v.y, v.z});
-    if (chunk.size() >= 4096 || t + 1 == scene.triangle_count()) {
+    if (chunk.size() >= 4096) {
       add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
       chunk.clear();
     }

@@ -171,18 +171,22 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
   std::vector<std::vector<std::uint32_t>> meshes(out.nodes.size());
   LocalMaps local(scene.positions.size(),
                   worker_count(threads, static_cast<int>(out.nodes.size())));
-  const auto mesh_of = [&](std::int32_t n) {
+  // Appends node n's mesh (a leaf's from the original part, an inner node's from `meshes`).
+  const auto append_mesh = [&](std::int32_t n, std::vector<std::uint32_t>& into) {
     const ClusterNode& c = out.nodes[static_cast<std::size_t>(n)];
-    const std::vector<std::uint32_t>& m = meshes[static_cast<std::size_t>(n)];
-    return c.leaf() ? std::vector<std::uint32_t>(out.indices.begin() + c.mesh_first,
-                                                 out.indices.begin() + c.mesh_first + c.mesh_count)
-                    : m;
+    if (c.leaf()) {
+      into.insert(into.end(), out.indices.begin() + c.mesh_first,
+                  out.indices.begin() + c.mesh_first + c.mesh_count);
+    } else {
+      const std::vector<std::uint32_t>& m = meshes[static_cast<std::size_t>(n)];
+      into.insert(into.end(), m.begin(), m.end());
+    }
   };
   const auto simplify_node = [&](std::size_t n, unsigned worker) {
     ClusterNode& node = out.nodes[n];
-    std::vector<std::uint32_t> input = mesh_of(node.children[0]);
-    const std::vector<std::uint32_t> second = mesh_of(node.children[1]);
-    input.insert(input.end(), second.begin(), second.end());
+    std::vector<std::uint32_t> input;
+    append_mesh(node.children[0], input);
+    append_mesh(node.children[1], input);
     const float below = std::max(out.nodes[static_cast<std::size_t>(node.children[0])].error,
                                  out.nodes[static_cast<std::size_t>(node.children[1])].error);
     node.error = below;
