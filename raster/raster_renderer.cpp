@@ -190,6 +190,7 @@ void RasterRenderer::Impl::begin_image(const View& view) {
     camera.gbuffer(*gbuffer, vp, gl::eye_uniform(view), gpu);
     if (jitter) jitter->average_albedo(camera, view, gpu);
     if (interleaved) interleaved->find_edges();
+    if (interleaved && batched) interleaved->mark_receivers(); // the deferred passes read it
   }
   tile_depths = false;
   single_passes = 0;

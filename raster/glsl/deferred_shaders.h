@@ -13,6 +13,12 @@ inline constexpr int shading_bytes_per_vpl(bool glossy) {
   return (glossy ? 14 : 10) * 16;
 }
 
+// The depths of raster/image/receiver_mask.h: a Lambertian receiver's and a glossy one's. The
+// deferred triangle lies at window depth u_depth (0.5 unless set), drawn at one of them with
+// GL_EQUAL over the mask; both are exact in float, so the test compares equal values.
+inline constexpr float kLambertianReceiverDepth = 0.5f;
+inline constexpr float kGlossyReceiverDepth = 0.25f;
+
 inline constexpr const char* deferred_vpl_vertex = R"(
 struct BatchVpl {
   vec4 position;   // xyz
@@ -34,6 +40,7 @@ struct BatchVpl {
 };
 layout(std140) uniform VplBatch { BatchVpl u_vpl[MAX_BATCH]; };
 uniform int u_first;
+uniform float u_depth; // window depth (kLambertianReceiverDepth unless set)
 #ifdef IRAD_MIRRORS
 flat out ivec2 v_mirror;         // polygon, triangles
 flat out vec4 v_mirror_plane;
@@ -45,15 +52,19 @@ flat out vec3 v_vpl_normal;
 flat out vec3 v_vpl_intensity;
 flat out vec4 v_cone;
 flat out vec4 v_frame[3];
-#ifdef IRAD_GLOSSY
-flat out vec4 v_lobe[4];
+#ifdef IRAD_GLOSSY_RECEIVERS
 flat out int v_reachable;
+#endif
+#ifdef IRAD_GLOSSY_VPLS
+flat out vec4 v_lobe[4];
 #endif
 void main() {
   BatchVpl vpl = u_vpl[u_first + gl_InstanceID];
-#ifdef IRAD_GLOSSY
-  v_lobe = vpl.lobe;
+#ifdef IRAD_GLOSSY_RECEIVERS
   v_reachable = vpl.info.w;
+#endif
+#ifdef IRAD_GLOSSY_VPLS
+  v_lobe = vpl.lobe;
 #endif
   v_kind = vpl.info.x;
 #ifdef IRAD_MIRRORS
@@ -67,7 +78,7 @@ void main() {
   v_cone = vpl.cone;
   v_frame = vpl.frame;
   vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);
-  gl_Position = vec4(p, 0.0, 1.0);
+  gl_Position = vec4(p, 2.0 * u_depth - 1.0, 1.0);
 }
 )";
 
@@ -82,7 +93,12 @@ void main() {
 // side by side, then those of +y and -y one over the other), any other VPL's six faces in two
 // blocks of three. A directional VPL's map is a tile of the orthographic atlas. A mirrored VPL
 // (IRAD_MIRRORS) lights only its pyramid: raster/glsl/mirror_shaders.h's test, the polygon's
-// corners read from a texture (row p: polygon p, three texels per triangle).
+// corners read from a texture (row p: polygon p, three texels per triangle). In a glossy scene
+// (IRAD_GLOSSY: the records carry lobes) the receiver weighs the light by its BRDF where the
+// program may meet glossy receivers (IRAD_GLOSSY_RECEIVERS), and a glossy VPL's lobe shape is
+// compiled only into the programs that draw glossy VPLs (IRAD_GLOSSY_VPLS): llvmpipe runs both
+// sides of every branch under a mask, so code that a draw's pixels never take still costs each
+// fragment (raster/image/receiver_mask.h).
 inline constexpr const char* deferred_vpl_fragment = R"(
 flat in int v_kind;
 flat in ivec4 v_blocks;
@@ -104,13 +120,19 @@ uniform int u_ortho_res;           // M, texels per tile edge
 uniform sampler2D u_position;    // G-buffer: xyz, w = 1 on a surface
 uniform sampler2D u_normal;      // towards the camera
 uniform sampler2D u_albedo;      // with IRAD_GLOSSY the directional albedo toward the camera
-#ifdef IRAD_GLOSSY
+#ifdef IRAD_GLOSSY_VPLS
 flat in vec4 v_lobe[4];
+#endif
+#ifdef IRAD_GLOSSY_RECEIVERS
 flat in int v_reachable;
 uniform float u_traced_roughness; // receivers below it: the diffuse lobe from reachable VPLs
 uniform sampler2D u_base;        // G-buffer: base, f90
 uniform sampler2D u_specular;    // f0, metallic
+#endif
+#if defined(IRAD_GLOSSY_RECEIVERS) || defined(IRAD_GLOSSY_VPLS)
 #pragma irad_brdf
+#endif
+#ifdef IRAD_GLOSSY_VPLS
 #pragma irad_brdf_albedo
 #endif
 uniform ivec2 u_tile_origin;     // the viewport's lower-left pixel
@@ -233,7 +255,7 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
   bool hidden = shadowed(frame * dp, length(dp) - u_bias_constant, frame * n, lookup_unsure);
   float g = e * cos_x / max(dist2, v_cone.z);
   vec3 light = v_vpl_intensity * (g * INV_PI);
-#ifdef IRAD_GLOSSY
+#ifdef IRAD_GLOSSY_VPLS
   if (v_lobe[3].w > 0.0)
     light *= brdf_lobe_shape(v_lobe[0].rgb, v_lobe[0].a, v_lobe[2].w, v_lobe[1].rgb, v_lobe[1].a,
                              v_vpl_normal, v_lobe[2].xyz, w, v_lobe[3].rgb,
@@ -243,10 +265,11 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
   return hidden ? vec3(0.0) : light;
 }
 
-#ifdef IRAD_GLOSSY
+#ifdef IRAD_GLOSSY_RECEIVERS
 // What multiplies vpl_light at pixel p (point x, normal n, roughness r) for light arriving from
 // unit wi: pi f_r,x(wo, wi) with u_apply_albedo, else that over the G-buffer's albedo (the
-// resolve multiplies by it again); a Lambertian pixel's base, or 1, exactly as without IRAD_GLOSSY.
+// resolve multiplies by it again); a Lambertian pixel's base, or 1, exactly as without
+// IRAD_GLOSSY_RECEIVERS.
 // Below u_traced_roughness the light of a VPL a ray can meet takes the diffuse lobe alone: the
 // glossy camera pass (walk/glossy_pass.h) adds the specular one.
 vec3 receiver_weight(ivec2 p, vec3 x, vec3 n, float r, vec3 wi) {
@@ -271,7 +294,7 @@ void main() {
   vec4 n = texelFetch(u_normal, p, 0);
   vec3 light = vpl_light(x.xyz, n.xyz, unsure);
   if (light == vec3(0.0) && unsure == 0.0) discard;
-#ifdef IRAD_GLOSSY
+#ifdef IRAD_GLOSSY_RECEIVERS
   vec3 wi = v_kind == 4 ? -v_vpl_normal : normalize(v_vpl_position - x.xyz);
   vec3 weight = receiver_weight(p, x.xyz, n.xyz, n.w, wi);
   light *= weight;

@@ -195,7 +195,8 @@ void main() {
 // roughness, the albedo is the directional albedo a(wo) toward the camera (the interleaved
 // resolve's demodulation; base for a Lambertian material) with w 1 where the BRDF is not
 // Lambertian (0: the shading reads no more), and two more targets hold (base, f90) and
-// (f0, metallic).
+// (f0, metallic). IRAD_LAMBERTIAN_MATERIALS: the program that draws a glossy scene's Lambertian
+// materials, the same values without the BRDF's code (llvmpipe runs every branch).
 inline constexpr const char* gbuffer_fragment = R"(#version 330 core
 in vec3 v_position;
 in vec3 v_normal;
@@ -216,7 +217,14 @@ void main() {
   vec3 n = material_normal(normalize(v_normal));
   if (!gl_FrontFacing) n = -n;
   o_position = vec4(v_position, 1.0);
-#ifdef IRAD_GLOSSY
+#if defined(IRAD_GLOSSY) && defined(IRAD_LAMBERTIAN_MATERIALS)
+  // What the lines below write for a Lambertian material (m = f0 = f90 = 0, r = 1), without them.
+  vec3 base = material_albedo();
+  o_normal = vec4(n, 1.0);
+  o_albedo = vec4(base, 0.0);
+  o_base = vec4(base, 0.0);
+  o_specular = vec4(0.0);
+#elif defined(IRAD_GLOSSY)
   vec3 base = material_albedo();
   float metallic, roughness, f90;
   vec3 f0;

@@ -23,6 +23,9 @@ Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer
       edges_((find_edges || shade_edges) && k > 1
                  ? std::make_unique<EdgePixels>(api, k, gbuffer, find_edges && !shade_edges)
                  : nullptr),
+      receivers_(gbuffer.glossy() ? std::make_unique<ReceiverMask>(
+                                        api, atlas_.get(), k, glm::ivec2(tile_w_, tile_h_), gbuffer)
+                                  : nullptr),
       shade_edges_(shade_edges), resolve_(api, "resolve", shaders::fullscreen_vertex,
                                           with_resolve_window(shaders::resolve_fragment)),
       scale_location_(resolve_.uniform("u_scale")), edges_location_(resolve_.uniform("u_edges")) {
@@ -47,7 +50,11 @@ Interleaved::Interleaved(const GladGLContext& api, int k, const GBuffer& gbuffer
   api.Uniform1i(resolve_.uniform("u_edge_light"), edge_light_unit);
 }
 
-void Interleaved::bind_tile(int set) const {
+void Interleaved::bind_tile(int set, bool receivers) const {
+  if (receivers && receivers_) {
+    receivers_->bind_tile(set);
+    return;
+  }
   api_->BindFramebuffer(GL_FRAMEBUFFER, atlas_fbo_.get());
   api_->Viewport((set % k_) * tile_w_, (set / k_) * tile_h_, tile_w_, tile_h_);
 }

@@ -11,6 +11,7 @@
 #include "raster/context/shader_program.h"
 #include "raster/image/edge_pixels.h"
 #include "raster/image/gbuffer.h"
+#include "raster/image/receiver_mask.h"
 
 #include <glm/glm.hpp>
 #include <memory>
@@ -29,7 +30,8 @@ public:
   int k() const { return k_; }
   int sets() const { return k_ * k_; }
   // The atlas with the viewport on one set's tile (set in [0, k^2)), or on the whole atlas.
-  void bind_tile(int set) const;
+  // receivers: with the receiver mask as its depth (receivers_marked()).
+  void bind_tile(int set, bool receivers = false) const;
   void bind_atlas() const;
   // The camera projection moved so that tile pixel (X, Y) of `set` sees the centre of full-image
   // pixel (k X + dx, k Y + dy).
@@ -42,6 +44,12 @@ public:
   void find_edges() {
     if (edges_) edges_->find(shade_edges_);
   }
+  // A glossy G-buffer: marks its Lambertian and glossy pixels in the receiver mask
+  // (raster/image/receiver_mask.h), after its pass; then receivers_marked().
+  void mark_receivers() {
+    if (receivers_) receivers_->mark();
+  }
+  bool receivers_marked() const { return receivers_ != nullptr; }
   // With find_edges (and not shade_edges), after the shading: adds the unsure pixels to the
   // list (EdgePixels::add_unsure; the deferred passes must have written the unsure light).
   void find_unsure() {
@@ -67,6 +75,7 @@ private:
   Framebuffer atlas_fbo_;
   VertexArray empty_vao_;
   std::unique_ptr<EdgePixels> edges_;
+  std::unique_ptr<ReceiverMask> receivers_; // a glossy G-buffer's
   bool shade_edges_;
   ShaderProgram resolve_;
   GLint scale_location_, edges_location_; // u_scale (the sets' scales), u_edges

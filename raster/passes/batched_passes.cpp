@@ -89,8 +89,12 @@ void BatchedPasses::flush(std::vector<Entry>& batch, const DeferredTarget& into,
 
 void BatchedPasses::shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shadow,
                           const DeferredTarget& into) {
-  std::stable_sort(vpls.begin(), vpls.end(),
-                   [](const AtlasVpl& a, const AtlasVpl& b) { return a.set < b.set; });
+  // By set, and within a set the Lambertian VPLs before the glossy ones (DeferredShader::draw
+  // draws each run with its own program).
+  std::stable_sort(vpls.begin(), vpls.end(), [](const AtlasVpl& a, const AtlasVpl& b) {
+    const bool la = a.lobe != nullptr, lb = b.lobe != nullptr;
+    return a.set < b.set || (a.set == b.set && la < lb);
+  });
   const int n = static_cast<int>(vpls.size());
   for (int first = 0; first < n; first += shader_.batch())
     shade_some(vpls.data() + first, std::min(shader_.batch(), n - first), shadow, into);
@@ -107,9 +111,10 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
     // whose centre the per-VPL pass's tile projection puts there (Interleaved::tile_projection).
     TilePixels pixels;
     if (into.interleaved) {
-      into.interleaved->bind_tile(set);
+      into.interleaved->bind_tile(set, into.receivers);
       const int k = into.interleaved->k();
-      pixels = {glm::ivec2(into.interleaved->tile(set)), k, glm::ivec2(set % k, set / k)};
+      pixels = {glm::ivec2(into.interleaved->tile(set)), k, glm::ivec2(set % k, set / k), 0,
+                into.receivers};
     } else {
       into.bind_image();
     }

@@ -33,6 +33,9 @@ struct DeferredTarget {
   const GBuffer* gbuffer = nullptr;
   const Interleaved* interleaved = nullptr;
   std::function<void()> bind_image;
+  // The interleaved atlas's receiver mask (Interleaved::mark_receivers) holds this G-buffer's
+  // pixels: the deferred passes draw its Lambertian and glossy pixels apart.
+  bool receivers = false;
 };
 
 class BatchedPasses {

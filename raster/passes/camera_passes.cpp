@@ -5,20 +5,38 @@
 #include "raster/passes/vpl_shader.h"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <string>
 
 namespace irad::gl {
+
+namespace {
+
+// The G-buffer's fragment shader; lambertian: for a glossy scene's Lambertian materials.
+std::string gbuffer_source(const MaterialFeatures& features, bool lambertian) {
+  std::string s = material_source(shaders::gbuffer_fragment, features);
+  if (lambertian) s.insert(s.find('\n') + 1, "#define IRAD_LAMBERTIAN_MATERIALS 1\n");
+  return shaders::with_brdf(s);
+}
+
+} // namespace
+
+CameraPasses::GBufferProgram::GBufferProgram(const GladGLContext& api,
+                                             const MaterialFeatures& features, bool lambertian)
+    : program(api, "gbuffer", material_source(shaders::camera_vertex, features),
+              gbuffer_source(features, lambertian)),
+      material(program), view_projection(program.uniform("u_view_projection")),
+      eye(program.optional_uniform("u_eye")) {}
 
 CameraPasses::CameraPasses(const GladGLContext& api, const MaterialFeatures& features)
     : api_(&api), depth_(api, "depth", material_source(shaders::camera_vertex, features),
                          material_source(shaders::depth_fragment, features)),
-      gbuffer_(api, "gbuffer", material_source(shaders::camera_vertex, features),
-               shaders::with_brdf(material_source(shaders::gbuffer_fragment, features))),
       emission_(api, "emission", material_source(shaders::camera_vertex, features),
                 material_source(shaders::emission_fragment, features)),
-      depth_material_(depth_), gbuffer_material_(gbuffer_), emission_material_(emission_),
+      gbuffer_(api, features, false),
+      lambertian_gbuffer_(features.glossy ? std::make_unique<GBufferProgram>(api, features, true)
+                                          : nullptr),
+      depth_material_(depth_), emission_material_(emission_),
       depth_vp_(depth_.uniform("u_view_projection")),
-      gbuffer_vp_(gbuffer_.uniform("u_view_projection")),
-      gbuffer_eye_(gbuffer_.optional_uniform("u_eye")),
       emission_vp_(emission_.uniform("u_view_projection")),
       emission_double_sided_(emission_.uniform("u_double_sided")) {}
 
@@ -47,13 +65,31 @@ void CameraPasses::gbuffer(GBuffer& target, const glm::mat4& view_projection, co
   api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f); // position w = 0: no surface
   api.ClearDepth(1.0);
   api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  gbuffer_.use();
-  api.UniformMatrix4fv(gbuffer_vp_, 1, GL_FALSE, glm::value_ptr(view_projection));
-  api.Uniform4fv(gbuffer_eye_, 1, glm::value_ptr(eye));
-  gpu.draw([&](const Material& m) {
+  if (!lambertian_gbuffer_) {
+    draw_gbuffer(gbuffer_, view_projection, eye, gpu, nullptr);
+    return;
+  }
+  draw_gbuffer(*lambertian_gbuffer_, view_projection, eye, gpu, MaterialUniforms::lambertian);
+  draw_gbuffer(gbuffer_, view_projection, eye, gpu,
+               [](const Material& m) { return !MaterialUniforms::lambertian(m); });
+}
+
+void CameraPasses::draw_gbuffer(const GBufferProgram& p, const glm::mat4& view_projection,
+                                const glm::vec4& eye, const GpuScene& gpu,
+                                const std::function<bool(const Material&)>& select) const {
+  const GladGLContext& api = *api_;
+  p.program.use();
+  api.UniformMatrix4fv(p.view_projection, 1, GL_FALSE, glm::value_ptr(view_projection));
+  api.Uniform4fv(p.eye, 1, glm::value_ptr(eye));
+  const auto bind = [&](const Material& m) {
     const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
-    gbuffer_material_.bind_base(api, gpu, m, rho);
-  });
+    p.material.bind_base(api, gpu, m, rho);
+  };
+  if (select) {
+    gpu.draw_if(select, bind);
+  } else {
+    gpu.draw(bind);
+  }
 }
 
 void CameraPasses::emitters(const glm::mat4& view_projection, const Scene& scene,

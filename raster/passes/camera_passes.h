@@ -8,7 +8,9 @@
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
 
+#include <functional>
 #include <glm/glm.hpp>
+#include <memory>
 
 namespace irad::gl {
 
@@ -34,11 +36,25 @@ public:
                 float weight = 1.0f) const;
 
 private:
+  // A G-buffer program and its uniforms.
+  struct GBufferProgram {
+    GBufferProgram(const GladGLContext& api, const MaterialFeatures& features, bool lambertian);
+    ShaderProgram program;
+    MaterialUniforms material;
+    GLint view_projection, eye;
+  };
+  // Draws the materials `select` picks with p.
+  void draw_gbuffer(const GBufferProgram& p, const glm::mat4& view_projection, const glm::vec4& eye,
+                    const GpuScene& gpu, const std::function<bool(const Material&)>& select) const;
+
   const GladGLContext* api_;
-  ShaderProgram depth_, gbuffer_, emission_;
-  MaterialUniforms depth_material_, gbuffer_material_, emission_material_;
+  ShaderProgram depth_, emission_;
+  // gbuffer_ draws every material; in a glossy scene lambertian_gbuffer_ draws the Lambertian
+  // ones without the BRDF's code (raster/glsl/shaders.h IRAD_LAMBERTIAN_MATERIALS).
+  GBufferProgram gbuffer_;
+  std::unique_ptr<GBufferProgram> lambertian_gbuffer_;
+  MaterialUniforms depth_material_, emission_material_;
   GLint depth_vp_;
-  GLint gbuffer_vp_, gbuffer_eye_;
   GLint emission_vp_, emission_double_sided_;
 };
 

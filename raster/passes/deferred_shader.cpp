@@ -73,17 +73,19 @@ void write_lobe(float* out, const AtlasVpl& a) {
   std::memcpy(out, r.data(), sizeof(float) * r.size());
 }
 
-std::string defines(bool mirrors, bool glossy) {
+std::string defines(bool mirrors, bool glossy, bool receivers, bool lobes) {
   return std::string(mirrors ? "#define IRAD_MIRRORS 1\n" : "") +
-         (glossy ? "#define IRAD_GLOSSY 1\n" : "");
+         (glossy ? "#define IRAD_GLOSSY 1\n" : "") +
+         (receivers ? "#define IRAD_GLOSSY_RECEIVERS 1\n" : "") +
+         (lobes ? "#define IRAD_GLOSSY_VPLS 1\n" : "");
 }
 
 // The fragment shader for `batch` VPLs, with the occluder planes' fetches or without them, the
 // unsure light or without it, the mirrored VPLs' pyramid test or without it, the glTF BRDF or
-// without it.
-std::string fragment_source(int batch, bool planes, bool unsure, bool mirrors, bool glossy) {
+// without it, the glossy VPLs' lobes or without them.
+std::string fragment_source(int batch, bool planes, bool unsure, const std::string& defined) {
   std::string source = shaders::with_brdf(shaders::with_cube_lookup(
-      shaders::batched_source(shaders::deferred_vpl_fragment, batch, defines(mirrors, glossy))));
+      shaders::batched_source(shaders::deferred_vpl_fragment, batch, defined)));
   insert_glsl(source, "#pragma irad_planes\n",
               planes ? "const bool u_planes = true;\n" : "const bool u_planes = false;\n");
   insert_glsl(source, "#pragma irad_unsure\n",
@@ -123,55 +125,68 @@ int DeferredShader::capacity(const GladGLContext& api, int wanted, bool glossy) 
   return std::min(wanted, static_cast<int>(block) / shaders::shading_bytes_per_vpl(glossy));
 }
 
+DeferredShader::Program::Program(const GladGLContext& api, int batch, bool planes, bool unsure,
+                                 bool mirrors, bool glossy, bool receivers, bool lobes)
+    : program(api, "deferred vpl",
+              shaders::batched_source(shaders::deferred_vpl_vertex, batch,
+                                      defines(mirrors, glossy, receivers, lobes)),
+              fragment_source(batch, planes, unsure, defines(mirrors, glossy, receivers, lobes))),
+      first(program.uniform("u_first")), tile_origin(program.uniform("u_tile_origin")),
+      pixel(program.uniform("u_pixel")), size(program.uniform("u_size")),
+      shadow_res(program.uniform("u_shadow_res")), shadow_half(program.uniform("u_shadow_half")),
+      bias_texel(program.uniform("u_bias_texel")), ortho_res(program.uniform("u_ortho_res")),
+      apply_albedo(program.uniform("u_apply_albedo")), listed(program.uniform("u_listed")),
+      eye(program.optional_uniform("u_eye")),
+      traced(program.optional_uniform("u_traced_roughness")), depth(program.uniform("u_depth")) {
+  const GLuint index = api.GetUniformBlockIndex(program.get(), "VplBatch");
+  if (index == GL_INVALID_INDEX) throw Error("", "shader deferred vpl", "no block VplBatch");
+  api.UniformBlockBinding(program.get(), index, kVplBlockBinding);
+  program.use();
+  program.set_sampler("u_shadow_atlas", shadow_unit);
+  program.set_sampler("u_ortho_atlas", ortho_unit);
+  program.set_sampler("u_shadow_gradient", gradient_unit);
+  program.set_sampler("u_position", gbuffer_unit);
+  program.set_sampler("u_normal", gbuffer_unit + 1);
+  program.set_sampler("u_albedo", gbuffer_unit + 2);
+  program.set_sampler("u_pixel_list", list_unit);
+  program.set_sampler("u_base", brdf_unit);
+  program.set_sampler("u_specular", brdf_unit + 1);
+  program.set_sampler("u_albedo_table", table_unit);
+  program.set_sampler("u_mirror_corners", mirror_unit);
+}
+
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch,
                                bool planes, bool unsure, const std::vector<MirrorPolygon>& mirrors)
     : api_(&api), diagonal_(scene.bounds.diagonal()), clamp_(clamp), batch_(batch), planes_(planes),
-      glossy_(!scene.all_lambertian()),
-      program_(api, "deferred vpl",
-               shaders::batched_source(shaders::deferred_vpl_vertex, batch,
-                                       defines(!mirrors.empty(), glossy_)),
-               fragment_source(batch, planes, unsure, !mirrors.empty(), glossy_)),
-      first_(program_.uniform("u_first")), tile_origin_(program_.uniform("u_tile_origin")),
-      pixel_(program_.uniform("u_pixel")), size_(program_.uniform("u_size")),
-      shadow_res_(program_.uniform("u_shadow_res")),
-      shadow_half_(program_.uniform("u_shadow_half")),
-      bias_texel_(program_.uniform("u_bias_texel")), ortho_res_(program_.uniform("u_ortho_res")),
-      apply_albedo_(program_.uniform("u_apply_albedo")), listed_(program_.uniform("u_listed")),
-      eye_(program_.optional_uniform("u_eye")),
-      traced_(program_.optional_uniform("u_traced_roughness")), vpl_block_(make_buffer(api)),
-      empty_vao_(make_vertex_array(api)),
+      glossy_(!scene.all_lambertian()), unsure_(unsure), mirrors_(!mirrors.empty()),
+      vpl_block_(make_buffer(api)), empty_vao_(make_vertex_array(api)),
       vpl_data_(static_cast<std::size_t>(batch) * floats_per_vpl(glossy_), 0.0f) {
-  const GLuint index = api.GetUniformBlockIndex(program_.get(), "VplBatch");
-  if (index == GL_INVALID_INDEX) throw Error("", "shader deferred vpl", "no block VplBatch");
-  api.UniformBlockBinding(program_.get(), index, kVplBlockBinding);
-  program_.use();
-  api.Uniform1i(program_.uniform("u_shadow_atlas"), shadow_unit);
-  api.Uniform1i(program_.uniform("u_ortho_atlas"), ortho_unit);
-  if (planes_) api.Uniform1i(program_.uniform("u_shadow_gradient"), gradient_unit);
-  api.Uniform1i(program_.uniform("u_position"), gbuffer_unit);
-  api.Uniform1i(program_.uniform("u_normal"), gbuffer_unit + 1);
-  api.Uniform1i(program_.uniform("u_albedo"), gbuffer_unit + 2);
-  api.Uniform1i(program_.uniform("u_pixel_list"), list_unit);
-  if (glossy_) {
-    api.Uniform1i(program_.uniform("u_base"), brdf_unit);
-    api.Uniform1i(program_.uniform("u_specular"), brdf_unit + 1);
-    api.Uniform1i(program_.uniform("u_albedo_table"), table_unit);
-    albedo_table_ = albedo_table_texture(api);
+  if (!mirrors.empty()) {
+    mirror_corners_ = corner_texture(api, mirrors);
+    for (const MirrorPolygon& m : mirrors)
+      mirror_triangles_.push_back(
+          static_cast<int>(std::min(m.triangles.size() / 3, MirrorPolygon::max_triangles)));
   }
+  if (glossy_) albedo_table_ = albedo_table_texture(api);
+  program(glossy_, glossy_); // the one every draw can take: compile errors show here
+}
+
+const DeferredShader::Program& DeferredShader::program(bool receivers, bool lobes) const {
+  std::unique_ptr<Program>& p = programs_[(receivers ? 1 : 0) + (lobes ? 2 : 0)];
+  if (p) return *p;
+  p = std::make_unique<Program>(*api_, batch_, planes_, unsure_, mirrors_, glossy_, receivers,
+                                lobes);
   // Scale-relative constants, as VplShader: the coincidence guard and the shadow bias.
-  api.Uniform1f(program_.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
-  api.Uniform1f(program_.uniform("u_bias_constant"), 2e-4f * diagonal_);
-  api.Uniform1f(program_.uniform("u_offset_texels"), normal_offset_texels(planes));
-  if (mirrors.empty()) return;
-  mirror_corners_ = corner_texture(api, mirrors);
-  api.Uniform1i(program_.uniform("u_mirror_corners"), mirror_unit);
-  for (const MirrorPolygon& m : mirrors)
-    mirror_triangles_.push_back(
-        static_cast<int>(std::min(m.triangles.size() / 3, MirrorPolygon::max_triangles)));
+  const GladGLContext& api = *api_;
+  api.Uniform1f(p->program.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
+  api.Uniform1f(p->program.uniform("u_bias_constant"), 2e-4f * diagonal_);
+  api.Uniform1f(p->program.uniform("u_offset_texels"), normal_offset_texels(planes_));
+  return *p;
 }
 
 void DeferredShader::upload(const AtlasVpl* vpls, int n) {
   if (n > batch_) throw Error("", "deferred vpl", "more VPLs than the batch holds");
+  lobed_.assign(static_cast<std::size_t>(n), false);
   for (int s = 0; s < n; ++s) {
     const Vpl& vpl = *vpls[s].vpl;
     const float dmin2 = clamp_distance2(vpl, clamp_ * diagonal_);
@@ -181,6 +196,7 @@ void DeferredShader::upload(const AtlasVpl* vpls, int n) {
     float* out = vpl_data_.data() + floats_per_vpl(glossy_) * static_cast<std::size_t>(s);
     write_vpl(out, vpls[s], dmin2, triangles);
     if (glossy_) write_lobe(out + kFloatsPerVpl, vpls[s]);
+    lobed_[static_cast<std::size_t>(s)] = vpls[s].lobe != nullptr;
   }
   // A new store per batch (no wait for the draws that read the last one).
   api_->BindBuffer(GL_UNIFORM_BUFFER, vpl_block_.get());
@@ -190,29 +206,58 @@ void DeferredShader::upload(const AtlasVpl* vpls, int n) {
 
 void DeferredShader::draw(int first, int count, const TilePixels& pixels, const GBuffer& gbuffer,
                           const ShadowLookup& shadow, bool apply_albedo) const {
+  if (first < 0 || first + count > static_cast<int>(lobed_.size()))
+    throw Error("", "deferred vpl", "a draw beyond the uploaded VPLs");
+  const auto lobed = [&](int i) { return lobed_[static_cast<std::size_t>(i)]; };
+  for (int end = first + count; first < end;) {
+    int run = first + 1;
+    while (run < end && lobed(run) == lobed(first)) ++run;
+    const bool lobes = glossy_ && lobed(first);
+    if (glossy_ && pixels.receivers) {
+      draw_run(program(false, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
+               shaders::kLambertianReceiverDepth);
+      draw_run(program(true, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
+               shaders::kGlossyReceiverDepth);
+    } else {
+      draw_run(program(glossy_, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
+               0.0f);
+    }
+    first = run;
+  }
+}
+
+void DeferredShader::draw_run(const Program& p, int first, int count, const TilePixels& pixels,
+                              const GBuffer& gbuffer, const ShadowLookup& shadow, bool apply_albedo,
+                              float depth) const {
   const GladGLContext& api = *api_;
   api.BindBufferBase(GL_UNIFORM_BUFFER, kVplBlockBinding, vpl_block_.get());
-  api.Disable(GL_DEPTH_TEST);
+  if (depth > 0.0f) {
+    api.Enable(GL_DEPTH_TEST);
+    api.DepthFunc(GL_EQUAL);
+  } else {
+    api.Disable(GL_DEPTH_TEST);
+  }
   api.DepthMask(GL_FALSE);
   api.Enable(GL_BLEND);
   api.BlendEquation(GL_FUNC_ADD);
   api.BlendFunc(GL_ONE, GL_ONE);
-  program_.use();
-  api.Uniform1i(first_, first);
-  api.Uniform2i(tile_origin_, pixels.origin.x, pixels.origin.y);
-  api.Uniform3i(pixel_, pixels.k, pixels.offset.x, pixels.offset.y);
-  api.Uniform2i(size_, gbuffer.width(), gbuffer.height());
-  api.Uniform1i(shadow_res_, shadow.resolution);
-  api.Uniform1i(shadow_half_, shadow.resolution / 2 + 1);
+  p.program.use();
+  api.Uniform1i(p.first, first);
+  api.Uniform1f(p.depth, depth > 0.0f ? depth : shaders::kLambertianReceiverDepth);
+  api.Uniform2i(p.tile_origin, pixels.origin.x, pixels.origin.y);
+  api.Uniform3i(p.pixel, pixels.k, pixels.offset.x, pixels.offset.y);
+  api.Uniform2i(p.size, gbuffer.width(), gbuffer.height());
+  api.Uniform1i(p.shadow_res, shadow.resolution);
+  api.Uniform1i(p.shadow_half, shadow.resolution / 2 + 1);
   // Angular size of one texel at the centre of a face, as ShadowCube::texel_angle.
-  api.Uniform1f(bias_texel_, 2.0f / static_cast<float>(shadow.resolution));
-  api.Uniform1i(apply_albedo_, apply_albedo ? 1 : 0);
-  api.Uniform1i(listed_, pixels.list != 0 ? 1 : 0);
+  api.Uniform1f(p.bias_texel, 2.0f / static_cast<float>(shadow.resolution));
+  api.Uniform1i(p.apply_albedo, apply_albedo ? 1 : 0);
+  api.Uniform1i(p.listed, pixels.list != 0 ? 1 : 0);
   if (pixels.list != 0) {
     api.ActiveTexture(GL_TEXTURE0 + list_unit);
     api.BindTexture(GL_TEXTURE_2D, pixels.list);
   }
-  api.Uniform1i(ortho_res_, shadow.ortho_resolution);
+  api.Uniform1i(p.ortho_res, shadow.ortho_resolution);
   api.ActiveTexture(GL_TEXTURE0 + shadow_unit);
   api.BindTexture(GL_TEXTURE_2D, shadow.texture);
   api.ActiveTexture(GL_TEXTURE0 + ortho_unit);
@@ -233,8 +278,8 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
     gbuffer.bind_brdf_textures(brdf_unit);
     api.ActiveTexture(GL_TEXTURE0 + table_unit);
     api.BindTexture(GL_TEXTURE_2D, albedo_table_.get());
-    api.Uniform4fv(eye_, 1, glm::value_ptr(gbuffer.eye()));
-    api.Uniform1f(traced_, traced_roughness_);
+    api.Uniform4fv(p.eye, 1, glm::value_ptr(gbuffer.eye()));
+    api.Uniform1f(p.traced, traced_roughness_);
   }
   api.BindVertexArray(empty_vao_.get());
   api.DrawArraysInstanced(GL_TRIANGLES, 0, 3, count);

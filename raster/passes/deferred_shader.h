@@ -15,7 +15,9 @@
 #include "raster/image/gbuffer.h"
 #include "raster/scene/gpu_scene.h"
 
+#include <array>
 #include <glm/glm.hpp>
+#include <memory>
 #include <vector>
 
 namespace irad::gl {
@@ -28,6 +30,9 @@ struct TilePixels {
   int k = 1;
   glm::ivec2 offset{0};
   GLuint list = 0;
+  // The bound framebuffer's depth is a ReceiverMask of the draw's G-buffer
+  // (raster/image/receiver_mask.h): a glossy scene's Lambertian and glossy pixels are drawn apart.
+  bool receivers = false;
 };
 
 // The atlases a draw's VPLs look their shadow maps up in: cubes in raster/shadow/shadow_atlas.h's
@@ -77,7 +82,9 @@ public:
   // The batch's VPLs vpls[0..n) (n <= batch()).
   void upload(const AtlasVpl* vpls, int n);
   // Adds the uploaded VPLs first..first + count - 1 into the bound framebuffer and viewport
-  // (apply_albedo false: irradiance / pi without rho(x), for the interleaved resolve).
+  // (apply_albedo false: irradiance / pi without rho(x), for the interleaved resolve). In a glossy
+  // scene each run of Lambertian VPLs is drawn by a program without the lobes' code: a caller
+  // that orders a draw's glossy VPLs together draws the others at a Lambertian VPL's cost.
   void draw(int first, int count, const TilePixels& pixels, const GBuffer& gbuffer,
             const ShadowLookup& shadow, bool apply_albedo) const;
   int batch() const { return batch_; }
@@ -100,9 +107,29 @@ private:
   // Per mirror polygon (core/scene/mirrors.h) the triangles its pyramid test reads (<=
   // max_triangles).
   std::vector<int> mirror_triangles_;
-  ShaderProgram program_;
-  GLint first_, tile_origin_, pixel_, size_, shadow_res_, shadow_half_, bias_texel_, ortho_res_,
-      apply_albedo_, listed_, eye_, traced_;
+  // A compiled variant of the shaders and its uniforms' locations: in a glossy scene with the
+  // receivers' BRDF or without it (Lambertian pixels alone), with the VPLs' lobes or without them
+  // (Lambertian VPLs alone).
+  struct Program {
+    Program(const GladGLContext& api, int batch, bool planes, bool unsure, bool mirrors,
+            bool glossy, bool receivers, bool lobes);
+    ShaderProgram program;
+    GLint first, tile_origin, pixel, size, shadow_res, shadow_half, bias_texel, ortho_res,
+        apply_albedo, listed, eye, traced, depth;
+  };
+  // The variant, compiled at its first use.
+  const Program& program(bool receivers, bool lobes) const;
+  // Sets the uniforms and textures of every draw, and draws instances first..first + count - 1;
+  // depth > 0: only over the pixels of a ReceiverMask that hold it.
+  void draw_run(const Program& p, int first, int count, const TilePixels& pixels,
+                const GBuffer& gbuffer, const ShadowLookup& shadow, bool apply_albedo,
+                float depth) const;
+
+  bool unsure_, mirrors_;
+  // programs_[receivers + 2 lobes] (a Lambertian scene uses only programs_[0]).
+  mutable std::array<std::unique_ptr<Program>, 4> programs_;
+  // Per uploaded VPL: whether it has a lobe (AtlasVpl::lobe).
+  std::vector<bool> lobed_;
   float traced_roughness_ = 0.0f;
   Texture mirror_corners_; // with mirrors: their corners (raster/glsl/deferred_shaders.h)
   Texture albedo_table_;   // glossy: raster/scene/gpu_scene.h albedo_table_texture

@@ -317,7 +317,7 @@ void MaterialUniforms::bind_brdf(const GladGLContext& api, const GpuScene& gpu,
                                         m.specular_color_texture, m.normal_texture};
   const TexCoordMap* maps[kExtraTextures] = {&m.metallic_roughness_map, &m.specular_map,
                                              &m.specular_color_map, &m.normal_map};
-  const bool lambertian = m.lambertian() || m.specular;
+  const bool lambertian = MaterialUniforms::lambertian(m);
   for (int k = 0; k < kExtraTextures; ++k) {
     if (extra_[k].has < 0) continue;
     // As the CPU (texture_at): a texture without its texture coordinates is not read.

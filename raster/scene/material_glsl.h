@@ -41,6 +41,9 @@ public:
 
   // The textures beside the base colour's: metallic-roughness, specular, specular colour, normal.
   static constexpr int kExtraTextures = 4;
+  // Whether the programs take m as Lambertian (m = f0 = f90 = 0): Material::lambertian() or a
+  // mirror (whose diffuse the caller zeroes).
+  static bool lambertian(const Material& m) { return m.lambertian() || m.specular; }
 
 private:
   // The BRDF's uniforms and textures (IRAD_GLOSSY) and the normal map (IRAD_NORMAL_MAP); part of
