@@ -56,9 +56,32 @@ glm::vec3 sampled_gather(const Context& c, const ShadingPoint& y, Pcg32& rng) {
   return sum / static_cast<float>(kHiddenVpls);
 }
 
-// L(y -> x) along the ray origin + t dir (glossy_pass.h's cases).
 glm::vec3 incoming(const Context& c, const glm::vec3& origin, const glm::vec3& dir, Pcg32& rng,
-                   GlossyPassStats& stats) {
+                   GlossyPassStats& stats, int depth);
+
+// L(y -> x) of a narrow-lobe y the ray met after `depth` narrow lobes: its diffuse lobe (and the
+// lights' VPLs through the whole BRDF) from sampled_gather, its specular lobe by one more ray
+// (incoming), the whole BRDF from the VPLs past GlossyPassOptions::bounces.
+glm::vec3 narrow_lobe_light(const Context& c, ShadingPoint y, Pcg32& rng, GlossyPassStats& stats,
+                            int depth) {
+  if (depth >= c.options.bounces) return sampled_gather(c, y, rng);
+  mark_traced_specular(y, c.options.roughness);
+  glm::vec3 l = sampled_gather(c, y, rng);
+  const float u0 = static_cast<float>(rng.next_double());
+  const float u1 = static_cast<float>(rng.next_double());
+  const auto sample = y.glossy->brdf.sample_specular(y.glossy->wo, u0, u1);
+  if (sample && glm::dot(sample->wi, y.geometric) > 0.0f) {
+    ++stats.rays;
+    l += sample->weight *
+         incoming(c, y.position + c.eps * y.geometric, sample->wi, rng, stats, depth + 1);
+  }
+  return l;
+}
+
+// L(y -> x) along the ray origin + t dir (glossy_pass.h's cases); depth: the narrow lobes the
+// light has met since the camera's.
+glm::vec3 incoming(const Context& c, const glm::vec3& origin, const glm::vec3& dir, Pcg32& rng,
+                   GlossyPassStats& stats, int depth) {
   const auto hit = c.rays.intersect(origin, dir, 0.0f, std::numeric_limits<float>::infinity());
   if (!hit)
     return c.options.environment && c.scene.has_environment() ? c.scene.environment->radiance(dir)
@@ -67,9 +90,12 @@ glm::vec3 incoming(const Context& c, const glm::vec3& origin, const glm::vec3& d
     return mirror_radiance(c.scene, c.rays, c.vpls, hit->triangle, origin + hit->t * dir, dir,
                            c.dmin, c.eps);
   const ShadingPoint y = shading_point(c.scene, *hit, origin, dir);
-  // A narrow-lobe y's pixel holds its diffuse lobe alone: its light toward x from the VPLs.
-  const int pixel =
-      narrow_lobe(y, c.options.roughness) ? -1 : c.screen.camera_pixel(y.position, y.geometric);
+  // A narrow-lobe y's pixel holds its diffuse lobe alone.
+  if (narrow_lobe(y, c.options.roughness)) {
+    ++stats.exact;
+    return narrow_lobe_light(c, y, rng, stats, depth);
+  }
+  const int pixel = c.screen.camera_pixel(y.position, y.geometric);
   if (pixel < 0) {
     ++stats.exact;
     return sampled_gather(c, y, rng);
@@ -100,7 +126,7 @@ glm::vec3 specular_light(const Context& c, int px, int py, GlossyPassStats& stat
     const auto sample = x.glossy->brdf.sample_specular(x.glossy->wo, u0, u1);
     if (!sample || !(glm::dot(sample->wi, x.geometric) > 0.0f)) continue;
     ++stats.rays;
-    sum += sample->weight * incoming(c, origin, sample->wi, rng, stats);
+    sum += sample->weight * incoming(c, origin, sample->wi, rng, stats, 0);
   }
   return sum / n;
 }

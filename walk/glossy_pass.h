@@ -12,9 +12,14 @@
 //   - y seen by the camera (walk/screen_lookup.h): the image's value there less y's L_e (a
 //     diffuse surface sends toward x what it sends toward the camera; a glossy one that times
 //     the ratio of its directional albedos toward x and toward the camera);
-//   - y hidden, or of a narrow lobe itself (its pixel holds its diffuse lobe alone): the light of
-//     32 VPLs drawn by power at y toward x (an unbiased estimate of walk/vpl_gather.h
-//     gather_vpls, with shadow rays);
+//   - y hidden: the light of 32 VPLs drawn by power at y toward x (an unbiased estimate of
+//     walk/vpl_gather.h gather_vpls, with shadow rays);
+//   - y of a narrow lobe itself (its pixel holds its diffuse lobe alone): its diffuse lobe from
+//     those 32 VPLs (the lights' own VPLs through its whole BRDF, as at x), and its specular lobe
+//     by one ray drawn from it, whose hit is taken by these same rules: glossy-to-glossy light,
+//     which 32 points seen through a narrow lobe would miss (a metal sphere in another's
+//     reflection goes black) or catch as a spike. After `bounces` such lobes, the 32 VPLs through
+//     the whole BRDF;
 //   - y on a mirror: the mirror's radiance (walk/mirror_pass.h); a ray that leaves the scene: the
 //     environment.
 // The clamp's residual at y is left out (the compensation runs after this pass).
@@ -32,6 +37,7 @@ namespace irad {
 struct GlossyPassOptions {
   float roughness = 0.0f;     // receivers below it (walk/vpl_gather.h narrow_lobe); 0: none
   std::uint32_t samples = 32; // specular directions per pixel
+  int bounces = 3;            // narrow lobes met after the camera's that are traced through
   float clamp = 0.05f;        // the exact gathers' global d_min (fraction of the diagonal)
   // Whether escaped rays add the environment: false for a part of the paths that does not hold
   // the direct light (its image holds no background either), so that parts add up.
