@@ -4,6 +4,7 @@
 #include "raster/glsl/batched_shaders.h"
 #include "raster/glsl/ortho_atlas_shaders.h"
 #include "raster/shadow/ortho_shadow.h"
+#include "raster/shadow/shadow_atlas.h"
 
 #include <algorithm>
 #include <cstring>
@@ -14,17 +15,8 @@ namespace irad::gl {
 namespace {
 
 constexpr GLuint kOrthoBlockBinding = 2;
-// The atlas's side at most: two 4096^2 depth textures are 128 MB.
-constexpr int kMaxAtlasSide = 4096;
 // The OrthoBatch block per direction (std140): a mat4 and two vec4.
 constexpr int kBytesPerTile = 64 + 16 + 16;
-
-int max_side(const GladGLContext& api) {
-  GLint texture = 0, renderbuffer = 0;
-  api.GetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
-  api.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
-  return std::min({kMaxAtlasSide, int(texture), int(renderbuffer)});
-}
 
 // Tiles per row and rows for n tiles, as square as the side allows.
 glm::ivec2 tile_grid(int n, int per_side) {
@@ -37,14 +29,15 @@ glm::ivec2 tile_grid(int n, int per_side) {
 int OrthoAtlas::capacity(const GladGLContext& api, int resolution, int wanted) {
   GLint uniform_block = 0;
   api.GetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &uniform_block);
-  const int per_side = max_side(api) / std::max(resolution, 1);
+  const int per_side = max_atlas_side(api) / std::max(resolution, 1);
   return std::min({wanted, per_side * per_side, static_cast<int>(uniform_block) / kBytesPerTile});
 }
 
 OrthoAtlas::OrthoAtlas(const GladGLContext& api, int resolution, int tiles, const Bounds& bounds,
                        const MaterialFeatures& features)
     : api_(&api), resolution_(resolution),
-      grid_(tile_grid(std::max(tiles, 1), std::max(max_side(api) / std::max(resolution, 1), 1))),
+      grid_(tile_grid(std::max(tiles, 1),
+                      std::max(max_atlas_side(api) / std::max(resolution, 1), 1))),
       centre_(bounds.center()), half_width_(ortho_half_width(bounds)),
       program_(
           api, "ortho atlas",

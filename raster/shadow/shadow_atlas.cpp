@@ -16,15 +16,6 @@ namespace irad::gl {
 namespace {
 
 constexpr GLuint kShadowBlockBinding = 0;
-// The atlas's side at most: two 4096^2 depth textures are 128 MB.
-constexpr int kMaxAtlasSide = 4096;
-
-int max_atlas_side(const GladGLContext& api) {
-  GLint texture = 0, renderbuffer = 0;
-  api.GetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
-  api.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
-  return std::min({kMaxAtlasSide, int(texture), int(renderbuffer)});
-}
 
 // Blocks per row and rows for `blocks` blocks of size `block`, about as wide as high.
 glm::ivec2 block_grid(int blocks, glm::ivec2 block) {
@@ -61,6 +52,13 @@ void face_placement(const CubeFaces& cube, int f, int r, glm::ivec2 b0, glm::ive
 }
 
 } // namespace
+
+int max_atlas_side(const GladGLContext& api) {
+  GLint texture = 0, renderbuffer = 0;
+  api.GetIntegerv(GL_MAX_TEXTURE_SIZE, &texture);
+  api.GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &renderbuffer);
+  return std::min({kMaxAtlasSide, int(texture), int(renderbuffer)});
+}
 
 int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) {
   GLint uniform_block = 0;

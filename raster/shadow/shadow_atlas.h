@@ -35,6 +35,11 @@
 
 namespace irad::gl {
 
+// The side an atlas (this one's, raster/shadow/ortho_atlas.h's) takes at most: kMaxAtlasSide
+// (two 4096^2 depth textures are 128 MB), or this GL's texture or renderbuffer limit if smaller.
+inline constexpr int kMaxAtlasSide = 4096;
+int max_atlas_side(const GladGLContext& api);
+
 class ShadowAtlas {
 public:
   // Room for `blocks` blocks of resolution^2 faces, at most `batch` VPLs per render; throws
