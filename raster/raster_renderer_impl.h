@@ -137,7 +137,7 @@ struct RasterRenderer::Impl {
   float texel_angle() const { return 2.0f / static_cast<float>(shadow_res); }
   gl::DeferredTarget deferred_target() const {
     return {gbuffer.get(), interleaved.get(), [t = target.get()] { t->bind(); },
-            interleaved && interleaved->receivers_marked()};
+            interleaved && interleaved->has_receiver_mask()};
   }
   // For every cell s (JitterCells) with used[s], in order, shade(target, s) with the target
   // reading the cell's G-buffer (drawn now for a jitter cell), until shade returns false.

@@ -59,6 +59,17 @@ glm::vec3 sampled_gather(const Context& c, const ShadingPoint& y, Pcg32& rng) {
 glm::vec3 incoming(const Context& c, const glm::vec3& origin, const glm::vec3& dir, Pcg32& rng,
                    GlossyPassStats& stats, int depth);
 
+// One direction of x's specular lobe from (u0, u1), its weight times L along it (incoming at
+// `depth`); 0 where the sample falls below x's surface.
+glm::vec3 specular_sample(const Context& c, const ShadingPoint& x, float u0, float u1, Pcg32& rng,
+                          GlossyPassStats& stats, int depth) {
+  const auto sample = x.glossy->brdf.sample_specular(x.glossy->wo, u0, u1);
+  if (!sample || !(glm::dot(sample->wi, x.geometric) > 0.0f)) return glm::vec3(0.0f);
+  ++stats.rays;
+  return sample->weight *
+         incoming(c, x.position + c.eps * x.geometric, sample->wi, rng, stats, depth);
+}
+
 // L(y -> x) of a narrow-lobe y the ray met after `depth` narrow lobes: its diffuse lobe (and the
 // lights' VPLs through the whole BRDF) from sampled_gather, its specular lobe by one more ray
 // (incoming), the whole BRDF from the VPLs past GlossyPassOptions::bounces.
@@ -66,16 +77,10 @@ glm::vec3 narrow_lobe_light(const Context& c, ShadingPoint y, Pcg32& rng, Glossy
                             int depth) {
   if (depth >= c.options.bounces) return sampled_gather(c, y, rng);
   mark_traced_specular(y, c.options.roughness);
-  glm::vec3 l = sampled_gather(c, y, rng);
+  const glm::vec3 diffuse = sampled_gather(c, y, rng);
   const float u0 = static_cast<float>(rng.next_double());
   const float u1 = static_cast<float>(rng.next_double());
-  const auto sample = y.glossy->brdf.sample_specular(y.glossy->wo, u0, u1);
-  if (sample && glm::dot(sample->wi, y.geometric) > 0.0f) {
-    ++stats.rays;
-    l += sample->weight *
-         incoming(c, y.position + c.eps * y.geometric, sample->wi, rng, stats, depth + 1);
-  }
-  return l;
+  return diffuse + specular_sample(c, y, u0, u1, rng, stats, depth + 1);
 }
 
 // L(y -> x) along the ray origin + t dir (glossy_pass.h's cases); depth: the narrow lobes the
@@ -116,17 +121,13 @@ glm::vec3 specular_light(const Context& c, int px, int py, GlossyPassStats& stat
       static_cast<std::uint64_t>(py) * static_cast<std::uint64_t>(c.screen.width()) +
       static_cast<std::uint64_t>(px);
   Pcg32 rng(mix64(c.options.seed ^ 0x676c6f7373ULL ^ mix64(index)), 0);
-  const glm::vec3 origin = x.position + c.eps * x.geometric;
   glm::vec3 sum(0.0f);
   const auto n = static_cast<float>(c.options.samples);
   for (std::uint32_t s = 0; s < c.options.samples; ++s) {
     // Stratified in u0 (the visible normal's radius), random in u1.
     const float u0 = (static_cast<float>(s) + static_cast<float>(rng.next_double())) / n;
     const float u1 = static_cast<float>(rng.next_double());
-    const auto sample = x.glossy->brdf.sample_specular(x.glossy->wo, u0, u1);
-    if (!sample || !(glm::dot(sample->wi, x.geometric) > 0.0f)) continue;
-    ++stats.rays;
-    sum += sample->weight * incoming(c, origin, sample->wi, rng, stats, 0);
+    sum += specular_sample(c, x, u0, u1, rng, stats, 0);
   }
   return sum / n;
 }

@@ -6,8 +6,6 @@
 
 namespace irad {
 
-namespace {} // namespace
-
 std::vector<std::uint32_t> triangle_components(const std::vector<glm::uvec3>& triangles,
                                                std::size_t vertices) {
   std::vector<std::uint32_t> parent(vertices);

@@ -60,7 +60,9 @@ struct Builder {
   // stretch the boxes of the small ones, which would keep these at full detail (the distance to
   // a box is what the level of detail reads). The median of the longest axis where the
   // centroids do not spread.
-  std::size_t split(std::size_t begin, std::size_t end, const Bounds& centre) {
+  std::size_t split(std::size_t begin, std::size_t end) {
+    Bounds centre; // of the centroids
+    for (std::size_t k = begin; k < end; ++k) centre.extend(in.centroids[in.order[k]]);
     constexpr int kBins = 16;
     const glm::vec3 extent = centre.hi - centre.lo;
     const auto bin_of = [&](std::uint32_t t, int axis) {
@@ -135,8 +137,6 @@ struct Builder {
   std::int32_t build(std::size_t begin, std::size_t end) {
     const auto id = static_cast<std::int32_t>(out.nodes.size());
     out.nodes.emplace_back();
-    Bounds centre;
-    for (std::size_t k = begin; k < end; ++k) centre.extend(in.centroids[in.order[k]]);
     if (end - begin <= options.leaf_triangles) {
       ClusterNode& node = out.nodes.back();
       node.error = in.leaf_error;
@@ -151,7 +151,7 @@ struct Builder {
       node.leaf_count = node.mesh_count = static_cast<std::uint32_t>(3 * (end - begin));
       return id;
     }
-    const std::size_t mid = split(begin, end, centre);
+    const std::size_t mid = split(begin, end);
     const std::int32_t c0 = build(begin, mid);
     const std::int32_t c1 = build(mid, end);
     join(id, c0, c1);
@@ -179,9 +179,7 @@ struct Builder {
     if (depth <= 0 || end - begin <= options.leaf_triangles) return build(begin, end);
     const auto id = static_cast<std::int32_t>(out.nodes.size());
     out.nodes.emplace_back();
-    Bounds centre;
-    for (std::size_t k = begin; k < end; ++k) centre.extend(in.centroids[in.order[k]]);
-    const std::size_t mid = split(begin, end, centre);
+    const std::size_t mid = split(begin, end);
     Builder halves[2] = {{scene, options, in, {}}, {scene, options, in, {}}};
     const std::size_t ranges[3] = {begin, mid, end};
     parallel_tasks(2, 2, [&](int h, unsigned) {

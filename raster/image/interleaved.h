@@ -30,7 +30,7 @@ public:
   int k() const { return k_; }
   int sets() const { return k_ * k_; }
   // The atlas with the viewport on one set's tile (set in [0, k^2)), or on the whole atlas.
-  // receivers: with the receiver mask as its depth (receivers_marked()).
+  // receivers: with the receiver mask as its depth (has_receiver_mask()).
   void bind_tile(int set, bool receivers = false) const;
   void bind_atlas() const;
   // The camera projection moved so that tile pixel (X, Y) of `set` sees the centre of full-image
@@ -44,12 +44,12 @@ public:
   void find_edges() {
     if (edges_) edges_->find(shade_edges_);
   }
-  // A glossy G-buffer: marks its Lambertian and glossy pixels in the receiver mask
-  // (raster/image/receiver_mask.h), after its pass; then receivers_marked().
+  // A glossy G-buffer's receiver mask (raster/image/receiver_mask.h): marks its Lambertian and
+  // glossy pixels, after its pass (each image's, before the deferred passes read the mask).
   void mark_receivers() {
     if (receivers_) receivers_->mark();
   }
-  bool receivers_marked() const { return receivers_ != nullptr; }
+  bool has_receiver_mask() const { return receivers_ != nullptr; }
   // With find_edges (and not shade_edges), after the shading: adds the unsure pixels to the
   // list (EdgePixels::add_unsure; the deferred passes must have written the unsure light).
   void find_unsure() {

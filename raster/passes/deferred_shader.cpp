@@ -213,14 +213,14 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
     int run = first + 1;
     while (run < end && lobed(run) == lobed(first)) ++run;
     const bool lobes = glossy_ && lobed(first);
-    if (glossy_ && pixels.receivers) {
+    if (masked(pixels)) {
       draw_run(program(false, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
                shaders::kLambertianReceiverDepth);
       draw_run(program(true, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
                shaders::kGlossyReceiverDepth);
     } else {
       draw_run(program(glossy_, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
-               0.0f);
+               shaders::kLambertianReceiverDepth);
     }
     first = run;
   }
@@ -231,7 +231,7 @@ void DeferredShader::draw_run(const Program& p, int first, int count, const Tile
                               float depth) const {
   const GladGLContext& api = *api_;
   api.BindBufferBase(GL_UNIFORM_BUFFER, kVplBlockBinding, vpl_block_.get());
-  if (depth > 0.0f) {
+  if (masked(pixels)) {
     api.Enable(GL_DEPTH_TEST);
     api.DepthFunc(GL_EQUAL);
   } else {
@@ -243,7 +243,7 @@ void DeferredShader::draw_run(const Program& p, int first, int count, const Tile
   api.BlendFunc(GL_ONE, GL_ONE);
   p.program.use();
   api.Uniform1i(p.first, first);
-  api.Uniform1f(p.depth, depth > 0.0f ? depth : shaders::kLambertianReceiverDepth);
+  api.Uniform1f(p.depth, depth);
   api.Uniform2i(p.tile_origin, pixels.origin.x, pixels.origin.y);
   api.Uniform3i(p.pixel, pixels.k, pixels.offset.x, pixels.offset.y);
   api.Uniform2i(p.size, gbuffer.width(), gbuffer.height());

@@ -119,8 +119,11 @@ private:
   };
   // The variant, compiled at its first use.
   const Program& program(bool receivers, bool lobes) const;
-  // Sets the uniforms and textures of every draw, and draws instances first..first + count - 1;
-  // depth > 0: only over the pixels of a ReceiverMask that hold it.
+  // Whether a draw over `pixels` goes through the receiver mask: Lambertian and glossy pixels
+  // apart.
+  bool masked(const TilePixels& pixels) const { return glossy_ && pixels.receivers; }
+  // Sets the uniforms and textures of every draw, and draws instances first..first + count - 1
+  // at window depth `depth`: where masked(pixels), only over the mask's pixels that hold it.
   void draw_run(const Program& p, int first, int count, const TilePixels& pixels,
                 const GBuffer& gbuffer, const ShadowLookup& shadow, bool apply_albedo,
                 float depth) const;
