@@ -19,6 +19,7 @@ constexpr float kExact = 1e-6f;
 struct Simplified {
   std::vector<std::uint32_t> indices;
   float error = 0.0f;
+  bool exact = false; // every collapse within kExact of the extent
 };
 Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& input,
                           std::vector<std::uint32_t>& local_of, std::size_t divisor = 2,
@@ -44,6 +45,7 @@ Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& 
       dest.data(), local.data(), local.size(), &positions[0].x, positions.size(), sizeof(glm::vec3),
       target, target_error, meshopt_SimplifyLockBorder, &relative);
   s.error = relative * meshopt_simplifyScale(&positions[0].x, positions.size(), sizeof(glm::vec3));
+  s.exact = relative <= kExact;
   s.indices.resize(count);
   for (std::size_t k = 0; k < count; ++k) s.indices[k] = global[dest[k]];
   return s;
@@ -125,9 +127,14 @@ std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root
 }
 
 // Its mesh halved again and again (the border still locked) while that removes at least a tenth
-// of the triangles. A root of one connected component (`whole`) starts from the shallow cut of
-// its tree instead and quarters it: no region border inside it is locked, so a closed surface
-// simplifies as far as its error allows.
+// of the triangles. Where the first step needs no error (coplanar triangles: flat walls), that
+// level goes on as far as collapses without error go, to the wall's border. A first step with
+// error means meshoptimizer, which collapses the cheapest edges first, ran out of exact ones
+// before half: a pass for them alone would cost a simplification of the whole mesh for less
+// (on the 2.1M sphere box: 43 % of the levels' time, and below a tenth of the triangles on 62 %
+// of the nodes). A root of one connected component (`whole`) starts from
+// the shallow cut of its tree instead and quarters it: no region border inside it is locked, so
+// a closed surface simplifies as far as its error allows.
 NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size_t n, bool whole,
                           int max_levels, const std::vector<int>& height,
                           std::vector<std::uint32_t>& local_of) {
@@ -138,27 +145,21 @@ NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size
             : std::vector<std::uint32_t>(out.indices.begin() + node.mesh_first,
                                          out.indices.begin() + node.mesh_first + node.mesh_count);
   NodeLevels result;
-  const auto keep = [&] {
+  for (int steps = 0; steps < max_levels && !mesh.empty();) {
+    Simplified s = simplify_union(scene, mesh, local_of, whole ? 4 : 2);
+    if (10 * s.indices.size() > 9 * mesh.size()) break;
+    if (result.levels.empty() && s.exact) { // no error yet: as far as none takes it
+      Simplified rest = simplify_union(scene, s.indices, local_of, 0, kExact);
+      s.indices = std::move(rest.indices);
+      s.error += rest.error;
+    } else {
+      ++steps;
+    }
+    error += s.error;
+    mesh = std::move(s.indices);
     result.levels.push_back({error, static_cast<std::uint32_t>(result.indices.size()),
                              static_cast<std::uint32_t>(mesh.size())});
     result.indices.insert(result.indices.end(), mesh.begin(), mesh.end());
-  };
-  // First what simplifies without error (coplanar triangles: flat walls to their borders),
-  // then quarters or halves, whatever that costs.
-  if (!mesh.empty()) {
-    Simplified s = simplify_union(scene, mesh, local_of, 0, kExact);
-    if (10 * s.indices.size() <= 9 * mesh.size()) {
-      error += s.error;
-      mesh = std::move(s.indices);
-      keep();
-    }
-  }
-  for (int l = 0; l < max_levels && !mesh.empty(); ++l) {
-    Simplified s = simplify_union(scene, mesh, local_of, whole ? 4 : 2);
-    if (10 * s.indices.size() > 9 * mesh.size()) break;
-    error += s.error;
-    mesh = std::move(s.indices);
-    keep();
   }
   return result;
 }
