@@ -153,6 +153,11 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
     nlohmann::json setup = nlohmann::json::array();
     for (const auto& [stage, t] : r.seconds.raster_setup) setup.push_back({stage, t});
     seconds["raster_setup"] = setup;
+    if (!r.seconds.hierarchy_beside.empty()) {
+      nlohmann::json beside = nlohmann::json::array();
+      for (const auto& [stage, t] : r.seconds.hierarchy_beside) beside.push_back({stage, t});
+      seconds["hierarchy_beside"] = beside;
+    }
     if (scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h
   } else {
     seconds["trace"] = r.seconds.trace;

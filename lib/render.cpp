@@ -58,6 +58,8 @@ struct Stages {
   RenderResult& r;
   std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
   double planes_scan = 0.0;               // its thinnest-wall scan (seconds)
+  // The raster's shadow hierarchy, building since render() began (early_hierarchy).
+  std::shared_ptr<BackgroundClusters> hierarchy = nullptr;
 
   bool cancelled() {
     r.cancelled = r.cancelled || stop.poll();
@@ -162,6 +164,7 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   options.traced_roughness = s.options.traced_roughness;
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
+  options.hierarchy_build = s.hierarchy;
   s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options
   s.planes_scan = scan;
   log_planes(s.log, planes, options.shadow_resolution, scan);
@@ -196,6 +199,7 @@ void run_raster(Stages& s, const RayScene& rays) {
   s.r.seconds.raster = since(t0);
   s.r.seconds.readback = timings.readback;
   s.r.seconds.raster_setup = {{"planes scan", s.planes_scan}};
+  s.r.seconds.hierarchy_beside = raster.hierarchy_beside_times().stages();
   s.r.hierarchy_cache = outcome_name(raster.hierarchy_cache().outcome);
   s.r.hierarchy_cache_reason = raster.hierarchy_cache().reason;
   const StageTimes setup = raster.setup_times();
@@ -492,6 +496,21 @@ void run_rounds(Stages& s, const RayScene& rays) {
   s.r.rounds = done;
 }
 
+// The raster's shadow hierarchy started on its own thread (core/mesh/background_clusters.h),
+// where the batched passes will draw from it: raster, batches, no jitter, a shadow level of
+// detail, a static scene. On the 2.1M sphere box (256x256, cold cache) its one-core stages then
+// overlap the ray-tracing structure, the walk and the GL set-up (docs/performance.md "Big
+// scenes"). nullptr elsewhere: the raster builds it where it needs it, if it does. A render that
+// ends early (an error, a cancellation) waits for the build to end.
+std::shared_ptr<BackgroundClusters> early_hierarchy(const Scene& scene, const RenderOptions& o) {
+  const RasterOptions& raster = o.raster;
+  if (o.estimator != Estimator::Raster || raster.batch <= 1 || raster.jitter ||
+      raster.shadow_lod.mode == ShadowLodMode::Off || scene.animation)
+    return nullptr;
+  const ClusterOptions options{0, raster.shadow_lod.mode == ShadowLodMode::On};
+  return std::make_shared<BackgroundClusters>(scene, options, raster.hierarchy_cache);
+}
+
 RenderOptions with_light_budget(RenderOptions o) {
   o.auto_paths = o.auto_clusters = o.auto_edges = true;
   o.raster.interleave = 0;
@@ -506,8 +525,6 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
   r.camera = select_camera(scene, options.camera);
   const auto [width, height] = image_size(r.camera, options.size);
   r.view = make_view(r.camera, scene.bounds, width, height);
-  const RayScene rays(scene);
-  r.seconds.load = since(t0);
   if (scene.has_specular() && options.bias_compensation)
     throw Error(scene.source, "--bias-compensation",
                 "the clamp's residual does not handle mirrors (specular materials) yet");
@@ -518,6 +535,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
     if (raster.interleave == 0) raster.interleave = 4;
     check_raster_options(raster);
   }
+  s.hierarchy = early_hierarchy(scene, options);
+  const RayScene rays(scene);
+  r.seconds.load = since(t0);
   if (s.cancelled()) {
     // Interrupted while loading: nothing was rendered.
   } else if (options.estimator == Estimator::Pt) {

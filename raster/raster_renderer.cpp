@@ -277,6 +277,10 @@ CacheResult RasterRenderer::hierarchy_cache() const {
   return impl_->lod.cache_result();
 }
 
+StageTimes RasterRenderer::hierarchy_beside_times() const {
+  return impl_->lod.beside_times();
+}
+
 StageTimes RasterRenderer::setup_times() const {
   StageTimes times = impl_->setup_times;
   times.add("", impl_->lod.setup_times());

@@ -5,6 +5,7 @@
 #include "core/camera/view.h"
 #include "core/image/image.h"
 #include "core/lights/vpl.h"
+#include "core/mesh/background_clusters.h"
 #include "core/mesh/cluster_cache.h"
 #include "core/mesh/mesh_clusters.h"
 #include "core/scene/scene.h"
@@ -58,6 +59,10 @@ struct RasterOptions {
   // Where the shadow hierarchy is kept between runs (core/mesh/cluster_cache.h): the user's cache
   // folder by default; empty: built every time, never written.
   std::filesystem::path hierarchy_cache = default_cache_folder();
+  // The shadow hierarchy's build, where the caller started it before this renderer (irad::render
+  // does, beside its ray-tracing structure and walk): taken when it builds what the batched
+  // passes need, else ignored and the hierarchy built as without it.
+  std::shared_ptr<BackgroundClusters> hierarchy_build = nullptr;
   // Glossy scenes: receivers whose roughness lies below this shade only their diffuse lobe from
   // the VPLs a ray can meet (core/lights/vpl.h ray_reachable); the caller adds their specular
   // lobe by rays (walk/glossy_pass.h, as lib/render.cpp does). 0: none. render() only.
@@ -149,6 +154,9 @@ public:
   // textures and the shaders), and once the batched passes drew from the shadow hierarchy its
   // build and upload (raster/shadow/lod_provider.h).
   StageTimes setup_times() const;
+  // The stages of a hierarchy build taken from RasterOptions::hierarchy_build ("hierarchy
+  // <stage>"), which ran beside the caller's; setup_times then has "hierarchy wait".
+  StageTimes hierarchy_beside_times() const;
   // What the hierarchy cache did (CacheOutcome::Off until the hierarchy was needed).
   CacheResult hierarchy_cache() const;
 

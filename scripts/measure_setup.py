@@ -4,8 +4,10 @@ the default options at --size (256x256) three times, the raster with an empty sh
 cache (cold), the raster again (warm: the hierarchy read back), and rt-vpl over the same VPLs,
 each in a fresh process with its --stats. Prints a Markdown table per file: every stage's
 seconds and share of the whole process (wall clock), the peak resident memory (the process's
-own, from wait4), and the passes (what the raster stage spends after its set-up). The cache
-lives in a temporary XDG_CACHE_HOME, never the user's. docs/performance.md "Big scenes" quotes its output.
+own, from wait4), and the passes (what the raster stage spends after its set-up). The shadow
+hierarchy's build runs on a thread of its own from the start of the render: its stages, marked
+"(beside)", overlap the others and are not in their sum; "hierarchy wait" is the raster's wait
+for what was left of it. The cache lives in a temporary XDG_CACHE_HOME, never the user's. docs/performance.md "Big scenes" quotes its output.
 
   LP_NUM_THREADS=2 python3 scripts/measure_setup.py build/sphere_box_2m.glb [more.glb ...]
       [--irad build/bin/irad] [--size 256x256]
@@ -48,6 +50,10 @@ def rows(stats, wall):
             out.append((name, t))
             setup += t
         out.append(("passes (shadow maps, shading, resolve)", s["raster"] - setup))
+        # The hierarchy's build on its own thread, beside load, walk and clusters (the raster's
+        # "hierarchy wait" is what was left of it): outside the sum of the stages above.
+        for name, t in s.get("hierarchy_beside", []):
+            out.append((f"{name} (beside)", t))
     else:
         out.append(("trace", s["trace"]))
     for key in ("compensation", "glossy"):

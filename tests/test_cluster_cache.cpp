@@ -1,9 +1,11 @@
 // The shadow hierarchy's cache (core/mesh/cluster_cache.h): a hit gives the hierarchy the build
 // gives; a file that is truncated, bit-flipped, of another scene or another version is never
 // used but rebuilt and written over; a folder that cannot be written costs only the write; the
-// renderer draws the same image from a hit as from a build.
+// renderer draws the same image from a hit as from a build, and from a build on a thread of its own
+// (core/mesh/background_clusters.h) as from one in place.
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
+#include "core/mesh/background_clusters.h"
 #include "core/mesh/cluster_cache.h"
 #include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
@@ -205,16 +207,27 @@ TEST(ClusterCacheValidation, NamesWhatIsWrong) {
   EXPECT_NE(validate_clusters(c, vertices, triangles), "");
 }
 
-// The raster through the cache: the image from a hit is the image from the build, bit for bit
-// (the Cornell box with a sphere of 9800 triangles, which the faces draw simplified).
-TEST_F(ClusterCache, TheRasterDrawsTheSameImageFromAHit) {
+// The raster through the cache: the image from a hit is the image from the build, bit for bit.
+// The Cornell box with a sphere of 9800 triangles, which the faces draw simplified; its VPLs and
+// a 64x64 view.
+struct SphereBox {
+  Scene s;
+  VplSet vpls;
+  View view;
+};
+SphereBox sphere_box() {
   Log log([](const std::string&) {});
-  Scene s = load_gltf(fs::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf", log);
-  add_sphere(s, {0.3f, 0.33f, 0.3f}, 0.09f, 50, add_material(s, glm::vec3(0.7f)));
-  finish(s);
-  const RayScene rays(s);
-  const VplSet vpls = quasi_random_walk(s, rays, {16, 64}, log);
-  const View view = make_view(s.cameras.at(0), s.bounds, 64, 64);
+  SphereBox b;
+  b.s = load_gltf(fs::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf", log);
+  add_sphere(b.s, {0.3f, 0.33f, 0.3f}, 0.09f, 50, add_material(b.s, glm::vec3(0.7f)));
+  finish(b.s);
+  b.vpls = quasi_random_walk(b.s, RayScene(b.s), {16, 64}, log);
+  b.view = make_view(b.s.cameras.at(0), b.s.bounds, 64, 64);
+  return b;
+}
+
+TEST_F(ClusterCache, TheRasterDrawsTheSameImageFromAHit) {
+  const auto [s, vpls, view] = sphere_box();
   RasterOptions o;
   o.interleave = 1;
   o.hierarchy_cache = folder_;
@@ -225,6 +238,51 @@ TEST_F(ClusterCache, TheRasterDrawsTheSameImageFromAHit) {
   const Image hit = second.render(view, vpls);
   EXPECT_EQ(second.hierarchy_cache().outcome, CacheOutcome::Hit);
   EXPECT_TRUE(built.pixels() == hit.pixels());
+}
+
+// Built on a thread of its own: the hierarchy of a build in place, through the same cache; taken
+// once; a renderer given it draws the image of one that builds its own, and one given a build of
+// other options builds what it needs itself.
+TEST_F(ClusterCache, ABuildBesideGivesWhatTheBuildGives) {
+  const Scene s = two_spheres();
+  const MeshClusters built = build_mesh_clusters(s, options_);
+  BackgroundClusters beside(s, options_, folder_);
+  EXPECT_TRUE(beside.builds(s, options_, folder_));
+  EXPECT_FALSE(beside.builds(s, {128, false}, folder_));
+  EXPECT_FALSE(beside.builds(s, options_, {}));
+  EXPECT_TRUE(same(beside.take(), built));
+  EXPECT_FALSE(beside.builds(s, options_, folder_)); // taken
+  EXPECT_EQ(beside.cache_result().outcome, CacheOutcome::Written);
+  EXPECT_EQ(beside.times().stages().back().first, "cache write");
+  BackgroundClusters again(s, options_, folder_);
+  EXPECT_TRUE(same(again.take(), built));
+  EXPECT_EQ(again.cache_result().outcome, CacheOutcome::Hit);
+}
+
+TEST_F(ClusterCache, TheRasterTakesABuildBesideIt) {
+  const auto [s, vpls, view] = sphere_box();
+  RasterOptions o;
+  o.interleave = 1;
+  o.hierarchy_cache.clear();
+  const Image own = RasterRenderer(s, o).render(view, vpls);
+  const auto has = [](const StageTimes& t, const std::string& name) {
+    for (const auto& [n, seconds] : t.stages())
+      if (n == name) return true;
+    return false;
+  };
+  o.hierarchy_build = std::make_shared<BackgroundClusters>(s, ClusterOptions{0, true}, fs::path());
+  RasterRenderer taking(s, o);
+  EXPECT_TRUE(taking.render(view, vpls).pixels() == own.pixels());
+  EXPECT_TRUE(has(taking.setup_times(), "hierarchy wait"));
+  EXPECT_FALSE(has(taking.setup_times(), "hierarchy levels"));
+  EXPECT_TRUE(has(taking.hierarchy_beside_times(), "hierarchy levels"));
+  EXPECT_FALSE(o.hierarchy_build->builds(s, ClusterOptions{0, true}, fs::path())); // taken
+  // A build of other options (the Cull mode's) is left; the renderer builds its own.
+  o.hierarchy_build = std::make_shared<BackgroundClusters>(s, ClusterOptions{0, false}, fs::path());
+  RasterRenderer building(s, o);
+  EXPECT_TRUE(building.render(view, vpls).pixels() == own.pixels());
+  EXPECT_TRUE(has(building.setup_times(), "hierarchy levels"));
+  EXPECT_TRUE(building.hierarchy_beside_times().stages().empty());
 }
 
 } // namespace IRAD_UNITY_ID

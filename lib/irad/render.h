@@ -115,6 +115,10 @@ struct StageSeconds {
   // walk/thin_walls.h) and RasterRenderer::setup_times (the GL context, the upload, the shadow
   // hierarchy's build stages and its upload).
   std::vector<std::pair<std::string, double>> raster_setup;
+  // The shadow hierarchy's build stages where it ran on a thread of its own from the start of the
+  // render (raster_setup then holds "hierarchy wait", the raster's wait for what was left): not
+  // part of `raster`, and overlapping `load`, `walk` and `cluster`.
+  std::vector<std::pair<std::string, double>> hierarchy_beside;
 };
 
 struct RenderResult {

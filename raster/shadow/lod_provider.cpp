@@ -3,19 +3,31 @@
 namespace irad::gl {
 
 LodProvider::LodProvider(const GladGLContext& api, const GpuScene& gpu,
-                         const ShadowLodOptions& options, std::filesystem::path cache)
-    : api_(&api), gpu_(&gpu), options_(options), cache_(std::move(cache)) {}
+                         const ShadowLodOptions& options, std::filesystem::path cache,
+                         std::shared_ptr<BackgroundClusters> prebuilt)
+    : api_(&api), gpu_(&gpu), options_(options), cache_(std::move(cache)),
+      prebuilt_(std::move(prebuilt)) {}
 
 const ShadowLod* LodProvider::get() {
   if (options_.mode == ShadowLodMode::Off || gpu_->scene().animation) return nullptr;
   if (!lod_) {
     // Cull draws the scene's own triangles (the same image as Off), On also their reductions.
     const bool on = options_.mode == ShadowLodMode::On;
-    StageTimes build;
-    MeshClusters clusters =
-        cached_mesh_clusters(gpu_->scene(), {0, on}, cache_, &build, &cache_result_);
-    times_.add("hierarchy ", build);
-    const auto start = StageTimes::Clock::now();
+    const ClusterOptions wanted{0, on};
+    auto start = StageTimes::Clock::now();
+    MeshClusters clusters;
+    if (prebuilt_ && prebuilt_->builds(gpu_->scene(), wanted, cache_)) {
+      clusters = prebuilt_->take();
+      start = times_.lap("hierarchy wait", start);
+      beside_.add("hierarchy ", prebuilt_->times());
+      cache_result_ = prebuilt_->cache_result();
+    } else {
+      StageTimes build;
+      clusters = cached_mesh_clusters(gpu_->scene(), wanted, cache_, &build, &cache_result_);
+      times_.add("hierarchy ", build);
+      start = StageTimes::Clock::now();
+    }
+    prebuilt_.reset(); // its thread has ended; the scene is no longer its
     lod_ = std::make_unique<ShadowLod>(*api_, *gpu_, std::move(clusters), on);
     times_.lap("hierarchy upload", start);
   }

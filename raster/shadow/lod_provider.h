@@ -2,6 +2,7 @@
 // A scene's shadow hierarchy (core/mesh/mesh_clusters.h on the GPU: raster/shadow/shadow_lod.h),
 // built on the first shadow face that needs it and kept for every atlas of one renderer: the
 // batched passes are re-made when the shadow resolution changes, the hierarchy is not.
+#include "core/mesh/background_clusters.h"
 #include "core/mesh/cluster_cache.h"
 #include "core/mesh/mesh_clusters.h"
 #include "core/util/stage_times.h"
@@ -16,17 +17,24 @@ namespace irad::gl {
 class LodProvider {
 public:
   // Nothing is built here. gpu must outlive this object. cache: the folder that keeps
-  // hierarchies between runs (core/mesh/cluster_cache.h; empty: none).
+  // hierarchies between runs (core/mesh/cluster_cache.h; empty: none). prebuilt: a build
+  // started earlier (core/mesh/background_clusters.h), taken instead of building where it
+  // builds what get() needs.
   LodProvider(const GladGLContext& api, const GpuScene& gpu, const ShadowLodOptions& options,
-              std::filesystem::path cache = {});
+              std::filesystem::path cache = {},
+              std::shared_ptr<BackgroundClusters> prebuilt = nullptr);
 
-  // The hierarchy, built and uploaded on the first call; nullptr with ShadowLodMode::Off and for
-  // an animated scene (its faces draw every triangle).
+  // The hierarchy, built (or taken) and uploaded on the first call; nullptr with
+  // ShadowLodMode::Off and for an animated scene (its faces draw every triangle).
   const ShadowLod* get();
-  // What building it cost: "hierarchy <stage>" for build_mesh_clusters's stages (or
-  // "hierarchy cache read"; "hierarchy cache write" after a build), then "hierarchy upload";
-  // empty before the first get() that built it.
+  // What getting it cost this thread: "hierarchy <stage>" for build_mesh_clusters's stages (or
+  // "hierarchy cache read"; "hierarchy cache write" after a build), or "hierarchy wait" for the
+  // time spent waiting on a prebuilt one; then "hierarchy upload". Empty before the first get()
+  // that built it.
   const StageTimes& setup_times() const { return times_; }
+  // A prebuilt hierarchy's own stages (as setup_times names them), which ran beside this
+  // thread's; empty otherwise.
+  const StageTimes& beside_times() const { return beside_; }
   const CacheResult& cache_result() const { return cache_result_; }
 
 private:
@@ -35,8 +43,9 @@ private:
   ShadowLodOptions options_;
   std::filesystem::path cache_;
   CacheResult cache_result_;
+  std::shared_ptr<BackgroundClusters> prebuilt_;
   std::unique_ptr<ShadowLod> lod_;
-  StageTimes times_;
+  StageTimes times_, beside_;
 };
 
 } // namespace irad::gl

@@ -1,0 +1,51 @@
+#pragma once
+// The shadow hierarchy (core/mesh/mesh_clusters.h, through its cache: core/mesh/cluster_cache.h)
+// built on a thread of its own from the moment a render knows it will draw from it: its stages
+// that run on one core (the weld, the planar reduction, the tree's top splits, the cache file's
+// checksum) then overlap the ray-tracing structure, the walk, the clustering and the GL set-up,
+// instead of following them while the other cores wait. The raster takes the result where it
+// would have built it (raster/shadow/lod_provider.h) and waits only for what is left.
+//
+// The same hierarchy as a build in place, bit for bit (the build's result does not depend on its
+// threads). An exception of the build reaches the caller of take(); one never taken is dropped.
+#include "core/mesh/cluster_cache.h"
+#include "core/mesh/mesh_clusters.h"
+#include "core/util/stage_times.h"
+
+#include <filesystem>
+#include <future>
+
+namespace irad {
+
+class BackgroundClusters {
+public:
+  // Starts cached_mesh_clusters(scene, options, cache) on its own thread. `scene` must outlive
+  // this object and stay unchanged until take() returns.
+  BackgroundClusters(const Scene& scene, const ClusterOptions& options,
+                     std::filesystem::path cache);
+  // Waits for the build (a build that is never taken still runs to its end).
+  ~BackgroundClusters();
+  BackgroundClusters(const BackgroundClusters&) = delete;
+  BackgroundClusters& operator=(const BackgroundClusters&) = delete;
+
+  // Whether this is the build cached_mesh_clusters(scene, options, cache) would make, not yet
+  // taken.
+  bool builds(const Scene& scene, const ClusterOptions& options,
+              const std::filesystem::path& cache) const;
+  // The hierarchy, once: waits for it; rethrows what the build threw.
+  MeshClusters take();
+  // After take(): the build's stages (as cached_mesh_clusters reports them) and the cache's
+  // outcome.
+  const StageTimes& times() const { return times_; }
+  const CacheResult& cache_result() const { return result_; }
+
+private:
+  const Scene* scene_;
+  ClusterOptions options_;
+  std::filesystem::path cache_;
+  StageTimes times_;   // written by the build's thread, read after take()
+  CacheResult result_; // likewise
+  std::future<MeshClusters> future_;
+};
+
+} // namespace irad
