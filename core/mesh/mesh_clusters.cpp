@@ -74,18 +74,27 @@ struct Builder {
       const glm::dvec3 e(b.hi - b.lo);
       return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
     };
+    // Every axis's bins in one pass (each triangle's vertices gathered once).
+    Bounds bins[3][kBins];
+    std::size_t bin_counts[3][kBins] = {};
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t t = in.order[k];
+      Bounds box;
+      for (int c = 0; c < 3; ++c) box.extend(scene.positions[in.triangles[t][c]]);
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!(extent[axis] > 0.0f)) continue;
+        const int b = bin_of(t, axis);
+        ++bin_counts[axis][b];
+        bins[axis][b].extend(box.lo);
+        bins[axis][b].extend(box.hi);
+      }
+    }
     double best = std::numeric_limits<double>::infinity();
     int best_axis = -1, best_bin = 0;
     for (int axis = 0; axis < 3; ++axis) {
       if (!(extent[axis] > 0.0f)) continue;
-      Bounds boxes[kBins];
-      std::size_t counts[kBins] = {};
-      for (std::size_t k = begin; k < end; ++k) {
-        const std::uint32_t t = in.order[k];
-        const int b = bin_of(t, axis);
-        ++counts[b];
-        for (int c = 0; c < 3; ++c) boxes[b].extend(scene.positions[in.triangles[t][c]]);
-      }
+      const Bounds* boxes = bins[axis];
+      const std::size_t* counts = bin_counts[axis];
       // right[b]: bins b.. merged.
       Bounds right[kBins + 1];
       std::size_t right_count[kBins + 1] = {};

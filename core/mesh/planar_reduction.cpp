@@ -1,9 +1,11 @@
 #include "core/mesh/planar_reduction.h"
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <glm/glm.hpp>
 #include <numeric>
+#include <span>
 
 namespace irad {
 
@@ -24,56 +26,113 @@ struct FanEdge {
   std::uint32_t t[2] = {}; // the first two
 };
 
+// Each vertex's alive triangles, in one array: a vertex's list is a run of it with room to grow,
+// and a list that outgrows its room moves to the end with twice the room. (A vector per vertex
+// costs an allocation each: a quarter of the reduction's time on a million vertices.) Lists keep
+// the order a vector's push_back and swap-with-last removal give.
+class Fans {
+public:
+  // Every alive triangle in the lists of its three vertices, in ascending order.
+  Fans(const std::vector<glm::uvec3>& tris, const std::vector<bool>& alive, std::size_t vertices)
+      : first_(vertices + 1, 0), size_(vertices, 0) {
+    for (std::size_t t = 0; t < tris.size(); ++t)
+      if (alive[t])
+        for (int c = 0; c < 3; ++c) ++first_[tris[t][c] + 1];
+    std::partial_sum(first_.begin(), first_.end(), first_.begin());
+    room_.resize(vertices);
+    for (std::size_t v = 0; v < vertices; ++v) room_[v] = first_[v + 1] - first_[v];
+    list_.resize(first_.back());
+    for (std::uint32_t t = 0; t < tris.size(); ++t)
+      if (alive[t])
+        for (int c = 0; c < 3; ++c) {
+          const std::uint32_t v = tris[t][c];
+          list_[first_[v] + size_[v]++] = t;
+        }
+    first_.pop_back();
+  }
+  std::span<const std::uint32_t> operator[](std::uint32_t v) const {
+    return {list_.data() + first_[v], size_[v]};
+  }
+  void push(std::uint32_t v, std::uint32_t t) {
+    if (size_[v] == room_[v]) move_to_end(v);
+    list_[first_[v] + size_[v]++] = t;
+  }
+  // Removes t (which v's list holds), the last one taking its place.
+  void drop(std::uint32_t v, std::uint32_t t) {
+    std::uint32_t* f = list_.data() + first_[v];
+    *std::find(f, f + size_[v], t) = f[size_[v] - 1];
+    --size_[v];
+  }
+  void clear(std::uint32_t v) { size_[v] = 0; }
+
+private:
+  void move_to_end(std::uint32_t v) {
+    const auto at = static_cast<std::uint32_t>(list_.size());
+    room_[v] = std::max<std::uint32_t>(4, 2 * room_[v]);
+    list_.resize(list_.size() + room_[v]);
+    std::copy_n(list_.begin() + first_[v], size_[v], list_.begin() + at);
+    first_[v] = at;
+  }
+
+  std::vector<std::uint32_t> first_, size_, room_, list_;
+};
+
 struct Reducer {
   const std::vector<glm::vec3>& positions;
   float epsilon;
   std::vector<glm::uvec3> tris;
   std::vector<bool> alive;
-  std::vector<std::uint32_t> patch;            // per triangle
-  std::vector<dvec3> normals;                  // per patch, unit
-  std::vector<std::vector<std::uint32_t>> fan; // per vertex: its alive triangles
+  std::vector<std::uint32_t> patch; // per triangle
+  std::vector<dvec3> normals;       // per patch, unit
+  Fans fan;                         // per vertex: its alive triangles
   std::vector<Role> role;
   std::vector<std::array<std::uint32_t, 2>> chain; // a Line vertex's neighbours on its chain
   std::vector<std::uint32_t> stamp;                // per vertex, for set tests
   std::uint32_t clock = 0;
   std::vector<std::uint32_t> common, third, targets; // scratch of can_collapse and run
+  std::vector<std::uint32_t> collapsing;             // scratch of collapse
+  mutable std::vector<std::pair<std::uint32_t, std::uint32_t>> edge_ends; // scratch of fan_edges
+  mutable std::vector<std::uint32_t> piece;                               // scratch of one_piece
+
+  Reducer(const std::vector<glm::vec3>& p, float e, const std::vector<glm::uvec3>& t,
+          std::vector<bool> a, Fans f)
+      : positions(p), epsilon(e), tris(t), alive(std::move(a)), fan(std::move(f)) {}
 
   dvec3 p(std::uint32_t v) const { return dvec3(positions[v]); }
   dvec3 cross_of(const glm::uvec3& t) const { return glm::cross(p(t.y) - p(t.x), p(t.z) - p(t.x)); }
 
-  // The fan's edges of v, sorted by x.
-  std::vector<FanEdge> fan_edges(std::uint32_t v) const {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> ends; // (x, triangle * 2 + out)
+  // The fan's edges of v, sorted by x, into `out`.
+  void fan_edges(std::uint32_t v, std::vector<FanEdge>& out) const {
+    edge_ends.clear(); // (x, triangle * 2 + out)
     for (std::uint32_t t : fan[v]) {
       const glm::uvec3& tri = tris[t];
       const int i = tri.x == v ? 0 : tri.y == v ? 1 : 2;
-      ends.push_back({tri[(i + 1) % 3], 2 * t + 1});
-      ends.push_back({tri[(i + 2) % 3], 2 * t});
+      edge_ends.push_back({tri[(i + 1) % 3], 2 * t + 1});
+      edge_ends.push_back({tri[(i + 2) % 3], 2 * t});
     }
-    std::sort(ends.begin(), ends.end());
-    std::vector<FanEdge> out;
-    for (const auto& [x, code] : ends) {
+    std::sort(edge_ends.begin(), edge_ends.end());
+    out.clear();
+    for (const auto& [x, code] : edge_ends) {
       if (out.empty() || out.back().x != x) out.push_back({x});
       FanEdge& e = out.back();
       if (e.count < 2) e.t[e.count] = code / 2;
       ++e.count;
       e.out += static_cast<int>(code & 1u);
     }
-    return out;
   }
 
   bool feature(const FanEdge& e) const { return e.count == 1 || patch[e.t[0]] != patch[e.t[1]]; }
 
   // Whether v's fan triangles form one piece through their shared edges.
   bool one_piece(std::uint32_t v, const std::vector<FanEdge>& edges) const {
-    const std::vector<std::uint32_t>& f = fan[v];
-    std::vector<std::uint32_t> parent(f.size());
-    std::iota(parent.begin(), parent.end(), 0u);
+    const std::span<const std::uint32_t> f = fan[v];
+    piece.resize(f.size());
+    std::iota(piece.begin(), piece.end(), 0u);
     const auto slot = [&](std::uint32_t t) {
       return static_cast<std::uint32_t>(std::find(f.begin(), f.end(), t) - f.begin());
     };
     const auto find = [&](std::uint32_t a) {
-      while (parent[a] != a) a = parent[a] = parent[parent[a]];
+      while (piece[a] != a) a = piece[a] = piece[piece[a]];
       return a;
     };
     std::size_t pieces = f.size();
@@ -81,7 +140,7 @@ struct Reducer {
       if (e.count != 2) continue;
       const std::uint32_t a = find(slot(e.t[0])), b = find(slot(e.t[1]));
       if (a != b) {
-        parent[a] = b;
+        piece[a] = b;
         --pieces;
       }
     }
@@ -105,10 +164,19 @@ struct Reducer {
 void Reducer::grow_patches() {
   std::vector<double> area(tris.size());
   for (std::size_t t = 0; t < tris.size(); ++t) area[t] = glm::length(cross_of(tris[t]));
+  // Seeds by octave of area, the largest first, each octave's in triangle order: a mesh's order
+  // keeps neighbours near in memory, where an exact sort by area would visit a curved surface's
+  // nearly equal triangles in an order with no locality (a cache miss for every neighbour).
+  std::vector<std::pair<int, std::uint32_t>> by_octave(tris.size());
+  for (std::uint32_t t = 0; t < tris.size(); ++t) {
+    int octave = 0;
+    std::frexp(area[t], &octave);
+    by_octave[t] = {-octave, t};
+  }
+  std::sort(by_octave.begin(), by_octave.end());
   std::vector<std::uint32_t> seeds(tris.size());
-  std::iota(seeds.begin(), seeds.end(), 0u);
-  std::stable_sort(seeds.begin(), seeds.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return area[a] > area[b]; });
+  for (std::size_t k = 0; k < seeds.size(); ++k) seeds[k] = by_octave[k].second;
+  by_octave = {};
   patch.assign(tris.size(), kNone);
   std::vector<std::uint32_t> queue;
   for (std::uint32_t seed : seeds) {
@@ -145,10 +213,12 @@ void Reducer::grow_patches() {
 void Reducer::classify() {
   role.assign(positions.size(), Role::Locked);
   chain.assign(positions.size(), {kNone, kNone});
+  std::vector<FanEdge> edges;
+  std::vector<std::uint32_t> features;
   for (std::uint32_t v = 0; v < positions.size(); ++v) {
     if (fan[v].empty()) continue;
-    const std::vector<FanEdge> edges = fan_edges(v);
-    std::vector<std::uint32_t> features;
+    fan_edges(v, edges);
+    features.clear();
     bool sound = true;
     for (const FanEdge& e : edges) {
       // Non-manifold or inconsistently wound: left as it is.
@@ -241,25 +311,21 @@ bool Reducer::can_collapse(std::uint32_t v, std::uint32_t u) {
 }
 
 void Reducer::collapse(std::uint32_t v, std::uint32_t u) {
-  const auto drop = [&](std::uint32_t x, std::uint32_t t) {
-    std::vector<std::uint32_t>& f = fan[x];
-    const auto at = std::find(f.begin(), f.end(), t);
-    *at = f.back();
-    f.pop_back();
-  };
-  for (std::uint32_t t : fan[v]) {
+  const std::span<const std::uint32_t> around = fan[v];
+  collapsing.assign(around.begin(), around.end()); // fan.push may move the lists
+  for (std::uint32_t t : collapsing) {
     glm::uvec3& tri = tris[t];
     if (tri.x == u || tri.y == u || tri.z == u) {
       alive[t] = false;
       for (int c = 0; c < 3; ++c)
-        if (tri[c] != v) drop(tri[c], t);
+        if (tri[c] != v) fan.drop(tri[c], t);
       continue;
     }
     for (int c = 0; c < 3; ++c)
       if (tri[c] == v) tri[c] = u;
-    fan[u].push_back(t);
+    fan.push(u, t);
   }
-  fan[v].clear();
+  fan.clear(v);
   if (role[v] == Role::Line) { // u and the chain's other neighbour w now meet
     const std::uint32_t w = chain[v][0] == u ? chain[v][1] : chain[v][0];
     for (std::uint32_t x : {u, w})
@@ -326,17 +392,15 @@ std::size_t Reducer::run() {
 
 PlanarReduction reduce_planar(const std::vector<glm::vec3>& positions,
                               const std::vector<glm::uvec3>& triangles, float epsilon) {
-  Reducer r{positions, epsilon, triangles, {}, {}, {}, {}, {}, {}, {}, 0, {}, {}, {}};
-  r.alive.assign(triangles.size(), true);
-  r.fan.resize(positions.size());
+  std::vector<bool> alive(triangles.size(), true);
   for (std::uint32_t t = 0; t < triangles.size(); ++t) {
     const glm::uvec3& tri = triangles[t];
-    if (tri.x == tri.y || tri.y == tri.z || tri.z == tri.x || r.cross_of(tri) == dvec3(0.0)) {
-      r.alive[t] = false;
-      continue;
-    }
-    for (int c = 0; c < 3; ++c) r.fan[tri[c]].push_back(t);
+    alive[t] = !(tri.x == tri.y || tri.y == tri.z || tri.z == tri.x ||
+                 glm::cross(dvec3(positions[tri.y]) - dvec3(positions[tri.x]),
+                            dvec3(positions[tri.z]) - dvec3(positions[tri.x])) == dvec3(0.0));
   }
+  Fans fans(triangles, alive, positions.size());
+  Reducer r(positions, epsilon, triangles, std::move(alive), std::move(fans));
   r.grow_patches();
   r.classify();
   r.straighten_chains();

@@ -3,9 +3,9 @@
 // (core/mesh/mesh_clusters.h): a wall tessellated into 10^5 triangles becomes the few triangles its
 // outline needs, before any error-driven simplification.
 //
-// Patches: triangles grown across shared edges from a seed (largest first) while all three
-// vertices lie within `epsilon` of the seed's plane and the triangle faces the same way (so the
-// two faces of a zero-thickness wall never merge). Then edge collapses v -> u onto existing
+// Patches: triangles grown across shared edges from a seed (the largest octave of area first)
+// while all three vertices lie within `epsilon` of the seed's plane and the triangle faces the
+// same way (so the two faces of a zero-thickness wall never merge). Then edge collapses v -> u onto existing
 // vertices (no vertex moves), of two kinds only:
 //   - v inside one patch (a closed manifold fan, every edge shared by two triangles of the
 //     patch) onto any neighbour u;
