@@ -207,12 +207,16 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
       simplify_node(static_cast<std::size_t>(group[static_cast<std::size_t>(k)]), worker);
     });
   }
+  std::size_t total = out.indices.size(); // reserved at once: no copy of a half-grown array
+  for (const std::vector<std::uint32_t>& m : meshes) total += m.size();
+  out.indices.reserve(total);
   for (std::size_t n = 0; n < out.nodes.size(); ++n) {
     ClusterNode& node = out.nodes[n];
     if (node.leaf()) continue;
     node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
     node.mesh_count = static_cast<std::uint32_t>(meshes[n].size());
     out.indices.insert(out.indices.end(), meshes[n].begin(), meshes[n].end());
+    meshes[n] = {};
   }
 }
 
@@ -230,6 +234,13 @@ void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
     const std::size_t n = order[static_cast<std::size_t>(k)];
     levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, height, local.of(worker));
   });
+  std::size_t total = out.indices.size(), count = 0; // reserved at once, as above
+  for (const NodeLevels& l : levels) {
+    total += l.indices.size();
+    count += l.levels.size();
+  }
+  out.indices.reserve(total);
+  out.levels.reserve(count);
   for (std::size_t n = 0; n < out.nodes.size(); ++n) {
     ClusterNode& node = out.nodes[n];
     node.levels_first = static_cast<std::uint32_t>(out.levels.size());

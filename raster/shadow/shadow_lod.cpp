@@ -54,6 +54,8 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
                  static_cast<GLsizeiptr>(clusters_.indices.size() * sizeof(std::uint32_t)),
                  clusters_.indices.data(), GL_STATIC_DRAW);
   api.BindBuffer(GL_ARRAY_BUFFER, 0);
+  index_count_ = clusters_.indices.size();
+  std::vector<std::uint32_t>().swap(clusters_.indices);
   vao_ = gpu.vertex_array_with(indices_);
 }
 

@@ -50,8 +50,9 @@ std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm
 
 class ShadowLod {
 public:
-  // Uploads `clusters` (of gpu's scene) as one index buffer; `simplify`: whether the inner
-  // nodes' meshes may be drawn (false: culling only, the original triangles).
+  // Uploads `clusters` (of gpu's scene) as one index buffer, then frees their indices here (the
+  // GPU's copy is the one drawn; at 10M triangles they are half a GiB); `simplify`: whether the
+  // inner nodes' meshes may be drawn (false: culling only, the original triangles).
   ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters, bool simplify);
 
   // Appends to `out`, node by node in depth-first order, the cut of the face with pyramid
@@ -64,9 +65,9 @@ public:
   void draw(const ClusterSelection& selection) const;
 
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
-  // drawn by the caller.
+  // drawn by the caller. Its indices are empty (on the GPU only).
   const MeshClusters& clusters() const { return clusters_; }
-  std::size_t gpu_bytes() const { return clusters_.indices.size() * sizeof(std::uint32_t); }
+  std::size_t gpu_bytes() const { return index_count_ * sizeof(std::uint32_t); }
 
 private:
   // A node's plan for one face (pick()): a range of indices, or its children's plans.
@@ -86,6 +87,7 @@ private:
 
   const GladGLContext* api_;
   MeshClusters clusters_;
+  std::size_t index_count_ = 0; // of the uploaded indices
   bool simplify_;
   Buffer indices_;
   VertexArray vao_;
