@@ -3,6 +3,7 @@
 #include "core/animation/animation.h"
 #include "core/lights/clamp_field.h"
 #include "core/util/error.h"
+#include "core/util/freed_memory.h"
 #include "walk/bias_compensation.h"
 #include "walk/glossy_pass.h"
 #include "walk/mirror_pass.h"
@@ -537,6 +538,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
   }
   s.hierarchy = early_hierarchy(scene, options);
   const RayScene rays(scene);
+  release_freed_memory(); // the BVH builder's
   r.seconds.load = since(t0);
   if (s.cancelled()) {
     // Interrupted while loading: nothing was rendered.

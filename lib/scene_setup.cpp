@@ -2,14 +2,12 @@
 
 #include "core/animation/animation.h"
 #include "core/util/error.h"
+#include "core/util/freed_memory.h"
 
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 namespace irad {
 
@@ -19,16 +17,6 @@ bool all_digits(const std::string& s) {
   return !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
 }
 
-// The loader's transient arrays (the file, decoded accessors, the triangle soup) go back to the
-// system: where the process keeps freed blocks in its heap for speed (apps/main.cpp), their holes
-// would stay resident for the whole render (the 2.1M sphere box's rt-vpl peak: 467 MiB, 407 MiB
-// with them released).
-void release_freed_memory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
-
 } // namespace
 
 Scene load_scene(const std::string& path, const SceneOptions& options, Log& log) {
@@ -36,7 +24,7 @@ Scene load_scene(const std::string& path, const SceneOptions& options, Log& log)
   light_scene(scene, options.lighting, log);
   if (options.time) pose_at(scene, *options.time, log);
   if (options.own_camera) use_own_camera(scene, *options.own_camera);
-  release_freed_memory();
+  release_freed_memory(); // the loader's file, decoded accessors and triangle soup
   return scene;
 }
 
