@@ -27,7 +27,7 @@ const ShadowLod* LodProvider::get() {
       times_.add("hierarchy ", build);
       start = StageTimes::Clock::now();
     }
-    prebuilt_.reset(); // its thread has ended; the scene is no longer its
+    prebuilt_.reset(); // taken, or a build of other options: not asked again
     lod_ = std::make_unique<ShadowLod>(*api_, *gpu_, std::move(clusters), on);
     times_.lap("hierarchy upload", start);
   }
