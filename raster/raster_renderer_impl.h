@@ -95,7 +95,8 @@ struct RasterRenderer::Impl {
 
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
-        lod(api, gpu, o.shadow_lod, o.hierarchy_cache, o.hierarchy_build), camera(api, gpu.features()),
+        lod(api, gpu, o.shadow_lod, o.hierarchy_cache, o.hierarchy_build),
+        camera(api, gpu.features()),
         vpl_shader(api, s, o.clamp, o.shadow_lod.planes != ShadowPlanes::Off),
         jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr),
         background(gl::Background::make(api, s)) {

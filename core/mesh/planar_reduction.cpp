@@ -1,8 +1,8 @@
 #include "core/mesh/planar_reduction.h"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <glm/glm.hpp>
 #include <numeric>
 #include <span>

@@ -5,8 +5,8 @@
 //
 // Patches: triangles grown across shared edges from a seed (the largest octave of area first)
 // while all three vertices lie within `epsilon` of the seed's plane and the triangle faces the
-// same way (so the two faces of a zero-thickness wall never merge). Then edge collapses v -> u onto existing
-// vertices (no vertex moves), of two kinds only:
+// same way (so the two faces of a zero-thickness wall never merge). Then edge collapses v -> u onto
+// existing vertices (no vertex moves), of two kinds only:
 //   - v inside one patch (a closed manifold fan, every edge shared by two triangles of the
 //     patch) onto any neighbour u;
 //   - v on a straight feature chain (a patch border or an open edge; v on exactly two of them)
