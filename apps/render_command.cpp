@@ -150,14 +150,14 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
     // In the order the stages ran: [[name, seconds], ...].
-    nlohmann::json setup = nlohmann::json::array();
-    for (const auto& [stage, t] : r.seconds.raster_setup) setup.push_back({stage, t});
-    seconds["raster_setup"] = setup;
-    if (!r.seconds.hierarchy_beside.empty()) {
-      nlohmann::json beside = nlohmann::json::array();
-      for (const auto& [stage, t] : r.seconds.hierarchy_beside) beside.push_back({stage, t});
-      seconds["hierarchy_beside"] = beside;
-    }
+    const auto stages = [](const std::vector<std::pair<std::string, double>>& list) {
+      nlohmann::json out = nlohmann::json::array();
+      for (const auto& [stage, t] : list) out.push_back({stage, t});
+      return out;
+    };
+    seconds["raster_setup"] = stages(r.seconds.raster_setup);
+    if (!r.seconds.hierarchy_beside.empty())
+      seconds["hierarchy_beside"] = stages(r.seconds.hierarchy_beside);
     if (scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h
   } else {
     seconds["trace"] = r.seconds.trace;

@@ -1,5 +1,7 @@
 #include "core/mesh/flat_components.h"
 
+#include "core/mesh/vertex_fans.h"
+
 #include <algorithm>
 #include <glm/glm.hpp>
 #include <numeric>
@@ -40,35 +42,24 @@ std::vector<std::uint32_t> samples(const std::vector<std::uint32_t>& component,
   return out;
 }
 
-// The triangles around the vertices of `around` (other vertices' fans left empty), as one
-// array: fan(v) = list[first[v], first[v + 1]).
-struct Fans {
-  std::vector<std::uint32_t> first, list;
-  Fans(const std::vector<glm::uvec3>& triangles, std::size_t vertices,
-       const std::vector<std::uint32_t>& around)
-      : first(vertices + 1, 0) {
-    std::vector<bool> wanted(vertices, false);
-    for (std::uint32_t k : around)
-      for (int c = 0; c < 3; ++c) wanted[triangles[k][c]] = true;
-    for (const glm::uvec3& t : triangles)
-      for (int c = 0; c < 3; ++c)
-        if (wanted[t[c]]) ++first[t[c] + 1];
-    std::partial_sum(first.begin(), first.end(), first.begin());
-    list.resize(first.back());
-    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
-    for (std::uint32_t k = 0; k < triangles.size(); ++k)
-      for (int c = 0; c < 3; ++c)
-        if (wanted[triangles[k][c]]) list[next[triangles[k][c]]++] = k;
-  }
-};
+// The fans of the vertices of the triangles `around` (other vertices' fans left empty).
+VertexFans fans_around(const std::vector<glm::uvec3>& triangles, std::size_t vertices,
+                       const std::vector<std::uint32_t>& around) {
+  std::vector<bool> wanted(vertices, false);
+  for (std::uint32_t k : around)
+    for (int c = 0; c < 3; ++c) wanted[triangles[k][c]] = true;
+  return VertexFans(
+      triangles, vertices, [](std::uint32_t) { return true; },
+      [&](std::uint32_t v) { return static_cast<bool>(wanted[v]); });
+}
 
 // Whether some vertex of triangle k has its whole fan (every triangle around it) within epsilon
 // of k's plane, facing its way: a vertex the reduction could remove from inside a patch. (Two
 // coplanar triangles of a quad are not enough: on a UV sphere every quad is planar and nothing
 // can be removed.)
 bool has_planar_vertex(const std::vector<glm::vec3>& positions,
-                       const std::vector<glm::uvec3>& triangles, const Fans& fans, std::uint32_t k,
-                       float epsilon) {
+                       const std::vector<glm::uvec3>& triangles, const VertexFans& fans,
+                       std::uint32_t k, float epsilon) {
   const glm::uvec3 t = triangles[k];
   const auto p = [&](std::uint32_t v) { return glm::dvec3(positions[v]); };
   const glm::dvec3 cross = glm::cross(p(t.y) - p(t.x), p(t.z) - p(t.x));
@@ -98,7 +89,7 @@ PlanarReduction reduce_flat_components(const std::vector<glm::vec3>& positions,
                                        const std::vector<glm::uvec3>& triangles, float epsilon) {
   const std::vector<std::uint32_t> component = triangle_components(triangles, positions.size());
   const std::vector<std::uint32_t> sampled = samples(component, positions.size());
-  const Fans fans(triangles, positions.size(), sampled);
+  const VertexFans fans = fans_around(triangles, positions.size(), sampled);
   // Per component root: its samples, and of them those with a planar vertex.
   std::vector<std::uint32_t> tried(positions.size(), 0), found(positions.size(), 0);
   for (std::uint32_t k : sampled) {

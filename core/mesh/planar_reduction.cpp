@@ -1,5 +1,7 @@
 #include "core/mesh/planar_reduction.h"
 
+#include "core/mesh/vertex_fans.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -33,22 +35,16 @@ struct FanEdge {
 class Fans {
 public:
   // Every alive triangle in the lists of its three vertices, in ascending order.
-  Fans(const std::vector<glm::uvec3>& tris, const std::vector<bool>& alive, std::size_t vertices)
-      : first_(vertices + 1, 0), size_(vertices, 0) {
-    for (std::size_t t = 0; t < tris.size(); ++t)
-      if (alive[t])
-        for (int c = 0; c < 3; ++c) ++first_[tris[t][c] + 1];
-    std::partial_sum(first_.begin(), first_.end(), first_.begin());
-    room_.resize(vertices);
-    for (std::size_t v = 0; v < vertices; ++v) room_[v] = first_[v + 1] - first_[v];
-    list_.resize(first_.back());
-    for (std::uint32_t t = 0; t < tris.size(); ++t)
-      if (alive[t])
-        for (int c = 0; c < 3; ++c) {
-          const std::uint32_t v = tris[t][c];
-          list_[first_[v] + size_[v]++] = t;
-        }
-    first_.pop_back();
+  Fans(const std::vector<glm::uvec3>& tris, const std::vector<bool>& alive, std::size_t vertices) {
+    VertexFans all(
+        tris, vertices, [&](std::uint32_t t) { return static_cast<bool>(alive[t]); },
+        [](std::uint32_t) { return true; });
+    size_.resize(vertices);
+    for (std::size_t v = 0; v < vertices; ++v) size_[v] = all.first[v + 1] - all.first[v];
+    room_ = size_;
+    all.first.pop_back();
+    first_ = std::move(all.first);
+    list_ = std::move(all.list);
   }
   std::span<const std::uint32_t> operator[](std::uint32_t v) const {
     return {list_.data() + first_[v], size_[v]};
