@@ -187,6 +187,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
       {"shadow_lod", args.shadow_lod},
       {"shadow_occlusion", args.shadow_occlusion == "on"},
       {"hierarchy_cache", {{"outcome", r.hierarchy_cache}, {"reason", r.hierarchy_cache_reason}}},
+      {"wall_cache", {{"outcome", r.wall_cache}, {"reason", r.wall_cache_reason}}},
       {"shadow_planes", r.shadow_planes}, // as drawn: auto resolved
       {"thinnest_wall", r.thinnest_wall},
       {"jitter", args.jitter == "on"},
@@ -504,9 +505,10 @@ void add_render_command(CLI::App& app, Commands& commands) {
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--hierarchy-cache", args->hierarchy_cache,
-                  "Raster, batched, shadow-lod on or cull: keep the shadow hierarchy of a scene "
-                  "between runs in $XDG_CACHE_HOME/irad/hierarchy (else ~/.cache/irad/hierarchy); "
-                  "off: build it every time")
+                  "Raster: keep a scene's shadow hierarchy (batched, shadow-lod on or cull) and "
+                  "its thinnest-wall scan (shadow-planes auto) between runs in "
+                  "$XDG_CACHE_HOME/irad/hierarchy (else ~/.cache/irad/hierarchy); off: build and "
+                  "scan every time")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--shadow-planes", args->shadow_planes,

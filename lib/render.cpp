@@ -11,6 +11,7 @@
 #include "walk/thin_walls.h"
 #include "walk/vpl_clustering.h"
 #include "walk/vpl_tracer.h"
+#include "walk/wall_cache.h"
 
 #include <algorithm>
 #include <chrono>
@@ -158,8 +159,8 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   options.interleave = interleave(s.options, s.r);
   options.edge_pixels = edge_pixel_mode(s.options, s.r);
   options.shadow_resolution = shadow_resolution(s.options, s.r, options);
-  const PlaneChoice planes =
-      choose_shadow_planes(s.scene, rays, options.shadow_lod.planes, options.shadow_resolution);
+  const PlaneChoice planes = choose_shadow_planes(
+      s.scene, rays, options.shadow_lod.planes, options.shadow_resolution, options.hierarchy_cache);
   const double scan = since(t0);
   options.shadow_lod.planes = planes.planes;
   options.traced_roughness = s.options.traced_roughness;
@@ -174,6 +175,8 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   s.r.edge_mode = options.interleave > 1 ? edge_mode_name(options.edge_pixels) : "off";
   s.r.shadow_planes = planes.planes == ShadowPlanes::On;
   s.r.thinnest_wall = planes.thinnest_wall;
+  s.r.wall_cache = outcome_name(planes.cache.outcome);
+  s.r.wall_cache_reason = planes.cache.reason;
   s.r.gl = s.raster->description();
   return *s.raster;
 }
@@ -434,11 +437,15 @@ const char* edge_mode_name(EdgePixelMode mode) {
 }
 
 PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, ShadowPlanes requested,
-                                 int resolution) {
-  if (requested != ShadowPlanes::Auto) return {requested, -1.0f};
-  if (scene.animation && scene.animation->moves_geometry()) return {ShadowPlanes::On, -1.0f};
-  const float thinnest = thinnest_wall(scene, rays, planes_reach(resolution));
-  return {planes_needed(thinnest, resolution) ? ShadowPlanes::On : ShadowPlanes::Off, thinnest};
+                                 int resolution, const std::filesystem::path& cache) {
+  if (requested != ShadowPlanes::Auto) return {requested, -1.0f, {}};
+  if (scene.animation && scene.animation->moves_geometry()) return {ShadowPlanes::On, -1.0f, {}};
+  PlaneChoice choice;
+  choice.thinnest_wall =
+      cached_thinnest_wall(scene, rays, planes_reach(resolution), cache, &choice.cache);
+  choice.planes =
+      planes_needed(choice.thinnest_wall, resolution) ? ShadowPlanes::On : ShadowPlanes::Off;
+  return choice;
 }
 
 // Round m of `o` (m > 0): an independent light set, the scrambled Halton walk of seed
@@ -518,6 +525,16 @@ RenderOptions with_light_budget(RenderOptions o) {
   return o;
 }
 
+// The BVH's quality: Fast for the raster over a scene of a million triangles or more, where it
+// traces far fewer rays than it has triangles (the walk, the clustering's rows, the planes scan,
+// the compensation: about 5M rays against 2.1M triangles on the sphere box) and the build is the
+// cost that counts; High elsewhere (rt-vpl and pt trace rays per pixel and VPL).
+BvhQuality bvh_quality(const Scene& scene, const RenderOptions& o) {
+  constexpr std::size_t kFastFrom = std::size_t{1} << 20;
+  return o.estimator == Estimator::Raster && scene.triangle_count() >= kFastFrom ? BvhQuality::Fast
+                                                                                 : BvhQuality::High;
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) {
   RenderResult r;
   StopFlag stop(options);
@@ -537,7 +554,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
     check_raster_options(raster);
   }
   s.hierarchy = early_hierarchy(scene, options);
-  const RayScene rays(scene);
+  const RayScene rays(scene, bvh_quality(scene, options));
   release_freed_memory(); // the BVH builder's
   r.seconds.load = since(t0);
   if (s.cancelled()) {

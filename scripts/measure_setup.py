@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """Profiles the one-time stages of a render, load to first VPL: for each GLB, `irad render` with
-the default options at --size (256x256) three times, the raster with an empty shadow hierarchy
-cache (cold), the raster again (warm: the hierarchy read back), and rt-vpl over the same VPLs,
-each in a fresh process with its --stats. Prints a Markdown table per file: every stage's
-seconds and share of the whole process (wall clock), the peak resident memory (the process's
-own, from wait4), and the passes (what the raster stage spends after its set-up). The shadow
-hierarchy's build runs on a thread of its own from the start of the render: its stages, marked
-"(beside)", overlap the others and are not in their sum; "hierarchy wait" is the raster's wait
-for what was left of it. The cache lives in a temporary XDG_CACHE_HOME, never the user's. docs/performance.md "Big scenes" quotes its output.
+the default options at --size (256x256) three times, the raster with an empty cache (cold), the
+raster again (warm: the shadow hierarchy and the thinnest-wall scan read back), and rt-vpl over
+the same VPLs, each in a fresh process with its --stats. Prints a Markdown table per file: every
+stage's seconds and share of the whole process (wall clock), the peak resident memory (the
+process's own, from wait4), and the passes (what the raster stage spends after its set-up). The
+shadow hierarchy's build runs on a thread of its own from the start of the render: its stages,
+marked "(beside)", overlap the others and are not in their sum; "hierarchy wait" is the raster's
+wait for what was left of it. The cache lives in a temporary XDG_CACHE_HOME, never the user's.
+docs/performance.md "Big scenes" quotes its output.
 
   LP_NUM_THREADS=2 python3 scripts/measure_setup.py build/sphere_box_2m.glb [more.glb ...]
       [--irad build/bin/irad] [--size 256x256]
@@ -88,9 +89,11 @@ def table(scene, runs):
                  " | ".join(f"**{wall:.2f}** | 100 %" for _, _, wall, _ in runs) + " |")
     lines.append("| peak resident memory | " +
                  " | ".join(f"{peak / 1024:.0f} MiB |" for *_, peak in runs) + " |")
-    outcome = [stats.get("hierarchy_cache", {}).get("outcome", "-") for _, stats, _, _ in runs]
+    def outcomes(key):
+        return ", ".join(stats.get(key, {}).get("outcome", "-") for _, stats, _, _ in runs)
     lines.append("")
-    lines.append("hierarchy cache: " + ", ".join(outcome) + "; shadow triangles per VPL: " +
+    lines.append("hierarchy cache: " + outcomes("hierarchy_cache") + "; wall cache: " +
+                 outcomes("wall_cache") + "; shadow triangles per VPL: " +
                  f"{runs[0][1]['shadow_triangles'] / max(1, runs[0][1]['vpls']):.0f}")
     return "\n".join(lines)
 

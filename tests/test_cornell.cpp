@@ -119,12 +119,14 @@ TEST(Cornell, CommandLineWritesImagesAndStats) {
   EXPECT_TRUE(has(built, "hierarchy levels"));
   EXPECT_TRUE(has(built, "hierarchy cache write"));
   EXPECT_EQ(stats["hierarchy_cache"]["outcome"], "written");
+  EXPECT_EQ(stats["wall_cache"]["outcome"], "written"); // the planes scan's, walk/wall_cache.h
 
   const nlohmann::json again = run("d");
   const std::vector<std::string> read = setup_stages(again, "hierarchy_beside");
   EXPECT_TRUE(has(read, "hierarchy cache read"));
   EXPECT_FALSE(has(read, "hierarchy levels"));
   EXPECT_EQ(again["hierarchy_cache"]["outcome"], "hit");
+  EXPECT_EQ(again["wall_cache"]["outcome"], "hit");
   EXPECT_TRUE(read_exr(dir / "d.exr").pixels() == exr.pixels());
   fs::remove_all(dir);
 }

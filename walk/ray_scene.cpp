@@ -80,6 +80,20 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Lane i of a packet: the segment origin + t direction, t in (tmin, tmax), every mask bit.
+void set_lane(RTCRay8& packet, std::size_t i, const glm::vec3& origin, const glm::vec3& direction,
+              float tmin, float tmax) {
+  packet.org_x[i] = origin.x;
+  packet.org_y[i] = origin.y;
+  packet.org_z[i] = origin.z;
+  packet.dir_x[i] = direction.x;
+  packet.dir_y[i] = direction.y;
+  packet.dir_z[i] = direction.z;
+  packet.tnear[i] = tmin;
+  packet.tfar[i] = tmax;
+  packet.mask[i] = 0xffffffffu;
+}
+
 // The triangles that move with the scene's animation (a vertex in one of its mesh parts).
 std::vector<char> moving_triangles(const Scene& scene) {
   std::vector<char> moving(scene.triangles.size(), 0);
@@ -163,22 +177,23 @@ void RayScene::Impl::add_part(const Scene& s, const std::vector<char>& select, c
   rtcReleaseGeometry(part.geometry); // the scene holds it
 }
 
-RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+RayScene::RayScene(const Scene& scene, BvhQuality quality) : impl_(std::make_unique<Impl>()) {
+  const RTCBuildQuality build =
+      quality == BvhQuality::High ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_LOW;
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw Error("", "embree", "cannot create an Embree device");
   rtcSetDeviceErrorFunction(impl_->device, on_embree_error, &impl_->errors);
   impl_->scene = rtcNewScene(impl_->device);
-  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneBuildQuality(impl_->scene, build);
   // Watertight along shared edges and at corners: without it rays from inside a closed box
   // escaped through its corners (27 of 4000 in HardCases).
   const std::vector<char> moving = moving_triangles(scene);
   const bool animated = std::find(moving.begin(), moving.end(), 1) != moving.end();
   rtcSetSceneFlags(impl_->scene, animated ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC
                                           : RTC_SCENE_FLAG_ROBUST);
-  // A static scene is one geometry; an animated one keeps its still triangles in a high-quality
-  // BVH and the moving ones in a second geometry that update() refits.
-  impl_->add_part(scene, animated ? moving : std::vector<char>{}, 0, RTC_BUILD_QUALITY_HIGH,
-                  impl_->fixed);
+  // A static scene is one geometry; an animated one keeps its still triangles in a BVH of the
+  // asked quality and the moving ones in a second geometry that update() refits.
+  impl_->add_part(scene, animated ? moving : std::vector<char>{}, 0, build, impl_->fixed);
   if (animated) impl_->add_part(scene, moving, 1, RTC_BUILD_QUALITY_REFIT, impl_->moving);
   rtcCommitScene(impl_->scene);
   impl_->check("embree.commit");
@@ -229,6 +244,34 @@ std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::ve
                 glm::vec2(rh.hit.u, rh.hit.v)};
 }
 
+void RayScene::intersect(const RaySegment* segments, std::size_t n, std::optional<RayHit>* hits,
+                         std::uint64_t salt) const {
+  constexpr std::size_t kLanes = 8;
+  SaltedContext context;
+  rtcInitIntersectContext(&context.base);
+  context.salt = salt;
+  for (std::size_t first = 0; first < n; first += kLanes) {
+    const std::size_t lanes = std::min(kLanes, n - first);
+    RTCRayHit8 packet{};
+    alignas(32) int valid[kLanes] = {};
+    for (std::size_t i = 0; i < lanes; ++i) {
+      const RaySegment& s = segments[first + i];
+      set_lane(packet.ray, i, s.origin, s.direction, s.tmin, s.tmax);
+      packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      valid[i] = -1;
+    }
+    rtcIntersect8(valid, impl_->scene, &context.base, &packet);
+    for (std::size_t i = 0; i < lanes; ++i) {
+      std::optional<RayHit>& hit = hits[first + i];
+      hit.reset();
+      if (packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID)
+        hit =
+            RayHit{packet.ray.tfar[i], impl_->triangle(packet.hit.geomID[i], packet.hit.primID[i]),
+                   glm::vec2(packet.hit.u[i], packet.hit.v[i])};
+    }
+  }
+}
+
 bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax,
                         std::uint64_t salt) const {
   SaltedContext context;
@@ -259,16 +302,7 @@ void RayScene::occluded(const glm::vec3& origin, const glm::vec3* directions, co
     RTCRay8 packet{};
     alignas(32) int valid[kLanes] = {};
     for (std::size_t i = 0; i < lanes; ++i) {
-      const glm::vec3& d = directions[first + i];
-      packet.org_x[i] = origin.x;
-      packet.org_y[i] = origin.y;
-      packet.org_z[i] = origin.z;
-      packet.dir_x[i] = d.x;
-      packet.dir_y[i] = d.y;
-      packet.dir_z[i] = d.z;
-      packet.tnear[i] = tmin;
-      packet.tfar[i] = tmax[first + i];
-      packet.mask[i] = 0xffffffffu;
+      set_lane(packet, i, origin, directions[first + i], tmin, tmax[first + i]);
       valid[i] = -1;
     }
     rtcOccluded8(valid, impl_->scene, &context.base, &packet);

@@ -17,6 +17,9 @@
 
 namespace irad {
 
+// Whether some opaque triangle is double-sided or a mirror: a wall of thickness 0 by itself.
+bool has_zero_wall(const Scene& scene);
+
 // The thinnest wall's thickness as a fraction of the bounding diagonal, looked for up to
 // `up_to` (a fraction too); `up_to` itself when there is none that thin. Two rays per opaque
 // one-sided triangle (from its centroid), on `threads` threads (0: all cores); 0 at once when

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fmt/format.h>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <meshoptimizer.h>
 #include <system_error>
@@ -224,8 +225,8 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t 
   return c;
 }
 
-// Removes the least recently used hierarchies until the folder holds at most kCacheBytes, and
-// temporary files an hour old (a writer that died).
+// Removes the least recently used files (hierarchies, walk/wall_cache.h's walls) until the folder
+// holds at most kCacheBytes, and temporary files an hour old (a writer that died).
 void trim_folder(const fs::path& folder) {
   std::error_code ec;
   std::vector<std::pair<fs::file_time_type, fs::path>> files;
@@ -239,7 +240,7 @@ void trim_folder(const fs::path& folder) {
       if (now - t > std::chrono::hours(1)) fs::remove(p, ec);
       continue;
     }
-    if (p.extension() != ".lod") continue;
+    if (p.extension() != ".lod" && p.extension() != ".wall") continue;
     total += e.file_size(ec);
     files.emplace_back(t, p);
   }
@@ -328,6 +329,26 @@ ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
   return {h.low64, h.high64};
 }
 
+bool write_atomically(const fs::path& path, const std::function<bool(const fs::path&)>& write,
+                      std::string& why) {
+  const fs::path temporary =
+      fmt::format("{}.tmp.{}.{}", path.string(), ::getpid(),
+                  std::chrono::steady_clock::now().time_since_epoch().count());
+  std::error_code ec;
+  if (!write(temporary)) {
+    fs::remove(temporary, ec);
+    why = fmt::format("cannot write {}", temporary.string());
+    return false;
+  }
+  fs::rename(temporary, path, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    why = fmt::format("cannot write {}", path.string());
+    return false;
+  }
+  return true;
+}
+
 const char* outcome_name(CacheOutcome outcome) {
   switch (outcome) {
   case CacheOutcome::Off:
@@ -388,21 +409,13 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
   }
   MeshClusters c = build_mesh_clusters(scene, options, &stages);
   start = StageTimes::Clock::now();
-  const fs::path temporary =
-      folder / fmt::format("{}.lod.tmp.{}.{}", key.hex(), ::getpid(),
-                           std::chrono::steady_clock::now().time_since_epoch().count());
+  std::string why;
   fs::create_directories(folder, ec);
-  if (ec || !write_file(temporary, c, key)) {
-    fs::remove(temporary, ec);
-    out = {CacheOutcome::Unwritable, fmt::format("cannot write {}", temporary.string())};
+  if (!write_atomically(
+          path, [&](const fs::path& to) { return write_file(to, c, key); }, why)) {
+    out = {CacheOutcome::Unwritable, why};
   } else {
-    fs::rename(temporary, path, ec);
-    if (ec) {
-      fs::remove(temporary, ec);
-      out = {CacheOutcome::Unwritable, fmt::format("cannot write {}", path.string())};
-    } else if (out.outcome == CacheOutcome::Off) {
-      out.outcome = CacheOutcome::Written;
-    }
+    if (out.outcome == CacheOutcome::Off) out.outcome = CacheOutcome::Written;
     trim_folder(folder);
   }
   stages.lap("cache write", start);

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace irad {
@@ -62,6 +63,13 @@ std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::
 MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
                                   const std::filesystem::path& folder, StageTimes* times = nullptr,
                                   CacheResult* result = nullptr);
+
+// Writes `path` through a temporary file beside it (write(temporary) returns whether every write
+// succeeded) renamed into place, so that a reader sees a whole file or none. False, with `why`,
+// when the temporary could not be written or renamed (the temporary is then removed).
+bool write_atomically(const std::filesystem::path& path,
+                      const std::function<bool(const std::filesystem::path&)>& write,
+                      std::string& why);
 
 // The most bytes the cache folder keeps: after a write, the least recently used files (a hit
 // counts as a use) go until the rest fit.

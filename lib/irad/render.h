@@ -10,6 +10,7 @@
 #include "core/image/image.h"
 #include "core/lights/light_budget.h"
 #include "core/lights/vpl.h"
+#include "core/mesh/cluster_cache.h"
 #include "core/scene/scene.h"
 #include "core/util/log.h"
 #include "irad/scene_setup.h"
@@ -20,6 +21,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -135,6 +137,8 @@ struct RenderResult {
   // What the shadow hierarchy's cache did (core/mesh/cluster_cache.h outcome_name: off, hit,
   // written, rebuilt, unwritable) and why a file was not used or written.
   std::string hierarchy_cache = "off", hierarchy_cache_reason;
+  // The same of the thinnest-wall scan's cache (walk/wall_cache.h), "off" when nothing scanned.
+  std::string wall_cache = "off", wall_cache_reason;
   StageSeconds seconds;   // load: the camera, view and ray-tracing structure (render_file: also
                           // the loading)
   bool cancelled = false; // stopped early by a cancellation
@@ -167,13 +171,15 @@ struct RenderResult {
 // The occluder planes (RasterOptions::shadow_lod.planes) for `scene` and faces of `resolution`
 // texels: On and Off as requested; Auto becomes On where the scene's thinnest wall
 // (walk/thin_walls.h) needs them (raster_renderer.h planes_needed), and always for an animation
-// that moves geometry (its walls' gaps change from frame to frame), else Off.
+// that moves geometry (its walls' gaps change from frame to frame), else Off. The scan goes
+// through the cache in `cache` (walk/wall_cache.h; empty: scanned every time).
 struct PlaneChoice {
   ShadowPlanes planes = ShadowPlanes::On;
   float thinnest_wall = -1.0f; // as measured for Auto (fraction of the diagonal); else -1
+  CacheResult cache;           // what the scan's cache did
 };
 PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, ShadowPlanes requested,
-                                 int resolution);
+                                 int resolution, const std::filesystem::path& cache = {});
 
 // `o` with `irad render`'s (and Python's) automatic choices: the light budget (auto_paths,
 // auto_clusters) and the automatic interleaving (raster.interleave 0).
