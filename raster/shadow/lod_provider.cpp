@@ -1,5 +1,7 @@
 #include "raster/shadow/lod_provider.h"
 
+#include "core/util/freed_memory.h"
+
 namespace irad::gl {
 
 LodProvider::LodProvider(const GladGLContext& api, const GpuScene& gpu,
@@ -29,6 +31,7 @@ const ShadowLod* LodProvider::get() {
     }
     prebuilt_.reset(); // taken, or a build of other options: not asked again
     lod_ = std::make_unique<ShadowLod>(*api_, *gpu_, std::move(clusters), on);
+    release_freed_memory(); // the build's transients and the indices now on the GPU
     times_.lap("hierarchy upload", start);
   }
   return lod_.get();
