@@ -131,20 +131,35 @@ TEST(ShadowLod, ErrorBoundsTheDistanceFromTheSurface) {
                         3.0f;
     sag0 = std::max(sag0, double(kRadius - glm::length(m - kCentre)));
   }
-  for (const ClusterNode& n : c.nodes) {
-    if (n.leaf() || n.mesh_count == 0) continue;
+  const auto sag_of = [&](std::uint32_t first, std::uint32_t count) {
     double sag = 0.0;
-    for (std::uint32_t k = n.mesh_first; k < n.mesh_first + n.mesh_count; k += 3) {
+    for (std::uint32_t k = first; k < first + count; k += 3) {
       const glm::vec3 m = (s.positions[c.indices[k]] + s.positions[c.indices[k + 1]] +
                            s.positions[c.indices[k + 2]]) /
                           3.0f;
       sag = std::max(sag, double(kRadius - glm::length(m - kCentre)));
     }
-    worst = std::max(worst, (sag - sag0) / std::max(double(n.error), 1e-9));
+    return sag;
+  };
+  double worst_level = 0.0;
+  std::size_t levels = 0;
+  for (const ClusterNode& n : c.nodes) {
+    // The coarser levels, their region's border simplified too.
+    for (std::uint32_t l = n.levels_first; l < n.levels_first + n.levels_count; ++l, ++levels) {
+      const ClusterLevel& level = c.levels[l];
+      worst_level = std::max(worst_level, (sag_of(level.first, level.count) - sag0) /
+                                              std::max(double(level.error), 1e-9));
+    }
+    if (n.leaf() || n.mesh_count == 0) continue;
+    worst = std::max(worst,
+                     (sag_of(n.mesh_first, n.mesh_count) - sag0) / std::max(double(n.error), 1e-9));
   }
-  std::printf("sphere 64 rings: original sag %.3g, worst (sag - original) / error %.3g\n", sag0,
-              worst);
+  std::printf("sphere 64 rings: original sag %.3g, worst (sag - original) / error %.3g, of %zu "
+              "coarser levels %.3g\n",
+              sag0, worst, levels, worst_level);
   EXPECT_LT(worst, 2.0);
+  EXPECT_GT(levels, 10u);
+  EXPECT_LT(worst_level, 2.0);
 }
 
 // Any cut through the tree (here mixed levels) closes the sphere: every edge used as often in one

@@ -13,17 +13,24 @@ namespace {
 // Relative error (of the mesh's extent) below which meshoptimizer's collapses count as exact.
 constexpr float kExact = 1e-6f;
 
+// meshoptimizer's error estimate of a step that simplifies the border too, times this: its
+// estimate weighs a border's sag less than the surface's, and tests/test_shadow_lod.cpp measured
+// the true distance up to 3.3 times it on the coarser levels of a sphere's regions (1.4 times
+// with the border locked).
+constexpr float kFreeBorderError = 2.5f;
+
 // `input` simplified to 1/divisor of its triangles (divisor 0: as far as target_error, relative
-// to the extent, allows), its open edges (the region's border) locked;
-// error: this step's (world units).
+// to the extent, allows), its open edges (the region's border) locked unless `border` is Free
+// (then they simplify as a polyline within the error); error: this step's (world units).
 struct Simplified {
   std::vector<std::uint32_t> indices;
   float error = 0.0f;
   bool exact = false; // every collapse within kExact of the extent
 };
+enum class Border { Locked, Free };
 Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& input,
                           std::vector<std::uint32_t>& local_of, std::size_t divisor = 2,
-                          float target_error = 1.0f) {
+                          float target_error = 1.0f, Border border = Border::Locked) {
   // A compact vertex array of the vertices used (meshoptimizer scales by all it is given).
   std::vector<std::uint32_t> global, local(input.size());
   std::vector<glm::vec3> positions;
@@ -43,8 +50,9 @@ Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& 
   float relative = 0.0f;
   const std::size_t count = meshopt_simplify(
       dest.data(), local.data(), local.size(), &positions[0].x, positions.size(), sizeof(glm::vec3),
-      target, target_error, meshopt_SimplifyLockBorder, &relative);
-  s.error = relative * meshopt_simplifyScale(&positions[0].x, positions.size(), sizeof(glm::vec3));
+      target, target_error, border == Border::Locked ? meshopt_SimplifyLockBorder : 0u, &relative);
+  s.error = relative * meshopt_simplifyScale(&positions[0].x, positions.size(), sizeof(glm::vec3)) *
+            (border == Border::Free ? kFreeBorderError : 1.0f);
   s.exact = relative <= kExact;
   s.indices.resize(count);
   for (std::size_t k = 0; k < count; ++k) s.indices[k] = global[dest[k]];
@@ -126,15 +134,22 @@ std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root
   return mesh;
 }
 
-// Its mesh halved again and again (the border still locked) while that removes at least a tenth
-// of the triangles. Where the first step needs no error (coplanar triangles: flat walls), that
-// level goes on as far as collapses without error go, to the wall's border. A first step with
-// error means meshoptimizer, which collapses the cheapest edges first, ran out of exact ones
-// before half: a pass for them alone would cost a simplification of the whole mesh for less
-// (on the 2.1M sphere box: 43 % of the levels' time, and below a tenth of the triangles on 62 %
-// of the nodes). A root of one connected component (`whole`) starts from
-// the shallow cut of its tree instead and quarters it: no region border inside it is locked, so
-// a closed surface simplifies as far as its error allows.
+// Its mesh halved again and again while that removes at least a tenth of the triangles, its
+// region's border simplified with it (the base meshes keep it exactly). A locked border would
+// keep the original tessellation in every level, so that no level of a node could drop below its
+// border's length in triangles: on a finely tessellated surface seen from near (a VPL on a
+// terrain) the cut would be the borders of the nodes it holds, growing with the tessellation
+// (the 2M-triangle terrain: 41,189 triangles per VPL locked, 13,262 free; docs/performance.md
+// "Shadow maps against scene size"). Free, neighbouring regions drawn at different levels may
+// leave a crack along their shared border, at most the two levels' errors wide, which the cut
+// keeps below half a texel each. Where the first step needs no error (coplanar triangles: flat
+// walls), that level goes on as far as collapses without error go. A first step with error
+// means meshoptimizer, which collapses the cheapest edges first, ran out of exact ones before
+// half: a pass for them alone would cost a simplification of the whole mesh for less (on the
+// 2.1M sphere box: 43 % of the levels' time, and below a tenth of the triangles on 62 % of the
+// nodes). A root of one connected component (`whole`) starts from the shallow cut of its tree
+// instead and quarters it, the component's own open edges locked: a closed surface simplifies as
+// far as its error allows.
 NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size_t n, bool whole,
                           int max_levels, const std::vector<int>& height,
                           std::vector<std::uint32_t>& local_of) {
@@ -145,11 +160,12 @@ NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size
             : std::vector<std::uint32_t>(out.indices.begin() + node.mesh_first,
                                          out.indices.begin() + node.mesh_first + node.mesh_count);
   NodeLevels result;
+  const Border border = whole ? Border::Locked : Border::Free;
   for (int steps = 0; steps < max_levels && !mesh.empty();) {
-    Simplified s = simplify_union(scene, mesh, local_of, whole ? 4 : 2);
+    Simplified s = simplify_union(scene, mesh, local_of, whole ? 4 : 2, 1.0f, border);
     if (10 * s.indices.size() > 9 * mesh.size()) break;
     if (result.levels.empty() && s.exact) { // no error yet: as far as none takes it
-      Simplified rest = simplify_union(scene, s.indices, local_of, 0, kExact);
+      Simplified rest = simplify_union(scene, s.indices, local_of, 0, kExact, border);
       s.indices = std::move(rest.indices);
       s.error += rest.error;
     } else {

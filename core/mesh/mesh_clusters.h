@@ -19,10 +19,11 @@
 //     error(node) = max(error(children)) + meshopt's result_error * meshopt_simplifyScale,
 // a world-space bound on how far its mesh lies from the original surface (meshoptimizer's
 // quadric estimate; tests/test_shadow_lod.cpp measures it). Errors grow toward the root. Each
-// node also keeps coarser levels of its own mesh with the same locked border (error: the level
-// before's plus the step's): halved again and again, for the faces that see it from far; where
-// the first halving needs no error (coplanar triangles), that level goes as far as
-// meshoptimizer gets without error (a flat wall down to its border).
+// node also keeps coarser levels of its own mesh, its region's border simplified with it (error:
+// the level before's plus 2.5 times meshoptimizer's estimate of the step, which weighs a
+// border's sag less than the surface's): halved again and again, for the faces that see it from
+// far; where the first halving needs no error (coplanar triangles), that level goes as far as
+// meshoptimizer gets without error.
 //
 // The trees: one per large connected component (welded), and one for all the small ones. A
 // component's root also keeps levels of the whole component, with only the component's own open
@@ -30,15 +31,21 @@
 // one that sees it from near a cut of its tree. They are simplified from the cut through the
 // nodes two above the leaves (about a quarter of the triangles; error: the largest of those
 // nodes'), in a fifth of the time the original triangles take (scripts/make_large_glb.py's
-// 2M-triangle terrain: 0.65 s against 3.7 s). On tests/test_shadow_lod.cpp's spheres the faces
-// of 16 VPLs draw 25,902 triangles, at relMSE 1.67e-5 against the full meshes.
+// 2M-triangle terrain: 0.65 s against 3.7 s). In tests/test_shadow_lod.cpp the faces of 16 VPLs
+// of a Cornell box with a sphere draw 20,071 triangles (15.3M without the hierarchy), and a render
+// with the simplified shadows stays within relMSE 1.33e-5 of the full meshes'.
 //
-// Crack-free by construction: a node's open edges, the border of its region, are locked in its
-// simplification, and every region's border is part of the borders of the regions below it
-// that touch it, so every node's mesh keeps its region's original border exactly. Any cut (a
-// set of nodes whose regions tile the mesh) therefore meets along original edges: no gaps that
-// a shadow map could leak light through. Simplification keeps topology (edge collapses onto
-// existing vertices), so a closed surface stays closed.
+// The base meshes are crack-free by construction: a node's open edges, the border of its region,
+// are locked in its simplification, and every region's border is part of the borders of the
+// regions below it that touch it, so every node's mesh keeps its region's original border
+// exactly. Any cut of base meshes (a set of nodes whose regions tile the mesh) therefore meets
+// along original edges. A coarser level simplifies its border too, so where a cut draws two
+// neighbours at different levels a crack may open along their border, at most their two errors
+// wide: below a texel where the shadow faces draw them (half a texel each). Locked, a level could
+// not drop below its border's length in triangles, and the cut of a finely tessellated surface
+// seen from near (a VPL on a terrain) grows with the tessellation (docs/performance.md "Shadow
+// maps against scene size"). Simplification keeps topology (edge collapses onto existing
+// vertices), so a closed surface stays closed.
 //
 // The meshes index the scene's own vertex array, so a GPU draws them with the scene's vertex
 // buffer. Positions are welded first (vertices at one position become the first of them: the
@@ -125,7 +132,7 @@ struct MeshClusters {
 struct ClusterOptions {
   // At most this many per leaf; 0: automatic_leaf_triangles. Smaller leaves cull tighter
   // against a face's pyramid and the depths already drawn, larger ones leave fewer region
-  // borders, which every level keeps exactly (docs/performance.md measures both).
+  // borders, which every base mesh keeps exactly (docs/performance.md measures both).
   std::uint32_t leaf_triangles = 0;
   // false: the base is the scene's triangles and inner nodes' meshes are their leaves' (the
   // Cull mode: the same image as drawing every triangle).
