@@ -139,7 +139,7 @@ std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root
 // keep the original tessellation in every level, so that no level of a node could drop below its
 // border's length in triangles: on a finely tessellated surface seen from near (a VPL on a
 // terrain) the cut would be the borders of the nodes it holds, growing with the tessellation
-// (the 2M-triangle terrain: 41,189 triangles per VPL locked, 13,262 free; docs/performance.md
+// (the 2M-triangle terrain: 41,189 triangles per VPL locked, 13,263 free; docs/performance.md
 // "Shadow maps against scene size"). Free, neighbouring regions drawn at different levels may
 // leave a crack along their shared border, at most the two levels' errors wide, which the cut
 // keeps below half a texel each. Where the first step needs no error (coplanar triangles: flat
