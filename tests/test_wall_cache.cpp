@@ -123,6 +123,17 @@ TEST_F(WallCache, ATruncatedOrBitFlippedFileIsScannedAgain) {
   EXPECT_EQ(r.outcome, CacheOutcome::Hit);
 }
 
+TEST_F(WallCache, AFolderThatCannotBeWrittenCostsOnlyTheWrite) {
+  const Scene s = room_with_slab(0.01f);
+  const RayScene rays(s);
+  std::ofstream(folder_.string()) << "a file where the folder should be";
+  CacheResult r;
+  EXPECT_EQ(scan(s, rays, 0.5f, r), thinnest_wall(s, rays, 0.5f));
+  EXPECT_EQ(r.outcome, CacheOutcome::Unwritable);
+  EXPECT_NE(r.reason.find("cannot write"), std::string::npos) << r.reason;
+  fs::remove(folder_);
+}
+
 TEST_F(WallCache, NoFolderOrAlphaIsNotCached) {
   Scene s = room_with_slab(0.01f);
   const RayScene rays(s);
