@@ -50,6 +50,7 @@ struct GeometryPart {
 struct SaltedContext {
   RTCIntersectContext base;
   std::uint64_t salt = 0;
+  explicit SaltedContext(std::uint64_t s) : salt(s) { rtcInitIntersectContext(&base); }
 };
 
 // Uniform in [0, 1) from the ray (origin and direction bits), the salt and the scene triangle.
@@ -228,9 +229,7 @@ bool RayScene::has_alpha() const {
 
 std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::vec3& direction,
                                           float tmin, float tmax, std::uint64_t salt) const {
-  SaltedContext context;
-  rtcInitIntersectContext(&context.base);
-  context.salt = salt;
+  SaltedContext context(salt);
   RTCRayHit rh{};
   rh.ray.org_x = origin.x;
   rh.ray.org_y = origin.y;
@@ -251,9 +250,7 @@ std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::ve
 void RayScene::intersect(const RaySegment* segments, std::size_t n, std::optional<RayHit>* hits,
                          std::uint64_t salt) const {
   constexpr std::size_t kLanes = 8;
-  SaltedContext context;
-  rtcInitIntersectContext(&context.base);
-  context.salt = salt;
+  SaltedContext context(salt);
   for (std::size_t first = 0; first < n; first += kLanes) {
     const std::size_t lanes = std::min(kLanes, n - first);
     RTCRayHit8 packet{};
@@ -278,9 +275,7 @@ void RayScene::intersect(const RaySegment* segments, std::size_t n, std::optiona
 
 bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax,
                         std::uint64_t salt) const {
-  SaltedContext context;
-  rtcInitIntersectContext(&context.base);
-  context.salt = salt;
+  SaltedContext context(salt);
   RTCRay ray{};
   ray.org_x = origin.x;
   ray.org_y = origin.y;
@@ -298,9 +293,7 @@ bool RayScene::occluded(const glm::vec3& origin, const glm::vec3& direction, flo
 void RayScene::occluded(const glm::vec3& origin, const glm::vec3* directions, const float* tmax,
                         std::size_t n, float tmin, bool* blocked, std::uint64_t salt) const {
   constexpr std::size_t kLanes = 8;
-  SaltedContext context;
-  rtcInitIntersectContext(&context.base);
-  context.salt = salt;
+  SaltedContext context(salt);
   for (std::size_t first = 0; first < n; first += kLanes) {
     const std::size_t lanes = std::min(kLanes, n - first);
     RTCRay8 packet{};
