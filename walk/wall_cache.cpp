@@ -9,7 +9,6 @@
 #include <cstring>
 #include <embree3/rtcore_config.h>
 #include <fstream>
-#include <memory>
 #include <xxhash.h>
 
 namespace irad {
@@ -37,17 +36,10 @@ std::uint64_t checksum_of(const WallFile& f) {
   return XXH3_64bits(&f, offsetof(WallFile, checksum));
 }
 
-struct FreeHashState {
-  void operator()(XXH3_state_t* s) const { XXH3_freeState(s); }
-};
-
 // What the scan reads: the geometry, the diagonal, the ray epsilon, the format and Embree.
 ClusterKey wall_key(const Scene& scene, const RayScene& rays) {
-  const std::unique_ptr<XXH3_state_t, FreeHashState> state(XXH3_createState());
-  XXH3_128bits_reset(state.get());
-  const auto add = [&](const void* data, std::size_t n) {
-    XXH3_128bits_update(state.get(), data, n);
-  };
+  KeyHasher hasher;
+  const auto add = [&](const void* data, std::size_t n) { hasher.add(data, n); };
   const std::uint32_t versions[2] = {kFormat, RTC_VERSION};
   add(versions, sizeof versions);
   const float scales[2] = {scene.bounds.diagonal(), rays.epsilon()};
@@ -56,8 +48,7 @@ ClusterKey wall_key(const Scene& scene, const RayScene& rays) {
   add(counts, sizeof counts);
   add(scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
   add(scene.triangles.data(), scene.triangles.size() * sizeof(glm::uvec3));
-  const XXH128_hash_t h = XXH3_128bits_digest(state.get());
-  return {h.low64, h.high64};
+  return hasher.key();
 }
 
 // The file's (searched, gap) for `key`, or why it is not usable.
@@ -133,7 +124,6 @@ float cached_thinnest_wall(const Scene& scene, const RayScene& rays, float up_to
   }
   const float gap = thinnest_wall(scene, rays, up_to);
   std::string why;
-  fs::create_directories(folder, ec);
   if (!write_atomically(
           path, [&](const fs::path& to) { return write_wall(to, key, up_to, gap); }, why))
     out = {CacheOutcome::Unwritable, why};

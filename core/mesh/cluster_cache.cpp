@@ -295,12 +295,27 @@ std::string ClusterKey::hex() const {
   return fmt::format("{:016x}{:016x}", high, low);
 }
 
+struct KeyHasher::State {
+  HashState xxh{XXH3_createState()};
+};
+
+KeyHasher::KeyHasher() : state_(std::make_unique<State>()) {
+  XXH3_128bits_reset(state_->xxh.get());
+}
+KeyHasher::~KeyHasher() = default;
+
+void KeyHasher::add(const void* data, std::size_t n) {
+  XXH3_128bits_update(state_->xxh.get(), data, n);
+}
+
+ClusterKey KeyHasher::key() const {
+  const XXH128_hash_t h = XXH3_128bits_digest(state_->xxh.get());
+  return {h.low64, h.high64};
+}
+
 ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
-  const HashState state(XXH3_createState());
-  XXH3_128bits_reset(state.get());
-  const auto add = [&](const void* data, std::size_t n) {
-    XXH3_128bits_update(state.get(), data, n);
-  };
+  KeyHasher hasher;
+  const auto add = [&](const void* data, std::size_t n) { hasher.add(data, n); };
   const std::uint32_t leaf = options.leaf_triangles != 0
                                  ? options.leaf_triangles
                                  : automatic_leaf_triangles(scene.triangle_count());
@@ -325,8 +340,7 @@ ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
     }
   }
   add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
-  const XXH128_hash_t h = XXH3_128bits_digest(state.get());
-  return {h.low64, h.high64};
+  return hasher.key();
 }
 
 bool write_atomically(const fs::path& path, const std::function<bool(const fs::path&)>& write,
@@ -335,6 +349,7 @@ bool write_atomically(const fs::path& path, const std::function<bool(const fs::p
       fmt::format("{}.tmp.{}.{}", path.string(), ::getpid(),
                   std::chrono::steady_clock::now().time_since_epoch().count());
   std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
   if (!write(temporary)) {
     fs::remove(temporary, ec);
     why = fmt::format("cannot write {}", temporary.string());
@@ -410,7 +425,6 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
   MeshClusters c = build_mesh_clusters(scene, options, &stages);
   start = StageTimes::Clock::now();
   std::string why;
-  fs::create_directories(folder, ec);
   if (!write_atomically(
           path, [&](const fs::path& to) { return write_file(to, c, key); }, why)) {
     out = {CacheOutcome::Unwritable, why};

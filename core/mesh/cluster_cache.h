@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 
 namespace irad {
@@ -32,6 +33,21 @@ struct ClusterKey {
   std::uint64_t low = 0, high = 0;
   std::string hex() const; // 32 hexadecimal digits, high first
   bool operator==(const ClusterKey&) const = default;
+};
+
+// A 128-bit XXH3 key of the bytes added in turn (cluster_key's; walk/wall_cache.h's).
+class KeyHasher {
+public:
+  KeyHasher();
+  ~KeyHasher();
+  KeyHasher(const KeyHasher&) = delete;
+  KeyHasher& operator=(const KeyHasher&) = delete;
+  void add(const void* data, std::size_t n);
+  ClusterKey key() const;
+
+private:
+  struct State;
+  std::unique_ptr<State> state_;
 };
 
 // The key of build_mesh_clusters(scene, options) (leaf_triangles 0 resolved as the build does).
@@ -65,8 +81,9 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
                                   CacheResult* result = nullptr);
 
 // Writes `path` through a temporary file beside it (write(temporary) returns whether every write
-// succeeded) renamed into place, so that a reader sees a whole file or none. False, with `why`,
-// when the temporary could not be written or renamed (the temporary is then removed).
+// succeeded) renamed into place, so that a reader sees a whole file or none; the folder is made
+// first when missing. False, with `why`, when the temporary could not be written or renamed (the
+// temporary is then removed).
 bool write_atomically(const std::filesystem::path& path,
                       const std::function<bool(const std::filesystem::path&)>& write,
                       std::string& why);
