@@ -4,8 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cmath>
-#include <thread>
+#include <optional>
 #include <vector>
 
 namespace irad {

@@ -1,6 +1,5 @@
 #include "core/util/freed_memory.h"
 
-#include <cstdlib>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
