@@ -63,6 +63,7 @@ struct RenderArgs {
   std::string shadow_lod = "on";
   std::string shadow_occlusion = "on";
   std::string hierarchy_cache = "on";
+  std::string shadow_helpers = "auto";
   std::string shadow_planes = "auto";
   std::string jitter = "off";
   std::string interleave_edges = "auto";
@@ -186,6 +187,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
       {"batch", args.batch},
       {"shadow_lod", args.shadow_lod},
       {"shadow_occlusion", args.shadow_occlusion == "on"},
+      {"shadow_helpers", r.shadow_helpers}, // as drawn: auto resolved, 0 when none were made
       {"hierarchy_cache", {{"outcome", r.hierarchy_cache}, {"reason", r.hierarchy_cache_reason}}},
       {"wall_cache", {{"outcome", r.wall_cache}, {"reason", r.wall_cache_reason}}},
       {"shadow_planes", r.shadow_planes}, // as drawn: auto resolved
@@ -303,6 +305,8 @@ int run_render(const RenderArgs& args) {
   request.render.raster.shadow_lod.mode = parse_shadow_lod(args.shadow_lod);
   request.render.raster.shadow_lod.occlusion = args.shadow_occlusion == "on";
   if (args.hierarchy_cache == "off") request.render.raster.hierarchy_cache.clear();
+  if (args.shadow_helpers != "auto")
+    request.render.raster.shadow_helpers = std::stoi(args.shadow_helpers);
   request.render.raster.shadow_lod.planes = parse_shadow_planes(args.shadow_planes);
   request.render.raster.jitter = args.jitter == "on";
   set_edge_pixels(args.interleave_edges, request.render); // checked by CLI11
@@ -503,6 +507,12 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Raster, batched, shadow-lod on or cull: each face draws its nearest clusters "
                   "first and leaves out those they hide (the same image)")
       ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--shadow-helpers", args->shadow_helpers,
+                  "Raster, batched: threads that draw the shadow atlases in GL contexts of their "
+                  "own while the renderer's shades, once a batch draws 2000 triangles per VPL "
+                  "(the same image); auto: 2 on a CPU renderer (llvmpipe), else 0")
+      ->check(CLI::IsMember({"auto", "0", "1", "2", "3", "4", "5", "6", "7", "8"}))
       ->capture_default_str();
   cmd->add_option("--hierarchy-cache", args->hierarchy_cache,
                   "Raster: keep a scene's shadow hierarchy (batched, shadow-lod on or cull) and "

@@ -210,6 +210,7 @@ void run_raster(Stages& s, const RayScene& rays) {
   for (const auto& stage : setup.stages()) s.r.seconds.raster_setup.push_back(stage);
   s.r.passes = timings.passes;
   s.r.shadow_triangles = timings.shadow_triangles;
+  s.r.shadow_helpers = timings.shadow_helpers;
   s.r.single_passes = timings.single_passes;
   s.r.edge_pixels = timings.edge_pixels;
   s.r.unsure_pixels = timings.unsure_pixels;
@@ -494,6 +495,7 @@ void run_rounds(Stages& s, const RayScene& rays) {
     s.r.glossy_exact += rm.glossy_exact;
     s.r.passes += rm.passes;
     s.r.shadow_triangles += rm.shadow_triangles;
+    s.r.shadow_helpers = std::max(s.r.shadow_helpers, rm.shadow_helpers);
     s.r.single_passes += rm.single_passes;
     s.r.edge_pixels = std::max(s.r.edge_pixels, rm.edge_pixels);
     s.r.unsure_pixels = std::max(s.r.unsure_pixels, rm.unsure_pixels);

@@ -55,7 +55,8 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
                         : 0;
   if (!batched || !batched->matches(options.batch, resolution, ortho))
     batched = gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
-                                      options.shadow_lod, lists_unsure_pixels(options), &lod);
+                                      options.shadow_lod, lists_unsure_pixels(options), &lod,
+                                      context.get(), shadow_helpers());
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {
@@ -258,6 +259,8 @@ void check_raster_options(const RasterOptions& options) {
     throw Error("", "--interleave", "must be between 1 and 16");
   if (options.batch < 1 || options.batch > 256)
     throw Error("", "--batch", "must be between 1 and 256");
+  if (options.shadow_helpers < -1 || options.shadow_helpers > 8)
+    throw Error("", "--shadow-helpers", "must be between 0 and 8, or auto");
 }
 
 RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options) {
@@ -352,7 +355,10 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
     im.batched->set_traced_roughness(0.0f);
   }
   Image image = im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
-  if (timings && im.batched) timings->shadow_triangles = im.batched->shadow_triangles();
+  if (timings && im.batched) {
+    timings->shadow_triangles = im.batched->shadow_triangles();
+    timings->shadow_helpers = im.batched->helpers();
+  }
   return image;
 }
 

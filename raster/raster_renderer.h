@@ -56,6 +56,11 @@ struct RasterOptions {
   // and simplified below `texels` (0.5) shadow texels at the VPL's distance (docs/performance.md).
   // The per-VPL passes (batch 1) always draw everything.
   ShadowLodOptions shadow_lod{};
+  // Threads that draw the batched passes' shadow atlases in GL contexts of their own while this
+  // one shades (raster/shadow/shadow_helpers.h), once a batch draws at least 2000 triangles per
+  // VPL. -1 (auto): 2 on a CPU renderer (llvmpipe, where the thread that issues the draws does
+  // their vertex work), else 0; 0: this context draws them. The image is the same either way.
+  int shadow_helpers = -1;
   // Where the shadow hierarchy is kept between runs (core/mesh/cluster_cache.h): the user's cache
   // folder by default; empty: built every time, never written.
   std::filesystem::path hierarchy_cache = default_cache_folder();
@@ -109,6 +114,9 @@ struct RasterTimings {
   // render(): triangles the batched cube faces drew from the shadow hierarchy, all VPLs together
   // (0 when the faces draw the whole scene: shadow-lod off, --batch 1, animated scenes).
   std::size_t shadow_triangles = 0;
+  // render(): the helper threads that drew shadow atlases (RasterOptions::shadow_helpers; 0 when
+  // none were made).
+  int shadow_helpers = 0;
   // Interleaved with edge pixels (RasterOptions::edge_pixels): how many the image has (Shaded:
   // 0 when some VPL took the per-VPL passes, whose light they lack, so the filter kept them).
   std::size_t edge_pixels = 0;

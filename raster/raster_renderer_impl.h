@@ -104,6 +104,11 @@ struct RasterRenderer::Impl {
   }
 
   void prepare(const View& view);
+  // RasterOptions::shadow_helpers, auto resolved for this context.
+  int shadow_helpers() const {
+    if (options.shadow_helpers >= 0) return options.shadow_helpers;
+    return context->cpu_renderer() ? 2 : 0;
+  }
   // This image's interleaved sets for paths 0..paths-1 (one set without interleaving).
   void deal_paths(std::uint32_t paths) {
     interleave_sets = InterleaveSets(paths, interleaved ? interleaved->sets() : 1);

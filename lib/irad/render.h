@@ -143,6 +143,7 @@ struct RenderResult {
                           // the loading)
   bool cancelled = false; // stopped early by a cancellation
   std::size_t passes = 0; // VPL passes drawn (raster)
+  int shadow_helpers = 0; // threads that drew shadow atlases (raster; RasterOptions)
   // Triangles the batched shadow faces drew from the shadow hierarchy (raster; RasterTimings)
   std::size_t shadow_triangles = 0;
   // Of them, those drawn one VPL at a time (--batch 1, the reference; RasterTimings)

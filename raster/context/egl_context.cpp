@@ -10,6 +10,7 @@
 #include <EGL/eglext.h>
 #include <cstring>
 #include <fmt/format.h>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,25 +58,50 @@ std::vector<EGLDeviceEXT> devices(bool& any_hardware) {
   return hardware;
 }
 
+// An initialised display and the config its contexts are made with; terminated when the last
+// context on it is gone (a shared context holds it too: eglTerminate would end its parent's).
+struct EglDisplay {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  EGLConfig config = nullptr;
+  std::string platform;
+  EglDisplay() = default;
+  EglDisplay(const EglDisplay&) = delete;
+  EglDisplay& operator=(const EglDisplay&) = delete;
+  ~EglDisplay() {
+    if (display != EGL_NO_DISPLAY) eglTerminate(display);
+  }
+};
+
 class EglContext final : public Context {
 public:
-  explicit EglContext(int device_index) {
+  explicit EglContext(int device_index) : display_(std::make_shared<EglDisplay>()) {
     open_display(device_index);
-    create_context();
+    create_context(EGL_NO_CONTEXT);
+    if (!eglMakeCurrent(display_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+      fail("cannot make the context current");
+    if (!gladLoadGLContextUserPtr(&api_, egl_proc, nullptr) || !api_.VERSION_3_3)
+      fail("OpenGL 3.3 core functions are missing");
+  }
+  // A context sharing `share`'s objects and function table, current nowhere.
+  explicit EglContext(const EglContext& share) : display_(share.display_) {
+    create_context(share.context_);
+    api_ = share.api_;
   }
   ~EglContext() override {
-    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
-    eglTerminate(display_);
+    if (context_ == EGL_NO_CONTEXT) return;
+    if (eglGetCurrentContext() == context_)
+      eglMakeCurrent(display_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(display_->display, context_);
   }
-  std::string backend() const override { return "egl " + platform_; }
+  std::string backend() const override { return "egl " + display_->platform; }
   void make_current() override {
-    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-      throw Error("", "egl " + platform_, "cannot make the context current");
+    if (!eglMakeCurrent(display_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
+      throw Error("", "egl " + display_->platform, "cannot make the context current");
   }
   void release() noexcept override {
-    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglMakeCurrent(display_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   }
+  std::unique_ptr<Context> make_shared() override { return std::make_unique<EglContext>(*this); }
 
 private:
   void open_display(int device_index) {
@@ -84,36 +110,43 @@ private:
     if (!get_display) throw Error("", "egl", "eglGetPlatformDisplayEXT is missing");
     bool any_hardware = false;
     const std::vector<EGLDeviceEXT> list = devices(any_hardware);
+    EglDisplay& d = *display_;
     if (device_index >= 0) {
       if (static_cast<std::size_t>(device_index) >= list.size())
         throw Error("", "--gl-device",
                     fmt::format("no EGL device {} ({} found)", device_index, list.size()));
-      display_ = get_display(EGL_PLATFORM_DEVICE_EXT, list[device_index], nullptr);
-      platform_ = fmt::format("device {}", device_index);
+      d.display = get_display(EGL_PLATFORM_DEVICE_EXT, list[device_index], nullptr);
+      d.platform = fmt::format("device {}", device_index);
     } else if (any_hardware) {
-      display_ = get_display(EGL_PLATFORM_DEVICE_EXT, list.front(), nullptr);
-      platform_ = "device 0";
+      d.display = get_display(EGL_PLATFORM_DEVICE_EXT, list.front(), nullptr);
+      d.platform = "device 0";
     } else {
-      display_ = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-      platform_ = "surfaceless";
+      d.display = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+      d.platform = "surfaceless";
     }
     EGLint major = 0, minor = 0;
-    if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
-      throw Error(
-          "", "egl",
-          fmt::format("cannot open the {} display (EGL error 0x{:x})", platform_, eglGetError()));
+    if (d.display != EGL_NO_DISPLAY && eglInitialize(d.display, &major, &minor)) return;
+    const EGLint code = eglGetError();
+    d.display = EGL_NO_DISPLAY; // nothing to terminate
+    throw Error("", "egl",
+                fmt::format("cannot open the {} display (EGL error 0x{:x})", d.platform, code));
   }
 
-  void create_context() {
-    if (!has_extension(eglQueryString(display_, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
-      fail("the display lacks EGL_KHR_surfaceless_context");
+  // An OpenGL 3.3 core context sharing `share`'s objects (EGL_NO_CONTEXT: none); the first one
+  // on the display chooses its config.
+  void create_context(EGLContext share) {
+    EglDisplay& d = *display_;
+    if (!d.config) {
+      if (!has_extension(eglQueryString(d.display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
+        fail("the display lacks EGL_KHR_surfaceless_context");
+      const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0,
+                                       EGL_NONE};
+      EGLint configs = 0;
+      if (!eglChooseConfig(d.display, config_attribs, &d.config, 1, &configs) || configs < 1)
+        fail("no OpenGL config");
+    }
+    // The bound API is per thread: the context is made for OpenGL whichever thread asks.
     if (!eglBindAPI(EGL_OPENGL_API)) fail("eglBindAPI(EGL_OPENGL_API) failed");
-    const EGLint config_attribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0,
-                                     EGL_NONE};
-    EGLConfig config = nullptr;
-    EGLint configs = 0;
-    if (!eglChooseConfig(display_, config_attribs, &config, 1, &configs) || configs < 1)
-      fail("no OpenGL config");
     const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
                                       3,
                                       EGL_CONTEXT_MINOR_VERSION,
@@ -121,24 +154,19 @@ private:
                                       EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                       EGL_NONE};
-    context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attribs);
+    context_ = eglCreateContext(d.display, d.config, share, context_attribs);
     if (context_ == EGL_NO_CONTEXT) fail("cannot create an OpenGL 3.3 core context");
-    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_))
-      fail("cannot make the context current");
-    if (!gladLoadGLContextUserPtr(&api_, egl_proc, nullptr) || !api_.VERSION_3_3)
-      fail("OpenGL 3.3 core functions are missing");
   }
 
   [[noreturn]] void fail(const std::string& what) {
     const EGLint code = eglGetError();
-    if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_, context_);
-    eglTerminate(display_);
-    throw Error("", "egl " + platform_, fmt::format("{} (EGL error 0x{:x})", what, code));
+    if (context_ != EGL_NO_CONTEXT) eglDestroyContext(display_->display, context_);
+    context_ = EGL_NO_CONTEXT;
+    throw Error("", "egl " + display_->platform, fmt::format("{} (EGL error 0x{:x})", what, code));
   }
 
-  EGLDisplay display_ = EGL_NO_DISPLAY;
+  std::shared_ptr<EglDisplay> display_;
   EGLContext context_ = EGL_NO_CONTEXT;
-  std::string platform_;
 };
 
 } // namespace

@@ -13,6 +13,15 @@ std::string Context::renderer() const {
   return fmt::format("{} ({})", r ? r : "?", v ? v : "?");
 }
 
+bool Context::cpu_renderer() const {
+  const auto* r = reinterpret_cast<const char*>(api_.GetString(GL_RENDERER));
+  if (!r) return false;
+  const std::string name(r);
+  for (const char* cpu : {"llvmpipe", "softpipe", "SwiftShader"})
+    if (name.find(cpu) != std::string::npos) return true;
+  return false;
+}
+
 namespace {
 
 void GLAD_API_PTR on_debug_message(GLenum /*source*/, GLenum type, GLuint id, GLenum severity,

@@ -27,7 +27,14 @@ public:
   virtual void make_current() = 0;
   // Makes no context current on the calling thread.
   virtual void release() noexcept = 0;
+  // A new context of the same backend that shares this one's buffers, textures, programs and
+  // sync objects (not its framebuffers and vertex arrays), current nowhere: another thread makes
+  // it current (raster/context/gl_thread.h). Its function table is this one's: every backend's
+  // entry points dispatch to the calling thread's current context. Throws irad::Error.
+  virtual std::unique_ptr<Context> make_shared() = 0;
   std::string renderer() const; // GL_RENDERER and GL_VERSION
+  // Whether GL_RENDERER is Mesa's CPU rasterizer (llvmpipe, softpipe) or SwiftShader.
+  bool cpu_renderer() const;
 
   // Throws irad::Error naming `where` when glGetError reports an error.
   void check(const char* where) const;

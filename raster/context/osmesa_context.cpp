@@ -19,7 +19,8 @@ GLADapiproc osmesa_proc(void* /*user*/, const char* name) {
 // to framebuffer objects). Owns the context (RAII).
 class OsMesaContext final : public Context {
 public:
-  OsMesaContext() {
+  // share: the context whose objects this one shares (its function table is taken), or nullptr.
+  explicit OsMesaContext(const OsMesaContext* share = nullptr) {
     const std::array<int, 13> attribs = {OSMESA_FORMAT,
                                          OSMESA_RGBA,
                                          OSMESA_DEPTH_BITS,
@@ -33,9 +34,13 @@ public:
                                          OSMESA_CONTEXT_MINOR_VERSION,
                                          3,
                                          0};
-    context_ = OSMesaCreateContextAttribs(attribs.data(), nullptr);
+    context_ = OSMesaCreateContextAttribs(attribs.data(), share ? share->context_ : nullptr);
     if (!context_)
       throw Error("", "osmesa", "cannot create an OpenGL 3.3 core context with OSMesa");
+    if (share) { // not made current here: the calling thread keeps its own
+      api_ = share->api_;
+      return;
+    }
     if (!OSMesaMakeCurrent(context_, dummy_.data(), GL_UNSIGNED_BYTE, 1, 1)) {
       OSMesaDestroyContext(context_);
       throw Error("", "osmesa", "cannot make the OSMesa context current");
@@ -52,6 +57,7 @@ public:
       throw Error("", "osmesa", "cannot make the OSMesa context current");
   }
   void release() noexcept override { OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0); }
+  std::unique_ptr<Context> make_shared() override { return std::make_unique<OsMesaContext>(this); }
 
 private:
   OSMesaContext context_ = nullptr;

@@ -28,10 +28,12 @@ public:
     api_->BeginQuery(GL_TIME_ELAPSED, q);
   }
   void end() { api_->EndQuery(GL_TIME_ELAPSED); }
+  // Seconds measured elsewhere (another context's timer: raster/shadow/shadow_helpers.h).
+  void add(Kind kind, double seconds) { added_[kind] += seconds; }
 
   // Seconds per kind; waits for every query.
   std::array<double, Kinds> seconds() const {
-    std::array<double, Kinds> total{};
+    std::array<double, Kinds> total = added_;
     for (std::size_t i = 0; i < queries_.size(); ++i) {
       GLuint64 ns = 0;
       api_->GetQueryObjectui64v(queries_[i], GL_QUERY_RESULT, &ns);
@@ -44,6 +46,7 @@ private:
   const GladGLContext* api_;
   std::vector<GLuint> queries_;
   std::vector<Kind> kinds_;
+  std::array<double, Kinds> added_{};
 };
 
 } // namespace irad::gl

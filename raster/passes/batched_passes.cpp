@@ -4,23 +4,23 @@
 
 namespace irad::gl {
 
-std::unique_ptr<BatchedPasses> BatchedPasses::make(const GladGLContext& api, const Scene& scene,
-                                                   float clamp, int batch, int resolution,
-                                                   int ortho_resolution,
-                                                   const ShadowLodOptions& lod, bool unsure,
-                                                   LodProvider* shared) {
+std::unique_ptr<BatchedPasses>
+BatchedPasses::make(const GladGLContext& api, const Scene& scene, float clamp, int batch,
+                    int resolution, int ortho_resolution, const ShadowLodOptions& lod, bool unsure,
+                    LodProvider* shared, Context* context, int helpers) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
   if (b < 2 || DeferredShader::capacity(api, b, !scene.all_lambertian()) < b) return nullptr;
   const int tiles = ortho_resolution > 0 ? OrthoAtlas::capacity(api, ortho_resolution, b) : 0;
   return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution, tiles,
-                                         tiles > 0 ? ortho_resolution : 0, lod, unsure, shared);
+                                         tiles > 0 ? ortho_resolution : 0, lod, unsure, shared,
+                                         context, helpers);
 }
 
 BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp,
                              int requested, int batch, int resolution, int ortho_tiles,
                              int ortho_resolution, const ShadowLodOptions& lod, bool unsure,
-                             LodProvider* shared)
+                             LodProvider* shared, Context* context, int helpers)
     : requested_(requested),
       atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene), lod, shared),
       ortho_(ortho_tiles > 0
@@ -30,7 +30,8 @@ BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float
       shader_(
           api, scene, clamp,
           DeferredShader::capacity(api, std::max(batch, kShadingBatch), !scene.all_lambertian()),
-          lod.planes != ShadowPlanes::Off, unsure) {}
+          lod.planes != ShadowPlanes::Off, unsure),
+      context_(context), max_helpers_(context ? helpers : 0) {}
 
 void BatchedPasses::draw_ortho(const std::vector<std::size_t>& directional, const GpuScene& gpu) {
   // One map per direction: a directional light's VPLs (or a sun's) share theirs.
@@ -53,38 +54,52 @@ void BatchedPasses::draw_ortho(const std::vector<std::size_t>& directional, cons
   }
 }
 
-void BatchedPasses::flush(std::vector<Entry>& batch, const DeferredTarget& into,
-                          const GpuScene& gpu, PassTimer* timer) {
+void BatchedPasses::gather(const std::vector<Entry>& batch) {
   shaded_.clear();
   vpls_.clear();
-  std::vector<std::size_t> cubes, directional; // indices into shaded_
+  cubes_.clear();
+  directional_.clear();
   for (const Entry& e : batch) {
-    (e.vpl->kind == VplKind::Directional ? directional : cubes).push_back(shaded_.size());
+    (e.vpl->kind == VplKind::Directional ? directional_ : cubes_).push_back(shaded_.size());
     AtlasVpl a{e.vpl, glm::mat3(1.0f), 1.0f, glm::ivec4(0), e.set};
     a.lobe = lobe_of(*e.vpl);
     shaded_.push_back(a);
   }
-  for (std::size_t i : cubes) vpls_.push_back(shaded_[i].vpl);
+  for (std::size_t i : cubes_) vpls_.push_back(shaded_[i].vpl);
+}
+
+void BatchedPasses::flush(const std::vector<Entry>& batch, const DeferredTarget& into,
+                          const GpuScene& gpu, PassTimer* timer) {
+  gather(batch);
   if (timer) timer->begin(PassTimer::Shadow);
-  if (!vpls_.empty())
+  if (!vpls_.empty()) {
     atlas_.render(vpls_.data(), static_cast<int>(vpls_.size()), gpu, frames_, fars_, blocks_);
-  if (!vpls_.empty()) shadow_triangles_ += atlas_.cluster_triangles();
-  if (!directional.empty()) draw_ortho(directional, gpu);
+    shadow_triangles_ += atlas_.cluster_triangles();
+  }
   if (timer) timer->end();
-  for (std::size_t c = 0; c < cubes.size(); ++c) {
-    AtlasVpl& a = shaded_[cubes[c]];
-    a.frame = frames_[c];
-    a.far = fars_[c];
-    a.blocks = blocks_[c];
+  complete(atlas_.texture(), atlas_.gradient_texture(), frames_, fars_, blocks_, into, gpu, timer);
+}
+
+void BatchedPasses::complete(GLuint texture, GLuint gradient, const std::vector<glm::mat3>& frames,
+                             const std::vector<float>& fars, const std::vector<glm::ivec4>& blocks,
+                             const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer) {
+  if (!directional_.empty()) {
+    if (timer) timer->begin(PassTimer::Shadow);
+    draw_ortho(directional_, gpu);
+    if (timer) timer->end();
+  }
+  for (std::size_t c = 0; c < cubes_.size(); ++c) {
+    AtlasVpl& a = shaded_[cubes_[c]];
+    a.frame = frames[c];
+    a.far = fars[c];
+    a.blocks = blocks[c];
   }
   if (timer) timer->begin(PassTimer::Shading);
-  ShadowLookup lookup{atlas_.texture(), atlas_.resolution()};
-  if (ortho_)
-    lookup = {atlas_.texture(), atlas_.resolution(), ortho_->texture(), ortho_->resolution()};
-  lookup.gradient = atlas_.gradient_texture();
+  ShadowLookup lookup{texture, atlas_.resolution()};
+  if (ortho_) lookup = {texture, atlas_.resolution(), ortho_->texture(), ortho_->resolution()};
+  lookup.gradient = gradient;
   shade(shaded_, lookup, into);
   if (timer) timer->end();
-  batch.clear();
 }
 
 void BatchedPasses::shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shadow,
@@ -131,19 +146,18 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
   shader_.draw(0, n, listed, *into.gbuffer, shadow, false);
 }
 
-std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
-                                const std::function<int(const Vpl&)>& set_of,
-                                const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer,
-                                const std::function<bool(std::size_t)>& after) {
-  const std::vector<const Vpl*> order = ShadowAtlas::batch_order(vpls);
-  std::vector<Entry> batch;
+std::vector<BatchedPasses::Batch>
+BatchedPasses::form_batches(const std::vector<const Vpl*>& order,
+                            const std::function<int(const Vpl&)>& set_of,
+                            const DeferredTarget& into) const {
+  std::vector<Batch> batches;
+  Batch batch;
   int blocks = 0;
   std::vector<glm::vec3> directions; // the batch's distinct directions
-  std::size_t drawn = 0;
-  shadow_triangles_ = 0;
-  const auto send = [&] {
-    drawn += batch.size();
-    flush(batch, into, gpu, timer);
+  const auto send = [&](std::size_t end) {
+    batch.end = end;
+    batches.push_back(std::move(batch));
+    batch = {};
     blocks = 0;
     directions.clear();
   };
@@ -153,20 +167,91 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
       if (vpl.kind == VplKind::Directional) {
         const bool known =
             std::find(directions.begin(), directions.end(), vpl.normal) != directions.end();
-        if (!known && static_cast<int>(directions.size()) == ortho_->tiles()) send();
+        if (!known && static_cast<int>(directions.size()) == ortho_->tiles()) send(k);
         if (!known) directions.push_back(vpl.normal);
       } else {
         const int need = ShadowAtlas::blocks_for(vpl);
-        if (blocks + need > atlas_.blocks()) send(); // a whole cube where only a hemisphere fits
+        if (blocks + need > atlas_.blocks()) send(k); // a whole cube where only a hemisphere fits
         blocks += need;
       }
-      batch.push_back({&vpl, into.interleaved ? set_of(vpl) : 0});
+      batch.entries.push_back({&vpl, into.interleaved ? set_of(vpl) : 0});
     }
     const bool apart = k + 1 < order.size() && !ShadowAtlas::same_batch(vpl, *order[k + 1]);
-    if (static_cast<int>(batch.size()) == atlas_.batch() || k + 1 == order.size() || apart) {
-      send();
-      if (after && !after(k + 1)) break;
+    if (static_cast<int>(batch.entries.size()) == atlas_.batch() || k + 1 == order.size() || apart)
+      send(k + 1);
+  }
+  return batches;
+}
+
+void BatchedPasses::consider_helpers(int n, const GpuScene& gpu, std::size_t batches_left) {
+  if (helpers_asked_ || max_helpers_ < 1 || n < 1 || batches_left < kHelperBatches) return;
+  helpers_asked_ = true;
+  LodProvider* lod = atlas_.prepare_hierarchy(gpu);
+  const std::size_t per_vpl =
+      lod ? atlas_.cluster_triangles() / static_cast<std::size_t>(n) : gpu.scene().triangle_count();
+  if (per_vpl < kHelperTrianglesPerVpl) return;
+  ShadowHelpers::AtlasShape shape{atlas_.resolution(),
+                                  atlas_.batch(),
+                                  atlas_.blocks(),
+                                  gpu.scene().bounds,
+                                  MaterialFeatures::of(gpu.scene()),
+                                  atlas_.lod_options()};
+  if (!lod) shape.lod.mode = ShadowLodMode::Off; // never a hierarchy of their own
+  helpers_ = std::make_unique<ShadowHelpers>(*context_, max_helpers_, shape, lod);
+}
+
+std::size_t BatchedPasses::draw_with_helpers(const std::vector<Batch>& batches, std::size_t first,
+                                             const DeferredTarget& into, const GpuScene& gpu,
+                                             PassTimer* timer,
+                                             const std::function<bool(std::size_t)>& after) {
+  const int k = helpers_->count();
+  // Jobs in batch order; job i is batches[first + i]'s, on helper i mod k. Each helper holds at
+  // most kAhead started and not yet shaded (ShadowHelpers::kSlots).
+  std::vector<ShadowHelpers::Job> jobs(batches.size() - first);
+  std::size_t started = 0, drawn = 0;
+  bool go = true;
+  const auto start_more = [&](std::size_t shaded) {
+    const std::size_t ahead = ShadowHelpers::kAhead * static_cast<std::size_t>(k);
+    for (; started < jobs.size() && started < shaded + ahead; ++started) {
+      gather(batches[first + started].entries);
+      if (vpls_.empty()) continue; // directional only: drawn here when shaded
+      jobs[started].vpls = vpls_;
+      helpers_->start(static_cast<int>(started % static_cast<std::size_t>(k)), jobs[started], gpu,
+                      timer != nullptr);
     }
+  };
+  std::size_t i = 0;
+  for (; i < jobs.size() && go; ++i) {
+    start_more(i);
+    const Batch& b = batches[first + i];
+    gather(b.entries);
+    ShadowHelpers::Drawn none;
+    const ShadowHelpers::Drawn& d = vpls_.empty() ? none : helpers_->finish(jobs[i]);
+    shadow_triangles_ += d.triangles;
+    complete(d.texture, d.gradient, d.frames, d.fars, d.blocks, into, gpu, timer);
+    drawn += b.entries.size();
+    if (after) go = after(b.end);
+  }
+  // Stopped early: the jobs started after it still finish before their atlases may go.
+  for (; i < started; ++i)
+    if (jobs[i].done.valid()) helpers_->finish(jobs[i]);
+  if (timer) timer->add(PassTimer::Shadow, helpers_->take_timed_seconds());
+  return drawn;
+}
+
+std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
+                                const std::function<int(const Vpl&)>& set_of,
+                                const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer,
+                                const std::function<bool(std::size_t)>& after) {
+  const std::vector<Batch> batches = form_batches(ShadowAtlas::batch_order(vpls), set_of, into);
+  shadow_triangles_ = 0;
+  std::size_t drawn = 0;
+  for (std::size_t b = 0; b < batches.size(); ++b) {
+    if (helpers_) return drawn + draw_with_helpers(batches, b, into, gpu, timer, after);
+    flush(batches[b].entries, into, gpu, timer);
+    drawn += batches[b].entries.size();
+    if (after && !after(batches[b].end)) break;
+    consider_helpers(static_cast<int>(vpls_.size()), gpu, batches.size() - b - 1);
   }
   return drawn;
 }

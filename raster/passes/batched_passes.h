@@ -19,6 +19,7 @@
 #include "raster/scene/gpu_scene.h"
 #include "raster/shadow/ortho_atlas.h"
 #include "raster/shadow/shadow_atlas.h"
+#include "raster/shadow/shadow_helpers.h"
 
 #include <functional>
 #include <memory>
@@ -44,14 +45,17 @@ public:
   // it) with resolution^2 cube faces and, ortho_resolution > 0 (scenes with directional light),
   // as many orthographic maps of ortho_resolution^2; nullptr when batch < 2 or not even 2 VPLs
   // fit. unsure: the shading's alpha adds the unsure light (DeferredShader). shared: the shadow
-  // hierarchy (ShadowAtlas; nullptr: the atlas builds its own).
+  // hierarchy (ShadowAtlas; nullptr: the atlas builds its own). helpers > 0: up to that many
+  // threads draw the shadow atlases in contexts shared with `context` (the one current here)
+  // while it shades, once a batch draws enough triangles per VPL (kHelperTrianglesPerVpl).
   static std::unique_ptr<BatchedPasses> make(const GladGLContext& api, const Scene& scene,
                                              float clamp, int batch, int resolution,
                                              int ortho_resolution, const ShadowLodOptions& lod,
-                                             bool unsure, LodProvider* shared = nullptr);
+                                             bool unsure, LodProvider* shared = nullptr,
+                                             Context* context = nullptr, int helpers = 0);
   BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp, int requested, int batch,
                 int resolution, int ortho_tiles, int ortho_resolution, const ShadowLodOptions& lod,
-                bool unsure, LodProvider* shared);
+                bool unsure, LodProvider* shared, Context* context, int helpers);
 
   // Whether this object serves make(..., batch, resolution, ortho_resolution).
   bool matches(int batch, int resolution, int ortho_resolution) const {
@@ -63,6 +67,8 @@ public:
   std::size_t shadow_triangles() const { return shadow_triangles_; }
   // Whether directional VPLs can be drawn here (an orthographic atlas was made).
   bool directional() const { return ortho_ != nullptr; }
+  // The helper threads drawing the atlases (0 until a batch asked for them).
+  int helpers() const { return helpers_ ? helpers_->count() : 0; }
 
   // Draws the VPLs that carry light (directional ones only when directional()) batch by batch,
   // the mirrored ones last: shadow atlases, then the shading of each set (set_of(vpl)) from
@@ -89,12 +95,42 @@ private:
     const Vpl* vpl;
     int set;
   };
+  // A batch, and the number of VPLs of draw()'s order up to its end (for draw()'s `after`).
+  struct Batch {
+    std::vector<Entry> entries;
+    std::size_t end = 0;
+  };
+  // Helper threads are made once a batch drawn here picks at least this many triangles per VPL
+  // from the hierarchy (every face's share of the scene without one), and this many batches are
+  // still to come: below, the thread hand-over and the helpers' own set-up (a context, its
+  // shader variants, about 0.1 s on llvmpipe) cost more than the overlap gains
+  // (docs/performance.md measures the choice).
+  static constexpr std::size_t kHelperTrianglesPerVpl = 2000;
+  static constexpr std::size_t kHelperBatches = 8;
+  // draw()'s batches of `order` (ShadowAtlas::batch_order).
+  std::vector<Batch> form_batches(const std::vector<const Vpl*>& order,
+                                  const std::function<int(const Vpl&)>& set_of,
+                                  const DeferredTarget& into) const;
+  // Makes the helpers when the batch just drawn here (n VPLs) asks for them.
+  void consider_helpers(int n, const GpuScene& gpu, std::size_t batches_left);
+  // batches[first..] with the helpers drawing the atlases, round robin, each up to two ahead of
+  // the shading, which stays in batch order. Returns the number of VPLs drawn.
+  std::size_t draw_with_helpers(const std::vector<Batch>& batches, std::size_t first,
+                                const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer,
+                                const std::function<bool(std::size_t)>& after);
+  // shaded_, vpls_ and the indices cubes_ and directional_ for `batch`.
+  void gather(const std::vector<Entry>& batch);
+  // The gathered batch's directional maps and shading, its cubes in `texture` (and `gradient`)
+  // as frames, fars and blocks say.
+  void complete(GLuint texture, GLuint gradient, const std::vector<glm::mat3>& frames,
+                const std::vector<float>& fars, const std::vector<glm::ivec4>& blocks,
+                const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer);
   // The shading's batch at most: more VPLs per full-screen draw than the shadow atlas holds,
   // for the kept shadow maps (GL guarantees 16 KB uniform blocks: 113 VPLs of 144 bytes). 256
   // gives the cached walkthrough no measurable gain over 64 (Cornell box, 256x256, N = 64).
   static constexpr int kShadingBatch = 64;
   // Draws the batch: its atlas, then shade().
-  void flush(std::vector<Entry>& batch, const DeferredTarget& into, const GpuScene& gpu,
+  void flush(const std::vector<Entry>& batch, const DeferredTarget& into, const GpuScene& gpu,
              PassTimer* timer);
   // Shades vpls[first..first + n) (sorted by set, n <= the shader's batch).
   void shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& shadow,
@@ -117,7 +153,12 @@ private:
   std::vector<glm::mat4> lookups_;
   std::vector<glm::ivec2> origins_;
   std::vector<AtlasVpl> shaded_;
+  std::vector<std::size_t> cubes_, directional_; // indices into shaded_
   std::size_t shadow_triangles_ = 0;
+  Context* context_;
+  int max_helpers_;
+  bool helpers_asked_ = false; // consider_helpers decided
+  std::unique_ptr<ShadowHelpers> helpers_;
   const std::vector<VplLobe>* lobes_ = nullptr;
 };
 

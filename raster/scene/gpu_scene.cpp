@@ -171,15 +171,13 @@ VertexArray GpuScene::vertex_array_with(const Buffer& indices) const {
 }
 
 void GpuScene::draw_covered(GLsizei instances,
-                            const std::function<void(const Material&)>& bind_alpha) const {
+                            const std::function<void(const Material&)>& bind_alpha,
+                            const VertexArray* vao) const {
   if (!features_.alpha) {
-    if (instances == 1)
-      draw_all();
-    else
-      draw_all_instanced(instances);
+    draw_everything(instances, vao);
     return;
   }
-  draw_instanced(instances, bind_alpha);
+  draw_if([](const Material&) { return true; }, bind_alpha, instances, vao);
 }
 
 void GpuScene::draw_range(const Range& r, GLsizei instances) const {
@@ -192,16 +190,19 @@ void GpuScene::draw_range(const Range& r, GLsizei instances) const {
 
 void GpuScene::draw_instanced(GLsizei instances,
                               const std::function<void(const Material&)>& bind) const {
-  api_->BindVertexArray(vao_.get());
-  for (const Range& r : ranges_) {
-    bind(scene_->materials[r.material]);
-    draw_range(r, instances);
-  }
+  draw_if([](const Material&) { return true; }, bind, instances);
 }
 
 void GpuScene::draw_all_instanced(GLsizei instances) const {
-  api_->BindVertexArray(vao_.get());
-  api_->DrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, instances);
+  draw_everything(instances, nullptr);
+}
+
+void GpuScene::draw_everything(GLsizei instances, const VertexArray* vao) const {
+  bind_vertex_array(vao);
+  if (instances == 1)
+    api_->DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  else
+    api_->DrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, instances);
 }
 
 void GpuScene::draw(const std::function<void(const Material&)>& bind) const {
@@ -209,13 +210,13 @@ void GpuScene::draw(const std::function<void(const Material&)>& bind) const {
 }
 
 void GpuScene::draw_all() const {
-  api_->BindVertexArray(vao_.get());
-  api_->DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  draw_all_instanced(1);
 }
 
 void GpuScene::draw_if(const std::function<bool(const Material&)>& select,
-                       const std::function<void(const Material&)>& bind, GLsizei instances) const {
-  api_->BindVertexArray(vao_.get());
+                       const std::function<void(const Material&)>& bind, GLsizei instances,
+                       const VertexArray* vao) const {
+  bind_vertex_array(vao);
   for (const Range& r : ranges_) {
     const Material& m = scene_->materials[r.material];
     if (!select(m)) continue;

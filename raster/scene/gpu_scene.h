@@ -36,11 +36,18 @@ public:
   // (instanced) when the scene has no Mask or Blend material, else draw_instanced with
   // `bind_alpha` per material (every camera pass then draws range by range, so gl_PrimitiveID,
   // which the Blend hash reads, is the same in all of them).
-  void draw_covered(GLsizei instances,
-                    const std::function<void(const Material&)>& bind_alpha) const;
-  // Draws only the ranges whose material satisfies `select` (`instances` times each).
+  // vao: vertex_array() of the current context when that is not the one this GpuScene was made
+  // in (nullptr: its own).
+  void draw_covered(GLsizei instances, const std::function<void(const Material&)>& bind_alpha,
+                    const VertexArray* vao = nullptr) const;
+  // Draws only the ranges whose material satisfies `select` (`instances` times each); vao as
+  // for draw_covered.
   void draw_if(const std::function<bool(const Material&)>& select,
-               const std::function<void(const Material&)>& bind, GLsizei instances = 1) const;
+               const std::function<void(const Material&)>& bind, GLsizei instances = 1,
+               const VertexArray* vao = nullptr) const;
+  // A vertex array over this scene's buffers made in the current context (vertex arrays are not
+  // shared between contexts: raster/context/gl_thread.h), for draw_covered and draw_if there.
+  VertexArray vertex_array() const { return vertex_array_with(indices_); }
   // A vertex array over this scene's vertex buffers, with the attributes of its own, and
   // `indices` as its element buffer: other index lists over the same vertices (the shadow
   // passes' clusters, raster/shadow/shadow_lod.h). Valid while this GpuScene lives.
@@ -64,6 +71,11 @@ private:
     GLsizei count;     // indices
   };
   void draw_range(const Range& r, GLsizei instances = 1) const;
+  // Every index, `instances` times, through `vao` (nullptr: the own one).
+  void draw_everything(GLsizei instances, const VertexArray* vao) const;
+  void bind_vertex_array(const VertexArray* vao) const {
+    api_->BindVertexArray(vao ? vao->get() : vao_.get());
+  }
   // The vertex attributes on the bound vertex array.
   void attach_attributes() const;
 

@@ -75,7 +75,7 @@ int ShadowAtlas::capacity(const GladGLContext& api, int resolution, int wanted) 
 
 ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks,
                          const Bounds& bounds, const MaterialFeatures& features,
-                         const ShadowLodOptions& lod, LodProvider* shared)
+                         const ShadowLodOptions& lod, LodProvider* shared, int slots)
     : api_(&api), resolution_(resolution), batch_(batch),
       block_(ShadowAtlas::block_size(resolution)), grid_(block_grid(blocks, block_)),
       bounds_(bounds),
@@ -95,7 +95,11 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
     throw Error("", "shadow atlas",
                 "a batch of " + std::to_string(batch) + " VPLs with " + std::to_string(resolution) +
                     "^2 faces does not fit this OpenGL");
-  for (int a = 0; a < 2; ++a) {
+  const auto n = static_cast<std::size_t>(std::max(slots, 2));
+  atlas_.resize(n);
+  gradient_.resize(n);
+  fbo_.resize(n);
+  for (std::size_t a = 0; a < n; ++a) {
     atlas_[a] = make_depth_texture(api, size.x, size.y);
     fbo_[a] = make_depth_framebuffer(api, atlas_[a].get(), "shadow atlas framebuffer");
     if (lod.planes == ShadowPlanes::Off) continue; // depth only, as make_depth_framebuffer left it
@@ -127,6 +131,7 @@ bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
       shared_lod_ = own_lod_.get();
     }
     lod_ = shared_lod_->get();
+    if (lod_) lod_vao_ = lod_->vertex_array(); // in this atlas's context
   }
   return lod_ && !lod_->clusters().nodes.empty();
 }
@@ -135,7 +140,8 @@ void ShadowAtlas::draw_clusters(int n, const GpuScene& scene) {
   const GladGLContext& api = *api_;
   if (scene.features().alpha) { // not in the hierarchy: every face, through gl_InstanceID
     scene.draw_if([](const Material& m) { return m.alpha_mode != AlphaMode::Opaque; },
-                  [&](const Material& m) { material_.bind_alpha(api, scene, m); }, 6 * n);
+                  [&](const Material& m) { material_.bind_alpha(api, scene, m); }, 6 * n,
+                  &scene_vao_);
     material_.bind_alpha(api, scene, Material{}); // opaque: nothing absent
   }
   pick_faces();
@@ -160,7 +166,7 @@ void ShadowAtlas::pick_faces() {
     picks_[i].clear();
     if (f.rect.x > f.rect.z) continue; // never looked up
     lod_->pick(face_planes(f.view_projection, f.rect, resolution_), f.origin, per_distance, floor,
-               picks_[i]);
+               plans_, picks_[i]);
     for (const ClusterPick& p : picks_[i]) totals_[i] += p.count;
   }
 }
@@ -236,7 +242,7 @@ void ShadowAtlas::draw_faces(std::vector<std::vector<ClusterPick>>& per_face) {
     for (const ClusterPick& p : picks) add_pick(p, selection_);
     cluster_triangles_ += selection_.triangles;
     api_->Uniform1i(u_face_, faces_[i].instance);
-    lod_->draw(selection_);
+    lod_->draw(selection_, lod_vao_);
   }
 }
 
@@ -244,6 +250,8 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
                          std::vector<glm::mat3>& frames, std::vector<float>& fars,
                          std::vector<glm::ivec4>& blocks) {
   const GladGLContext& api = *api_;
+  if (!scene_vao_) scene_vao_ = scene.vertex_array(); // in this atlas's context
+  cluster_triangles_ = 0;
   frames.resize(static_cast<std::size_t>(n));
   fars.resize(static_cast<std::size_t>(n));
   blocks.resize(static_cast<std::size_t>(n));
@@ -294,7 +302,7 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
                  block_data_.data(), GL_STREAM_DRAW);
   api.BindBufferBase(GL_UNIFORM_BUFFER, kShadowBlockBinding, block_buffer_.get());
 
-  current_ = 1 - current_;
+  current_ = (current_ + 1) % atlas_.size();
   api.BindFramebuffer(GL_FRAMEBUFFER, fbo_[current_].get());
   const glm::ivec2 size = grid_ * block_;
   api.Viewport(0, 0, size.x, size.y);
@@ -315,8 +323,9 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
   if (copies == 1 && prepare_lod(scene))
     draw_clusters(n, scene);
   else
-    scene.draw_covered(6 * copies * n,
-                       [&](const Material& m) { material_.bind_alpha(api, scene, m); });
+    scene.draw_covered(
+        6 * copies * n, [&](const Material& m) { material_.bind_alpha(api, scene, m); },
+        &scene_vao_);
   for (int k = 0; k < clip_planes; ++k) api.Disable(static_cast<GLenum>(GL_CLIP_DISTANCE0 + k));
 }
 

@@ -49,9 +49,10 @@ public:
   // lod: how the faces draw the opaque triangles (Off: all of them into every face). The
   // hierarchy comes from `shared` on the first render() (never for an animated scene); without
   // one the atlas builds its own then, of the scene it renders.
+  // slots: the atlases drawn into in turn (below), at least 2.
   ShadowAtlas(const GladGLContext& api, int resolution, int batch, int blocks, const Bounds& bounds,
               const MaterialFeatures& features, const ShadowLodOptions& lod = {ShadowLodMode::Off},
-              LodProvider* shared = nullptr);
+              LodProvider* shared = nullptr, int slots = 2);
 
   // The largest batch (<= wanted) an atlas with one block per VPL can hold on this GL: 0 or 1
   // means batching is not possible.
@@ -88,6 +89,7 @@ public:
   GLuint gradient_texture() const { return gradient_[current_].get(); }
   int resolution() const { return resolution_; }
   int batch() const { return batch_; }
+  const ShadowLodOptions& lod_options() const { return lod_options_; }
   int blocks() const { return grid_.x * grid_.y; }
   // Angular size of one texel at the centre of a face (radians), as ShadowCube::texel_angle.
   float texel_angle() const { return 2.0f / static_cast<float>(resolution_); }
@@ -95,6 +97,11 @@ public:
   // hierarchy (nullptr before a render() or without one).
   std::size_t cluster_triangles() const { return cluster_triangles_; }
   const ShadowLod* lod() const { return lod_; }
+  // Gets the hierarchy render() draws from (built now, in the current context, if not yet) and
+  // returns its provider; nullptr when the faces draw every triangle.
+  LodProvider* prepare_hierarchy(const GpuScene& scene) {
+    return prepare_lod(scene) ? shared_lod_ : nullptr;
+  }
 
 private:
   // One face of the batch: instance 6 s + f, its view-projection, rectangle and VPL position.
@@ -143,13 +150,13 @@ private:
   Bounds bounds_;
   ShaderProgram program_;
   MaterialUniforms material_;
-  // Two atlases, drawn into in turn: the next batch's shadow maps need not wait for the shading
-  // passes that read the last batch's (llvmpipe waits before it renders into a texture that a
-  // queued draw samples).
-  Texture atlas_[2];
-  Texture gradient_[2]; // RG16F
-  Framebuffer fbo_[2];
-  int current_ = 0;
+  // Atlases drawn into in turn: the next batch's shadow maps need not wait for the shading passes
+  // that read the last batch's (llvmpipe waits before it renders into a texture that a queued
+  // draw samples; a helper's context waits for a fence: raster/shadow/shadow_helpers.h).
+  std::vector<Texture> atlas_;
+  std::vector<Texture> gradient_; // RG16F
+  std::vector<Framebuffer> fbo_;
+  std::size_t current_ = 0;
   Buffer block_buffer_;           // the ShadowBatch uniform block
   std::vector<float> block_data_; // its contents, filled per batch
   ShadowLodOptions lod_options_;
@@ -158,7 +165,11 @@ private:
   LodProvider* shared_lod_;
   std::unique_ptr<LodProvider> own_lod_; // without a shared one
   const ShadowLod* lod_ = nullptr;       // from either, on the first render()
-  std::vector<Face> faces_;              // of the last render()
+  // The scene's and the hierarchy's vertex arrays made in this atlas's context (which may be a
+  // thread's of its own: raster/shadow/shadow_helpers.h).
+  VertexArray scene_vao_, lod_vao_;
+  ShadowLod::Plans plans_;
+  std::vector<Face> faces_; // of the last render()
   ClusterSelection selection_;
   std::vector<std::vector<ClusterPick>> picks_, near_; // per face of faces_
   std::vector<std::size_t> totals_, taken_;            // per face: indices picked, taken

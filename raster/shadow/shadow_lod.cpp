@@ -48,7 +48,8 @@ std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm
 
 ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters,
                      bool simplify)
-    : api_(&api), clusters_(std::move(clusters)), simplify_(simplify), indices_(make_buffer(api)) {
+    : api_(&api), gpu_(&gpu), clusters_(std::move(clusters)), simplify_(simplify),
+      indices_(make_buffer(api)) {
   api.BindBuffer(GL_ARRAY_BUFFER, indices_.get()); // not the bound VAO's element buffer
   api.BufferData(GL_ARRAY_BUFFER,
                  static_cast<GLsizeiptr>(clusters_.indices.size() * sizeof(std::uint32_t)),
@@ -56,14 +57,13 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
   api.BindBuffer(GL_ARRAY_BUFFER, 0);
   index_count_ = clusters_.indices.size();
   std::vector<std::uint32_t>().swap(clusters_.indices);
-  vao_ = gpu.vertex_array_with(indices_);
 }
 
 // Per node visited: what it draws (a mesh range, its children, or nothing) and how many
 // triangles that is; the cheapest of its acceptable meshes and its children's plans.
 std::uint32_t ShadowLod::plan(std::int32_t id, const Query& q) const {
   const ClusterNode& node = clusters_.nodes[static_cast<std::size_t>(id)];
-  Choice& c = choices_[static_cast<std::size_t>(id)];
+  Choice& c = (*q.plans)[static_cast<std::size_t>(id)];
   bool inside = true, outside = false;
   for (const glm::vec4& p : *q.planes) {
     const glm::vec2 r = plane_range(p, node.bounds);
@@ -98,7 +98,7 @@ std::uint32_t ShadowLod::plan(std::int32_t id, const Query& q) const {
     // A leaf, or a mesh too small for its children to do much better.
     if (node.leaf() || c.count <= 3 * kSmallEnough) return c.count;
   }
-  // (c stays valid: choices_ is not resized while planning.)
+  // (c stays valid: the plans are not resized while planning.)
   const std::uint32_t below = plan(node.children[0], q) + plan(node.children[1], q);
   if (below < c.count) {
     c.children = true;
@@ -107,32 +107,33 @@ std::uint32_t ShadowLod::plan(std::int32_t id, const Query& q) const {
   return c.count;
 }
 
-void ShadowLod::emit_plan(std::int32_t id, std::vector<ClusterPick>& out) const {
-  const Choice& c = choices_[static_cast<std::size_t>(id)];
+void ShadowLod::emit_plan(std::int32_t id, const Plans& plans,
+                          std::vector<ClusterPick>& out) const {
+  const Choice& c = plans[static_cast<std::size_t>(id)];
   if (c.count == 0) return;
   const ClusterNode& node = clusters_.nodes[static_cast<std::size_t>(id)];
   if (!c.children) {
     out.push_back({c.first, c.count, id});
     return;
   }
-  emit_plan(node.children[0], out);
-  emit_plan(node.children[1], out);
+  emit_plan(node.children[0], plans, out);
+  emit_plan(node.children[1], plans, out);
 }
 
 void ShadowLod::pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
-                     float error_per_distance, float error_floor,
+                     float error_per_distance, float error_floor, Plans& plans,
                      std::vector<ClusterPick>& out) const {
-  choices_.resize(clusters_.nodes.size());
-  const Query q{&planes, origin, error_per_distance, error_floor};
+  plans.resize(clusters_.nodes.size());
+  const Query q{&planes, origin, error_per_distance, error_floor, &plans};
   for (std::int32_t root : clusters_.roots) {
     plan(root, q);
-    emit_plan(root, out);
+    emit_plan(root, plans, out);
   }
 }
 
-void ShadowLod::draw(const ClusterSelection& selection) const {
+void ShadowLod::draw(const ClusterSelection& selection, const VertexArray& vao) const {
   if (selection.counts.empty()) return;
-  api_->BindVertexArray(vao_.get());
+  api_->BindVertexArray(vao.get());
   api_->MultiDrawElements(GL_TRIANGLES, selection.counts.data(), GL_UNSIGNED_INT,
                           selection.offsets.data(), static_cast<GLsizei>(selection.counts.size()));
 }

@@ -55,14 +55,26 @@ public:
   // inner nodes' meshes may be drawn (false: culling only, the original triangles).
   ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters, bool simplify);
 
+  // A node's plan for one face (pick()): a range of indices, or its children's plans.
+  struct Choice {
+    std::uint32_t first = 0, count = 0; // count: the triangles of the plan (0: nothing)
+    bool children = false;
+  };
+  // pick()'s plans, per node: the caller's, so that threads pick at once.
+  using Plans = std::vector<Choice>;
+
   // Appends to `out`, node by node in depth-first order, the cut of the face with pyramid
   // `planes` seen from `origin` (for occlusion culling: raster/shadow/shadow_occlusion.h).
   // error_floor: an error no shadow test can tell (far below the depth bias), so that coplanar
   // simplification, exact up to rounding, serves even a VPL inside a node's bounds.
   void pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
-            float error_per_distance, float error_floor, std::vector<ClusterPick>& out) const;
-  // Draws `selection` (the bound program's state is the caller's).
-  void draw(const ClusterSelection& selection) const;
+            float error_per_distance, float error_floor, Plans& plans,
+            std::vector<ClusterPick>& out) const;
+  // A vertex array of the current context over the scene's vertices and this hierarchy's
+  // indices (vertex arrays are not shared between contexts): what draw() draws through.
+  VertexArray vertex_array() const { return gpu_->vertex_array_with(indices_); }
+  // Draws `selection` through `vao` (the bound program's state is the caller's).
+  void draw(const ClusterSelection& selection, const VertexArray& vao) const;
 
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
   // drawn by the caller. Its indices are empty (on the GPU only).
@@ -70,28 +82,23 @@ public:
   std::size_t gpu_bytes() const { return index_count_ * sizeof(std::uint32_t); }
 
 private:
-  // A node's plan for one face (pick()): a range of indices, or its children's plans.
-  struct Choice {
-    std::uint32_t first = 0, count = 0; // count: the triangles of the plan (0: nothing)
-    bool children = false;
-  };
   struct Query {
     const std::array<glm::vec4, 4>* planes;
     glm::vec3 origin;
     float error_per_distance, error_floor;
+    Plans* plans;
   };
   // A node's acceptable mesh of at most this many triangles is taken without a look below.
   static constexpr std::uint32_t kSmallEnough = 64;
   std::uint32_t plan(std::int32_t id, const Query& q) const;
-  void emit_plan(std::int32_t id, std::vector<ClusterPick>& out) const;
+  void emit_plan(std::int32_t id, const Plans& plans, std::vector<ClusterPick>& out) const;
 
   const GladGLContext* api_;
+  const GpuScene* gpu_;
   MeshClusters clusters_;
   std::size_t index_count_ = 0; // of the uploaded indices
   bool simplify_;
   Buffer indices_;
-  VertexArray vao_;
-  mutable std::vector<Choice> choices_; // pick()'s plans, per node
 };
 
 } // namespace irad::gl
