@@ -9,7 +9,7 @@ namespace irad::gl {
 
 namespace {
 
-constexpr GLint position_unit = 3; // the G-buffer's position, normal and albedo from here
+constexpr GLint mask_gbuffer_unit = 3; // the G-buffer's position, normal and albedo from here
 
 // Atlas pixel a lies in tile (a / tile) of set s = (s.x, s.y) and stands for image pixel
 // k (a - s tile) + s (Interleaved::tile_projection); its depth tells that pixel's receiver.
@@ -47,8 +47,8 @@ ReceiverMask::ReceiverMask(const GladGLContext& api, GLuint atlas, int k, glm::i
   api.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.get());
   check_framebuffer(api, "receiver mask framebuffer");
   program_.use();
-  api.Uniform1i(program_.uniform("u_position"), position_unit);
-  api.Uniform1i(program_.uniform("u_albedo"), position_unit + 2);
+  api.Uniform1i(program_.uniform("u_position"), mask_gbuffer_unit);
+  api.Uniform1i(program_.uniform("u_albedo"), mask_gbuffer_unit + 2);
   api.Uniform1i(program_.uniform("u_k"), k);
   api.Uniform2i(program_.uniform("u_tile"), tile.x, tile.y);
   api.Uniform2i(program_.uniform("u_size"), gbuffer.width(), gbuffer.height());
@@ -66,7 +66,7 @@ void ReceiverMask::mark() {
   api.DepthFunc(GL_ALWAYS);
   api.Disable(GL_BLEND);
   program_.use();
-  gbuffer_->bind_textures(position_unit);
+  gbuffer_->bind_textures(mask_gbuffer_unit);
   api.BindVertexArray(empty_vao_.get());
   api.DrawArrays(GL_TRIANGLES, 0, 3);
   api.DepthFunc(GL_LESS);
