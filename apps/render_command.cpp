@@ -142,6 +142,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
             {"seconds", seconds}};
   }
   seconds["walk"] = r.seconds.walk;
+  seconds["statistics"] = r.seconds.statistics; // not in total
   if (r.clusters > 0) seconds["cluster"] = r.seconds.cluster;
   if (args.bias_compensation || args.compensation != "off")
     seconds["compensation"] = r.seconds.compensation;

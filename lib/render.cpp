@@ -368,9 +368,12 @@ void run_vpl_estimator(Stages& s, const RayScene& rays) {
   else if (s.options.screen_compensation && !s.cancelled())
     compensate_on_screen(s, rays);
   // Not with mirrors (the estimate ignores mirrored VPLs): the stats show -1.
-  if (s.options.clamped_fraction && !s.scene.has_specular() && !s.cancelled())
+  if (s.options.clamped_fraction && !s.scene.has_specular() && !s.cancelled()) {
+    const auto t1 = Clock::now();
     s.r.clamped_fraction = clamped_fraction(s.scene, rays, s.r.view, s.r.vpls,
                                             s.options.raster.clamp, 64, 8, s.options.pt.threads);
+    s.r.seconds.statistics += since(t1);
+  }
 }
 
 // What a path range cannot split exactly (docs/cluster.md): the clamp's residual is gathered
@@ -568,7 +571,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
   } else {
     run_vpl_estimator(s, rays);
   }
-  r.seconds.total = since(t0);
+  r.seconds.total = since(t0) - r.seconds.statistics;
   if (s.cancelled()) return r;
   if (const std::size_t bad = r.image.non_finite_count(); bad > 0)
     throw Error(scene.source, "image",

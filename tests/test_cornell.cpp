@@ -103,8 +103,12 @@ TEST(Cornell, CommandLineWritesImagesAndStats) {
   EXPECT_GT(fs::file_size(dir / "c.png"), 100u);
   for (const char* key : {"vpls", "paths", "rho_bar", "l_max", "size", "seconds"})
     EXPECT_TRUE(stats.contains(key)) << key;
-  for (const char* key : {"load", "walk", "raster", "total"})
+  for (const char* key : {"load", "walk", "raster", "total", "statistics"})
     EXPECT_TRUE(stats["seconds"].contains(key)) << key;
+  // The estimates --stats asks for (clamped_fraction) ran after the image, apart from its time.
+  EXPECT_GE(stats["clamped_fraction"].get<double>(), 0.0);
+  EXPECT_GT(stats["seconds"]["statistics"].get<double>(), 0.0);
+  EXPECT_GE(stats["seconds"]["total"].get<double>(), stats["seconds"]["raster"].get<double>());
   EXPECT_EQ(stats["paths"], 16);
   EXPECT_EQ(stats["size"][0], 48);
   // The hierarchy was built beside the load and the walk (lib/render.cpp early_hierarchy); the

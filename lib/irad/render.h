@@ -113,6 +113,9 @@ struct StageSeconds {
   // glossy: the narrow lobes' specular rays (walk/glossy_pass.h)
   double load = 0, walk = 0, cluster = 0, raster = 0, readback = 0, trace = 0, compensation = 0,
          glossy = 0, total = 0;
+  // The estimates asked for after the image (RenderOptions::clamped_fraction, which `irad render
+  // --stats` asks for): left out of `total`, which is the render's own time.
+  double statistics = 0;
   // Of `raster`, the one-time stages in the order they ran: "planes scan" (the thinnest wall,
   // walk/thin_walls.h) and RasterRenderer::setup_times (the GL context, the upload, the shadow
   // hierarchy's build stages and its upload).
