@@ -57,7 +57,7 @@ struct RasterOptions {
   // The per-VPL passes (batch 1) always draw everything.
   ShadowLodOptions shadow_lod{};
   // Threads that draw the batched passes' shadow atlases in GL contexts of their own while this
-  // one shades (raster/shadow/shadow_helpers.h), once a batch draws at least 2000 triangles per
+  // one shades (raster/shadow/shadow_helpers.h), once a batch draws at least 8000 triangles per
   // VPL. -1 (auto): 2 on a CPU renderer (llvmpipe, where the thread that issues the draws does
   // their vertex work), else 0; 0: this context draws them. The image is the same either way.
   int shadow_helpers = -1;

@@ -47,7 +47,7 @@ public:
   // fit. unsure: the shading's alpha adds the unsure light (DeferredShader). shared: the shadow
   // hierarchy (ShadowAtlas; nullptr: the atlas builds its own). helpers > 0: up to that many
   // threads draw the shadow atlases in contexts shared with `context` (the one current here)
-  // while it shades, once a batch draws enough triangles per VPL (kHelperTrianglesPerVpl).
+  // while it shades, once a batch draws enough triangles per VPL (kHelperTrianglesPerVpl, 8000).
   static std::unique_ptr<BatchedPasses> make(const GladGLContext& api, const Scene& scene,
                                              float clamp, int batch, int resolution,
                                              int ortho_resolution, const ShadowLodOptions& lod,
@@ -101,11 +101,14 @@ private:
     std::size_t end = 0;
   };
   // Helper threads are made once a batch drawn here picks at least this many triangles per VPL
-  // from the hierarchy (every face's share of the scene without one), and this many batches are
-  // still to come: below, the thread hand-over and the helpers' own set-up (a context, its
-  // shader variants, about 0.1 s on llvmpipe) cost more than the overlap gains
-  // (docs/performance.md measures the choice).
-  static constexpr std::size_t kHelperTrianglesPerVpl = 2000;
+  // from the hierarchy (every face's share of the scene without one), and kHelperBatches
+  // batches are still to come. From ShadowAtlas's kOcclusionTrianglesPerVpl on, the faces draw
+  // in rounds with a readback between them, each a wait of the issuing thread that another
+  // thread can fill; below it one context already bins a batch while the last one is
+  // rasterized. Measured (llvmpipe, 256x256, raster stage, runs in turn): the 2M terrain (13.3k
+  // per VPL) 2.89-3.28 s with two helpers against 3.38-3.93 s without, zdm2 (16.0k) 3.97-4.95
+  // against 5.14-5.38 s, godot (5.0k) 2.18-2.31 against 2.07-2.19 s (docs/performance.md).
+  static constexpr std::size_t kHelperTrianglesPerVpl = ShadowAtlas::kOcclusionTrianglesPerVpl;
   static constexpr std::size_t kHelperBatches = 8;
   // draw()'s batches of `order` (ShadowAtlas::batch_order).
   std::vector<Batch> form_batches(const std::vector<const Vpl*>& order,

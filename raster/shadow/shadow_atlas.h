@@ -103,6 +103,13 @@ public:
     return prepare_lod(scene) ? shared_lod_ : nullptr;
   }
 
+  // Occlusion culling's rounds (below) serve only a batch whose faces picked at least this many
+  // triangles per VPL: each readback waits for the GL (about 0.2 ms per VPL on llvmpipe, the
+  // cost of some 2000 triangles), and culling takes 30 % on zdm2 (23k per VPL; a subdivided
+  // Cornell box of 8k triangles, a few hundred per VPL, draws its shadows in 0.24 ms per VPL
+  // without the rounds and 0.40-0.48 with them).
+  static constexpr std::size_t kOcclusionTrianglesPerVpl = 8000;
+
 private:
   // One face of the batch: instance 6 s + f, its view-projection, rectangle and VPL position.
   struct Face {
@@ -117,12 +124,7 @@ private:
   // this share of its triangles (the last: the rest), each after the depths of the rounds before
   // were read back (docs/performance.md measures the choice).
   static constexpr std::array<double, 3> kRounds = {0.25, 0.5, 1.0};
-  // ... but only for a batch whose faces picked at least this many triangles per VPL: each
-  // readback waits for the GL (about 0.2 ms per VPL on llvmpipe, the cost of some 2000
-  // triangles), and culling takes 30 % on zdm2 (23k per VPL; a subdivided Cornell box of 8k
-  // triangles, a few hundred per VPL, draws its shadows in 0.24 ms per VPL without the rounds
-  // and 0.40-0.48 with them).
-  static constexpr std::size_t kOcclusionTrianglesPerVpl = 8000;
+  // ... but only for a batch whose faces picked at least kOcclusionTrianglesPerVpl.
   // The hierarchy of `scene`, made on first use; false when the faces draw everything.
   bool prepare_lod(const GpuScene& scene);
   // The opaque triangles face by face from the hierarchy, the alpha-tested ones instanced; with
