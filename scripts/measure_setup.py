@@ -5,6 +5,8 @@ raster again (warm: the shadow hierarchy and the thinnest-wall scan read back), 
 the same VPLs, each in a fresh process with its --stats. Prints a Markdown table per file: every
 stage's seconds and share of the whole process (wall clock), the peak resident memory (the
 process's own, from wait4), and the passes (what the raster stage spends after its set-up). The
+estimates that --stats alone asks for (seconds.statistics) are left out of the whole process,
+as a render without --stats does not compute them. The
 shadow hierarchy's build runs on a thread of its own from the start of the render: its stages,
 marked "(beside)", overlap the others and are not in their sum; "hierarchy wait" is the raster's
 wait for what was left of it. The cache lives in a temporary XDG_CACHE_HOME, never the user's.
@@ -60,8 +62,14 @@ def rows(stats, wall):
     for key in ("compensation", "glossy"):
         if key in s:
             out.append((key, s[key]))
-    out.append(("rest (process start, writing, exit)", wall - s["total"]))
+    out.append(("rest (process start, writing, exit)",
+                wall - s["total"] - s.get("statistics", 0.0)))
     return out
+
+
+def render_wall(stats, wall):
+    """The process's wall clock less the --stats estimates (seconds.statistics)."""
+    return wall - stats["seconds"].get("statistics", 0.0)
 
 
 def table(scene, runs):
@@ -81,12 +89,13 @@ def table(scene, runs):
     by_run = [dict(rows(stats, wall)) for _, stats, wall, _ in runs]
     for name in names:
         cells = []
-        for (_, _, wall, _), r in zip(runs, by_run):
+        for (_, stats, wall, _), r in zip(runs, by_run):
             t = r.get(name)
-            cells.append("|" if t is None else f"{t:.2f} | {100 * t / wall:.0f} %")
+            cells.append("|" if t is None else
+                         f"{t:.2f} | {100 * t / render_wall(stats, wall):.0f} %")
         lines.append(f"| {name} | " + " | ".join(cells) + " |")
-    lines.append("| **whole process** | " +
-                 " | ".join(f"**{wall:.2f}** | 100 %" for _, _, wall, _ in runs) + " |")
+    lines.append("| **whole process** | " + " | ".join(
+        f"**{render_wall(stats, wall):.2f}** | 100 %" for _, stats, wall, _ in runs) + " |")
     lines.append("| peak resident memory | " +
                  " | ".join(f"{peak / 1024:.0f} MiB |" for *_, peak in runs) + " |")
     def outcomes(key):
@@ -112,7 +121,7 @@ def main():
                                      ("rt-vpl", "rt-vpl")):
                 stats, wall, peak = run(args.irad, scene, args.size, estimator, tmp / "cache", tmp)
                 runs.append((label, stats, wall, peak))
-                print(f"{scene}: {label} {wall:.2f} s", file=sys.stderr)
+                print(f"{scene}: {label} {render_wall(stats, wall):.2f} s", file=sys.stderr)
             print(table(scene, runs))
             print()
 
