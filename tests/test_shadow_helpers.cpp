@@ -9,6 +9,8 @@
 #include "raster/context/gl_objects.h"
 #include "raster/context/gl_thread.h"
 #include "raster/raster_renderer.h"
+#include "raster/scene/gpu_scene.h"
+#include "raster/shadow/shadow_helpers.h"
 #include "tests/test_rooms.h"
 #include "walk/quasi_random_walk.h"
 #include "walk/ray_scene.h"
@@ -166,6 +168,39 @@ TEST(ShadowHelpers, TheSameImageThroughEgl) {
   const Pair p = render_both(BoxField(), ShadowLodMode::Cull, GlBackend::Egl);
   EXPECT_EQ(p.helped_t.shadow_helpers, 2);
   EXPECT_TRUE(p.own.pixels() == p.helped.pixels());
+}
+
+TEST(ShadowHelpers, ErrorsReachTheCallerAndLeaveTheContextSound) {
+  const BoxField f(false);
+  std::unique_ptr<gl::Context> context = gl::create_context(GlBackend::OsMesa);
+  const gl::GpuScene gpu(context->api(), f.s);
+  gl::ShadowHelpers::AtlasShape shape{
+      64, 4, 2, f.s.bounds, gl::MaterialFeatures::of(f.s), {ShadowLodMode::Off}};
+  // An atlas this GL cannot hold: made on the threads, the error comes back from the constructor.
+  gl::ShadowHelpers::AtlasShape huge = shape;
+  huge.resolution = 8192;
+  EXPECT_THROW(gl::ShadowHelpers(*context, 2, huge, nullptr), Error);
+  context->check("after the failed helpers");
+
+  gl::ShadowHelpers helpers(*context, 2, shape, nullptr);
+  Vpl point;
+  point.kind = VplKind::Point; // two blocks each: three do not fit the atlas's two
+  point.position = glm::vec3(2.0f, 1.5f, 2.0f);
+  point.intensity = glm::vec3(1.0f);
+  gl::ShadowHelpers::Job failing, fine, left;
+  failing.vpls = {&point, &point, &point};
+  fine.vpls = {&point};
+  left.vpls = {&point};
+  helpers.start(0, failing, gpu, false);
+  helpers.start(1, fine, gpu, false);
+  helpers.start(0, left, gpu, false);
+  EXPECT_THROW(helpers.finish(failing), Error);
+  const gl::ShadowHelpers::Drawn& d = helpers.finish(fine);
+  EXPECT_NE(d.texture, 0u);
+  EXPECT_EQ(d.blocks.size(), 1u);
+  helpers.abandon(left); // never read: waited for, its fence dropped
+  EXPECT_FALSE(left.done.valid());
+  context->check("after the helpers' jobs");
 }
 
 TEST(ShadowHelpers, FewTrianglesPerVplMakeNone) {

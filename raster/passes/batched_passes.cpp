@@ -1,5 +1,7 @@
 #include "raster/passes/batched_passes.h"
 
+#include "core/util/error.h"
+
 #include <algorithm>
 
 namespace irad::gl {
@@ -197,7 +199,12 @@ void BatchedPasses::consider_helpers(int n, const GpuScene& gpu, std::size_t bat
                                   MaterialFeatures::of(gpu.scene()),
                                   atlas_.lod_options()};
   if (!lod) shape.lod.mode = ShadowLodMode::Off; // never a hierarchy of their own
-  helpers_ = std::make_unique<ShadowHelpers>(*context_, max_helpers_, shape, lod);
+  try {
+    helpers_ = std::make_unique<ShadowHelpers>(*context_, max_helpers_, shape, lod);
+  } catch (const Error&) {
+    // A GL that refuses a shared context or a thread's atlas: this context draws them all, as
+    // with --shadow-helpers 0 (RasterTimings::shadow_helpers reports 0).
+  }
 }
 
 std::size_t BatchedPasses::draw_with_helpers(const std::vector<Batch>& batches, std::size_t first,
@@ -208,6 +215,14 @@ std::size_t BatchedPasses::draw_with_helpers(const std::vector<Batch>& batches, 
   // Jobs in batch order; job i is batches[first + i]'s, on helper i mod k. Each helper holds at
   // most kAhead started and not yet shaded (ShadowHelpers::kSlots).
   std::vector<ShadowHelpers::Job> jobs(batches.size() - first);
+  // However the loop ends (stopped early, or an error), no helper still writes into `jobs`.
+  struct Drain {
+    std::vector<ShadowHelpers::Job>& jobs;
+    const ShadowHelpers& helpers;
+    ~Drain() {
+      for (ShadowHelpers::Job& job : jobs) helpers.abandon(job);
+    }
+  } drain{jobs, *helpers_};
   std::size_t started = 0, drawn = 0;
   bool go = true;
   const auto start_more = [&](std::size_t shaded) {
@@ -220,8 +235,7 @@ std::size_t BatchedPasses::draw_with_helpers(const std::vector<Batch>& batches, 
                       timer != nullptr);
     }
   };
-  std::size_t i = 0;
-  for (; i < jobs.size() && go; ++i) {
+  for (std::size_t i = 0; i < jobs.size() && go; ++i) {
     start_more(i);
     const Batch& b = batches[first + i];
     gather(b.entries);
@@ -232,9 +246,6 @@ std::size_t BatchedPasses::draw_with_helpers(const std::vector<Batch>& batches, 
     drawn += b.entries.size();
     if (after) go = after(b.end);
   }
-  // Stopped early: the jobs started after it still finish before their atlases may go.
-  for (; i < started; ++i)
-    if (jobs[i].done.valid()) helpers_->finish(jobs[i]);
   if (timer) timer->add(PassTimer::Shadow, helpers_->take_timed_seconds());
   return drawn;
 }

@@ -18,18 +18,30 @@ ShadowHelpers::ShadowHelpers(Context& context, int count, const AtlasShape& shap
     : api_(&context.api()) {
   threads_.resize(static_cast<std::size_t>(count));
   std::vector<std::future<void>> made;
-  for (Helper& h : threads_) {
-    h.thread = std::make_unique<GlThread>(context.make_shared());
-    made.push_back(h.thread->post([&h, &shape, lod](const GladGLContext& api) {
-      h.atlas = std::make_unique<ShadowAtlas>(api, shape.resolution, shape.batch, shape.blocks,
-                                              shape.bounds, shape.features, shape.lod, lod, kSlots);
-      h.timer = std::make_unique<PassTimer>(api);
-    }));
+  try {
+    for (Helper& h : threads_) {
+      h.thread = std::make_unique<GlThread>(context.make_shared());
+      made.push_back(h.thread->post([&h, &shape, lod](const GladGLContext& api) {
+        h.atlas =
+            std::make_unique<ShadowAtlas>(api, shape.resolution, shape.batch, shape.blocks,
+                                          shape.bounds, shape.features, shape.lod, lod, kSlots);
+        h.timer = std::make_unique<PassTimer>(api);
+      }));
+    }
+    for (std::future<void>& m : made) m.get(); // the programs compile on all threads at once
+  } catch (...) {
+    for (std::future<void>& m : made)
+      if (m.valid()) m.wait();
+    release();
+    throw;
   }
-  for (std::future<void>& m : made) m.get(); // the programs compile on both threads at once
 }
 
 ShadowHelpers::~ShadowHelpers() {
+  release();
+}
+
+void ShadowHelpers::release() noexcept {
   for (Helper& h : threads_) {
     if (!h.thread) continue;
     try {
@@ -66,6 +78,14 @@ const ShadowHelpers::Drawn& ShadowHelpers::finish(Job& job) const {
   wait_and_delete(*api_, job.drawn.fence);
   job.drawn.fence = nullptr;
   return job.drawn;
+}
+
+void ShadowHelpers::abandon(Job& job) const noexcept {
+  if (!job.done.valid()) return;
+  job.done.wait();
+  if (job.drawn.fence) api_->DeleteSync(job.drawn.fence); // a pending fence goes once signalled
+  job.drawn.fence = nullptr;
+  job.done = {};
 }
 
 double ShadowHelpers::take_timed_seconds() {

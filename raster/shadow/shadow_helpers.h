@@ -71,10 +71,15 @@ public:
   // Waits until the job's atlas is complete on the GPU (the calling context may then read it);
   // rethrows a helper's error.
   const Drawn& finish(Job& job) const;
+  // For a job whose atlas will not be read (draw() stopped early, or failed): waits until its
+  // helper is done with it and drops what it made. Nothing for a finished or unstarted job.
+  void abandon(Job& job) const noexcept;
   // Seconds the helpers' timers measured since the last call (PassTimer::Shadow); waits for them.
   double take_timed_seconds();
 
 private:
+  // Destroys the atlases on their threads (the destructor; a constructor that failed).
+  void release() noexcept;
   struct Helper {
     std::unique_ptr<GlThread> thread;
     // Made, used and destroyed on the thread.
