@@ -71,6 +71,8 @@ slow=(
   GlossyCornell.PathTracerAndRtVplAgreeInEveryChannelsMean
   GlossyCornell.WithAMirrorWallTooPathTracerAndRtVplAgree
   RasterGlossy.InterleavedKeepsTheMeans
+  ShadowHelpers.TheSameImageAsTheRenderersOwnContext
+  ShadowHelpers.TheSameImageWithMirroredVpls
 )
 default_filter="*-$(IFS=:; echo "${slow[*]}")"
 filter=${1:-$default_filter}
