@@ -158,8 +158,6 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
       return out;
     };
     seconds["raster_setup"] = stages(r.seconds.raster_setup);
-    if (!r.seconds.raster_setup_beside.empty())
-      seconds["raster_setup_beside"] = stages(r.seconds.raster_setup_beside);
     if (!r.seconds.hierarchy_beside.empty())
       seconds["hierarchy_beside"] = stages(r.seconds.hierarchy_beside);
     if (scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h

@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <chrono>
 #include <fmt/format.h>
-#include <future>
 #include <memory>
 
 namespace irad {
@@ -61,9 +60,6 @@ struct Stages {
   RenderResult& r;
   std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
   double planes_scan = 0.0;               // its thinnest-wall scan (seconds)
-  // Its set-up made beside the clustering (cluster_beside_raster_setup): what the clustering
-  // then waited for it (seconds); -1: the set-up was not made beside, or was reported.
-  double raster_setup_wait = -1.0;
   // The raster's shadow hierarchy, building since render() began (early_hierarchy).
   std::shared_ptr<BackgroundClusters> hierarchy = nullptr;
 
@@ -206,20 +202,12 @@ void run_raster(Stages& s, const RayScene& rays) {
     subtract(s.r.image, raster.render(s.r.view, no_vpls(s.r.vpls)));
   s.r.seconds.raster = since(t0);
   s.r.seconds.readback = timings.readback;
-  std::vector<std::pair<std::string, double>> setup = {{"planes scan", s.planes_scan}};
-  const StageTimes own = raster.setup_times(); // (stages() refers into it)
-  for (const auto& stage : own.stages()) setup.push_back(stage);
-  if (s.raster_setup_wait >= 0.0) { // made beside the clustering: only the wait for it is here
-    s.r.seconds.raster_setup_beside = std::move(setup);
-    s.r.seconds.raster_setup = {{"set-up wait", s.raster_setup_wait}};
-    s.r.seconds.raster += s.raster_setup_wait;
-    s.raster_setup_wait = -1.0;
-  } else {
-    s.r.seconds.raster_setup = std::move(setup);
-  }
+  s.r.seconds.raster_setup = {{"planes scan", s.planes_scan}};
   s.r.seconds.hierarchy_beside = raster.hierarchy_beside_times().stages();
   s.r.hierarchy_cache = outcome_name(raster.hierarchy_cache().outcome);
   s.r.hierarchy_cache_reason = raster.hierarchy_cache().reason;
+  const StageTimes setup = raster.setup_times();
+  for (const auto& stage : setup.stages()) s.r.seconds.raster_setup.push_back(stage);
   s.r.passes = timings.passes;
   s.r.shadow_triangles = timings.shadow_triangles;
   s.r.shadow_helpers = timings.shadow_helpers;
@@ -359,31 +347,6 @@ std::size_t cluster_count(const Stages& s) {
   return budget_clusters(s.r.vpls.vpls.size(), s.options.budget);
 }
 
-// The clustering, and for the raster beside it (from the first round on, on a thread of its own)
-// its set-up: the planes scan, the GL context and upload, the wait for the shadow hierarchy and
-// its upload, which need the representatives' count, not them. The clustering runs on every core
-// through Embree; the set-up is mostly one thread (uploads, llvmpipe's shader compiles), which
-// would otherwise leave a core idle after it. The two touch disjoint parts of `s` (renderer()
-// writes s.raster and the raster's fields of s.r; cluster() s.r.vpls and its own), and only
-// renderer() logs.
-void cluster_beside_raster_setup(Stages& s, const RayScene& rays) {
-  if (s.options.estimator != Estimator::Raster || s.raster) {
-    cluster(s, rays, s.r.clusters);
-    return;
-  }
-  std::future<void> setup =
-      std::async(std::launch::async, [&s, &rays] { renderer(s, rays).prepare_shadow_hierarchy(); });
-  try {
-    cluster(s, rays, s.r.clusters);
-  } catch (...) {
-    setup.wait();
-    throw;
-  }
-  const auto t0 = Clock::now();
-  setup.get();
-  s.raster_setup_wait = since(t0);
-}
-
 // The walk, one of the VPL estimators, and what the options add to it.
 void run_vpl_estimator(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
@@ -393,7 +356,7 @@ void run_vpl_estimator(Stages& s, const RayScene& rays) {
   if (s.cancelled()) return; // interrupted during the walk: nothing was rendered
   s.r.clusters = cluster_count(s);
   s.r.walk_vpls = s.r.vpls.vpls.size();
-  if (s.r.clusters > 0) cluster_beside_raster_setup(s, rays);
+  if (s.r.clusters > 0) cluster(s, rays, s.r.clusters);
   if (s.cancelled()) return;
   if (s.options.estimator == Estimator::Raster)
     run_raster(s, rays);

@@ -280,13 +280,6 @@ CacheResult RasterRenderer::hierarchy_cache() const {
   return impl_->lod.cache_result();
 }
 
-void RasterRenderer::prepare_shadow_hierarchy() {
-  if (impl_->options.batch < 2) return; // the per-VPL passes draw every triangle
-  const gl::CurrentScope current(*impl_->context);
-  impl_->lod.get();
-  impl_->context->check("shadow hierarchy upload");
-}
-
 StageTimes RasterRenderer::hierarchy_beside_times() const {
   return impl_->lod.beside_times();
 }

@@ -167,11 +167,6 @@ public:
   StageTimes hierarchy_beside_times() const;
   // What the hierarchy cache did (CacheOutcome::Off until the hierarchy was needed).
   CacheResult hierarchy_cache() const;
-  // Gets the batched passes' shadow hierarchy now (waiting for RasterOptions::hierarchy_build,
-  // or building it) and uploads it, instead of at the first shadow face that needs it: a caller
-  // can so overlap it with other work. Nothing when the batched passes draw without one. May run
-  // on another thread than render()'s, not at the same time as any other call.
-  void prepare_shadow_hierarchy();
 
   // The last image's edge pixels (RasterOptions::edge_pixels; none when Off, without
   // interleaving, or before a render) as Image coordinates (y down), row by row; Listed: with

@@ -9,9 +9,7 @@ estimates that --stats alone asks for (seconds.statistics) are left out of the w
 as a render without --stats does not compute them. The
 shadow hierarchy's build runs on a thread of its own from the start of the render: its stages,
 marked "(beside)", overlap the others and are not in their sum; "hierarchy wait" is the raster's
-wait for what was left of it. With cluster representatives the raster's set-up (planes scan, GL
-context, uploads) runs beside the clustering: marked "(beside clustering)", outside the sum, and
-"set-up wait" is what was left of it. The cache lives in a temporary XDG_CACHE_HOME, never the user's.
+wait for what was left of it. The cache lives in a temporary XDG_CACHE_HOME, never the user's.
 docs/performance.md "Big scenes" quotes its output.
 
   LP_NUM_THREADS=2 python3 scripts/measure_setup.py build/sphere_box_2m.glb [more.glb ...]
@@ -50,10 +48,6 @@ def rows(stats, wall):
     if "cluster" in s:
         out.append(("clusters (rows, columns)", s["cluster"]))
     if "raster" in s:
-        # With cluster representatives the set-up runs beside the clustering
-        # (seconds.raster_setup_beside): outside the sum, the raster stage holding its wait.
-        for name, t in s.get("raster_setup_beside", []):
-            out.append((f"{name} (beside clustering)", t))
         setup = 0.0
         for name, t in s.get("raster_setup", []):
             out.append((name, t))

@@ -118,11 +118,8 @@ struct StageSeconds {
   double statistics = 0;
   // Of `raster`, the one-time stages in the order they ran: "planes scan" (the thinnest wall,
   // walk/thin_walls.h) and RasterRenderer::setup_times (the GL context, the upload, the shadow
-  // hierarchy's build stages and its upload). With cluster representatives they run beside the
-  // clustering (lib/render.cpp cluster_beside_raster_setup): then they are raster_setup_beside,
-  // not part of `raster`, and raster_setup holds only "set-up wait", what was left of them when
-  // the clustering ended.
-  std::vector<std::pair<std::string, double>> raster_setup, raster_setup_beside;
+  // hierarchy's build stages and its upload).
+  std::vector<std::pair<std::string, double>> raster_setup;
   // The shadow hierarchy's build stages where it ran on a thread of its own from the start of the
   // render (raster_setup then holds "hierarchy wait", the raster's wait for what was left): not
   // part of `raster`, and overlapping `load`, `walk` and `cluster`.
