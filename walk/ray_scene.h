@@ -15,6 +15,11 @@
 // the same pixel always seeing the same thing, and the residual gather sees what rt-vpl saw).
 // The scene given to the constructor (or to update()) must then outlive this object: the filters
 // read its materials, uvs, colours and textures. Without such materials no filter is installed.
+//
+// A static scene's triangles are Embree's own view of the scene's positions and triangles (no
+// copies) where the positions' storage reaches past the last one (Embree's 16-byte loads):
+// the scene given to the constructor must then outlive this object, and its positions and
+// triangles stay as they are.
 #include "core/scene/scene.h"
 
 #include <cstddef>
