@@ -512,7 +512,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--shadow-helpers", args->shadow_helpers,
                   "Raster, batched: threads that draw the shadow atlases in GL contexts of their "
                   "own while the renderer's shades, once a batch draws 8000 triangles per VPL "
-                  "(the same image); auto: 2 on a CPU renderer (llvmpipe), else 0")
+                  "(the same image); auto: 2 on a CPU renderer (llvmpipe) with 2 or more cores, "
+                  "else 0")
       ->check(CLI::IsMember({"auto", "0", "1", "2", "3", "4", "5", "6", "7", "8"}))
       ->capture_default_str();
   cmd->add_option("--hierarchy-cache", args->hierarchy_cache,

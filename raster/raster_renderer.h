@@ -59,7 +59,8 @@ struct RasterOptions {
   // Threads that draw the batched passes' shadow atlases in GL contexts of their own while this
   // one shades (raster/shadow/shadow_helpers.h), once a batch draws at least 8000 triangles per
   // VPL. -1 (auto): 2 on a CPU renderer (llvmpipe, where the thread that issues the draws does
-  // their vertex work), else 0; 0: this context draws them. The image is the same either way.
+  // their vertex work) with 2 or more cores, else 0; 0: this context draws them. The image is the
+  // same either way.
   int shadow_helpers = -1;
   // Where the shadow hierarchy is kept between runs (core/mesh/cluster_cache.h): the user's cache
   // folder by default; empty: built every time, never written.

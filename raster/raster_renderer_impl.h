@@ -28,6 +28,7 @@
 #include <chrono>
 #include <functional>
 #include <optional>
+#include <thread>
 
 namespace irad {
 
@@ -107,7 +108,8 @@ struct RasterRenderer::Impl {
   // RasterOptions::shadow_helpers, auto resolved for this context.
   int shadow_helpers() const {
     if (options.shadow_helpers >= 0) return options.shadow_helpers;
-    return context->cpu_renderer() ? 2 : 0;
+    // One core cannot bin one atlas while it rasterizes another.
+    return context->cpu_renderer() && std::thread::hardware_concurrency() >= 2 ? 2 : 0;
   }
   // This image's interleaved sets for paths 0..paths-1 (one set without interleaving).
   void deal_paths(std::uint32_t paths) {
