@@ -39,15 +39,14 @@ std::uint64_t checksum_of(const WallFile& f) {
 // What the scan reads: the geometry, the diagonal, the ray epsilon, the format and Embree.
 ClusterKey wall_key(const Scene& scene, const RayScene& rays) {
   KeyHasher hasher;
-  const auto add = [&](const void* data, std::size_t n) { hasher.add(data, n); };
   const std::uint32_t versions[2] = {kFormat, RTC_VERSION};
-  add(versions, sizeof versions);
+  hasher.add(versions, sizeof versions);
   const float scales[2] = {scene.bounds.diagonal(), rays.epsilon()};
-  add(scales, sizeof scales);
+  hasher.add(scales, sizeof scales);
   const std::uint64_t counts[2] = {scene.positions.size(), scene.triangles.size()};
-  add(counts, sizeof counts);
-  add(scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
-  add(scene.triangles.data(), scene.triangles.size() * sizeof(glm::uvec3));
+  hasher.add(counts, sizeof counts);
+  hasher.add(scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
+  hasher.add(scene.triangles.data(), scene.triangles.size() * sizeof(glm::uvec3));
   return hasher.key();
 }
 

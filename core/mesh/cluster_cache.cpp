@@ -315,19 +315,18 @@ ClusterKey KeyHasher::key() const {
 
 ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
   KeyHasher hasher;
-  const auto add = [&](const void* data, std::size_t n) { hasher.add(data, n); };
   const std::uint32_t leaf = options.leaf_triangles != 0
                                  ? options.leaf_triangles
                                  : automatic_leaf_triangles(scene.triangle_count());
   const std::array<std::uint32_t, 5> settings = {kFormat, MESHOPTIMIZER_VERSION, leaf,
                                                  options.simplify ? 1u : 0u,
                                                  static_cast<std::uint32_t>(options.max_levels)};
-  add(settings.data(), sizeof settings);
+  hasher.add(settings.data(), sizeof settings);
   const float diagonal = scene.bounds.diagonal();
-  add(&diagonal, sizeof diagonal);
+  hasher.add(&diagonal, sizeof diagonal);
   const std::uint64_t vertices = scene.positions.size();
-  add(&vertices, sizeof vertices);
-  add(scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
+  hasher.add(&vertices, sizeof vertices);
+  hasher.add(scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
   // The opaque triangles as (index, a, b, c), in order.
   std::vector<std::uint32_t> chunk;
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
@@ -335,11 +334,11 @@ ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
     const glm::uvec3 v = scene.triangles[t];
     chunk.insert(chunk.end(), {static_cast<std::uint32_t>(t), v.x, v.y, v.z});
     if (chunk.size() >= 4096) {
-      add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
+      hasher.add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
       chunk.clear();
     }
   }
-  add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
+  hasher.add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
   return hasher.key();
 }
 

@@ -188,15 +188,6 @@ void GpuScene::draw_range(const Range& r, GLsizei instances) const {
     api_->DrawElementsInstanced(GL_TRIANGLES, r.count, GL_UNSIGNED_INT, first, instances);
 }
 
-void GpuScene::draw_instanced(GLsizei instances,
-                              const std::function<void(const Material&)>& bind) const {
-  draw_if([](const Material&) { return true; }, bind, instances);
-}
-
-void GpuScene::draw_all_instanced(GLsizei instances) const {
-  draw_everything(instances, nullptr);
-}
-
 void GpuScene::draw_everything(GLsizei instances, const VertexArray* vao) const {
   bind_vertex_array(vao);
   if (instances == 1)
@@ -207,10 +198,6 @@ void GpuScene::draw_everything(GLsizei instances, const VertexArray* vao) const 
 
 void GpuScene::draw(const std::function<void(const Material&)>& bind) const {
   draw_if([](const Material&) { return true; }, bind);
-}
-
-void GpuScene::draw_all() const {
-  draw_all_instanced(1);
 }
 
 void GpuScene::draw_if(const std::function<bool(const Material&)>& select,

@@ -27,15 +27,11 @@ public:
 
   // Draws every triangle, calling `bind(material)` before each material's range.
   void draw(const std::function<void(const Material&)>& bind) const;
-  // Draws every triangle with no per-material state (depth and shadow passes).
-  void draw_all() const;
-  // draw and draw_all with every range drawn `instances` times (gl_InstanceID 0..instances-1).
-  void draw_instanced(GLsizei instances, const std::function<void(const Material&)>& bind) const;
-  void draw_all_instanced(GLsizei instances) const;
-  // A pass that needs no material but its coverage (depth, shadow, irradiance-only): draw_all
-  // (instanced) when the scene has no Mask or Blend material, else draw_instanced with
-  // `bind_alpha` per material (every camera pass then draws range by range, so gl_PrimitiveID,
-  // which the Blend hash reads, is the same in all of them).
+  // A pass that needs no material but its coverage (depth, shadow, irradiance-only), every range
+  // drawn `instances` times (gl_InstanceID 0..instances-1): all indices in one draw when the
+  // scene has no Mask or Blend material, else range by range with `bind_alpha` per material
+  // (every camera pass then draws range by range, so gl_PrimitiveID, which the Blend hash reads,
+  // is the same in all of them).
   // vao: vertex_array() of the current context when that is not the one this GpuScene was made
   // in (nullptr: its own).
   void draw_covered(GLsizei instances, const std::function<void(const Material&)>& bind_alpha,

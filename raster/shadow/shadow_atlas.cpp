@@ -158,7 +158,6 @@ void ShadowAtlas::pick_faces() {
   const float per_distance = lod_options_.texels * texel_angle();
   // A twentieth of the shading passes' constant depth bias (2e-4 of the diagonal).
   const float floor = 1e-5f * bounds_.diagonal();
-  cluster_triangles_ = 0;
   picks_.resize(faces_.size());
   totals_.assign(faces_.size(), 0);
   for (std::size_t i = 0; i < faces_.size(); ++i) {
