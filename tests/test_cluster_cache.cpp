@@ -9,6 +9,7 @@
 #include "core/mesh/cluster_cache.h"
 #include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
+#include "core/util/error.h"
 #include "raster/raster_renderer.h"
 #include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
@@ -34,8 +35,13 @@ Scene two_spheres() {
   return s;
 }
 
+// The indices, from memory or from the cache file.
+std::vector<std::uint32_t> indices_of(const MeshClusters& c) {
+  return c.stored_indices ? c.stored_indices->read() : c.indices;
+}
+
 bool same(const MeshClusters& a, const MeshClusters& b) {
-  if (a.indices != b.indices || a.roots != b.roots || a.triangles != b.triangles ||
+  if (indices_of(a) != indices_of(b) || a.roots != b.roots || a.triangles != b.triangles ||
       a.original_indices != b.original_indices || a.nodes.size() != b.nodes.size() ||
       a.levels.size() != b.levels.size())
     return false;
@@ -168,6 +174,47 @@ TEST_F(ClusterCache, ABadFileIsRebuiltNeverTrusted) {
   write(good);
   EXPECT_TRUE(same(cached(s, result), built));
   EXPECT_EQ(result.outcome, CacheOutcome::Hit);
+}
+
+// A hit keeps its indices in the file until they are copied: a file renamed over it or removed
+// leaves the copy as checked; a change in place is caught by the copy, which names the file.
+TEST_F(ClusterCache, AHitReadsItsIndicesFromTheFileItChecked) {
+  const Scene s = two_spheres();
+  const MeshClusters built = build_mesh_clusters(s, options_);
+  CacheResult result;
+  cached(s, result);
+  const fs::path path = file();
+  const MeshClusters hit = cached(s, result);
+  ASSERT_EQ(result.outcome, CacheOutcome::Hit);
+  ASSERT_TRUE(hit.stored_indices);
+  EXPECT_TRUE(hit.indices.empty());
+  EXPECT_EQ(hit.index_count(), built.indices.size());
+  // Another file renamed into its place, then removed: the hit still reads what it checked.
+  const fs::path other = folder_ / "other";
+  std::ofstream(other, std::ios::binary) << "not a hierarchy";
+  fs::rename(other, path);
+  fs::remove(path);
+  EXPECT_EQ(hit.stored_indices->read(), built.indices);
+
+  // Written over in place after the check (not irad's way of writing): an index past the
+  // vertices, then a file cut short.
+  cached(s, result);
+  const MeshClusters changed = cached(s, result);
+  ASSERT_EQ(result.outcome, CacheOutcome::Hit);
+  {
+    std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
+    const std::uint32_t past = 0xffffffffu;
+    f.seekp(80 + 4 * 7);
+    f.write(reinterpret_cast<const char*>(&past), sizeof past);
+  }
+  try {
+    changed.stored_indices->read();
+    ADD_FAILURE() << "a changed index was copied";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+  fs::resize_file(path, 100);
+  EXPECT_THROW(changed.stored_indices->read(), Error);
 }
 
 TEST_F(ClusterCache, AFolderThatCannotBeWrittenCostsOnlyTheWrite) {

@@ -101,12 +101,14 @@ private:
 // Reads what HashedWriter wrote, hashing as it goes; any short read leaves it failed.
 class HashedReader {
 public:
-  explicit HashedReader(const fs::path& path) : in_(path, std::ios::binary) {
+  explicit HashedReader(std::shared_ptr<const OpenFile> file) : file_(std::move(file)) {
     XXH3_64bits_reset(state_.get());
   }
+  std::uint64_t offset() const { return offset_; }
   bool bytes(void* data, std::size_t n) {
-    in_.read(static_cast<char*>(data), static_cast<std::streamsize>(n));
-    if (!in_) return false;
+    ok_ = ok_ && file_->read_at(data, n, offset_);
+    if (!ok_) return false;
+    offset_ += n;
     XXH3_64bits_update(state_.get(), data, n);
     return true;
   }
@@ -115,15 +117,30 @@ public:
     v.resize(n);
     return bytes(v.data(), n * sizeof(T));
   }
+  // Hashes `n` 32-bit indices through a small buffer, keeping none; all_below: whether every
+  // one is below `vertices`.
+  bool indices(std::size_t n, std::size_t vertices, bool& all_below) {
+    all_below = true;
+    std::vector<std::uint32_t> chunk(std::min<std::size_t>(n, std::size_t{1} << 18));
+    for (std::size_t done = 0; done < n;) {
+      const std::size_t k = std::min(chunk.size(), n - done);
+      if (!bytes(chunk.data(), k * sizeof(std::uint32_t))) return false;
+      all_below = all_below && below(chunk.data(), k, vertices);
+      done += k;
+    }
+    return true;
+  }
   // Whether the stored checksum follows and matches (the caller checked the file's size).
   bool checksum_matches() {
     std::uint64_t stored = 0;
-    in_.read(reinterpret_cast<char*>(&stored), sizeof stored);
-    return in_ && stored == XXH3_64bits_digest(state_.get());
+    return ok_ && file_->read_at(&stored, sizeof stored, offset_) &&
+           stored == XXH3_64bits_digest(state_.get());
   }
 
 private:
-  std::ifstream in_;
+  std::shared_ptr<const OpenFile> file_;
+  std::uint64_t offset_ = 0;
+  bool ok_ = true;
   HashState state_{XXH3_createState()};
 };
 
@@ -179,11 +196,11 @@ bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& k
 MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t vertices,
                        std::size_t triangles, std::string& why) {
   MeshClusters c;
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(path, ec);
-  HashedReader r(path);
+  const auto file = std::make_shared<const OpenFile>(path);
+  const std::uint64_t size = file->size();
+  HashedReader r(file);
   Header h{};
-  if (ec || !r.bytes(&h, sizeof h)) {
+  if (!file->valid() || !r.bytes(&h, sizeof h)) {
     why = "unreadable or shorter than its header";
     return c;
   }
@@ -206,8 +223,12 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t 
     why = "truncated or padded";
     return c;
   }
+  // The indices (the file's bulk) are checked as they stream past and left in the file.
+  const std::uint64_t indices_at = r.offset();
+  bool indices_below = false;
   std::vector<std::uint32_t> words;
-  bool ok = r.values(c.indices, h.counts[0]) && r.values(words, h.counts[1] * kNodeWords);
+  bool ok =
+      r.indices(h.counts[0], vertices, indices_below) && r.values(words, h.counts[1] * kNodeWords);
   for (std::size_t k = 0; ok && k < h.counts[1]; ++k)
     c.nodes.push_back(node_from(&words[k * kNodeWords]));
   ok = ok && r.values(c.roots, h.counts[2]) && r.values(words, h.counts[3] * kLevelWords);
@@ -220,6 +241,12 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t 
     why = "checksum mismatch";
     return {};
   }
+  if (!indices_below) {
+    why = "an index past the vertices";
+    return {};
+  }
+  c.stored_indices = std::make_shared<const StoredIndices>(
+      file, indices_at, static_cast<std::size_t>(h.counts[0]), vertices);
   why = validate_clusters(c, vertices, triangles);
   if (!why.empty()) return {};
   return c;
@@ -257,7 +284,7 @@ bool finite(const glm::vec3& v) {
 }
 
 std::string check_nodes(const MeshClusters& c) {
-  const std::size_t n = c.nodes.size(), indices = c.indices.size();
+  const std::size_t n = c.nodes.size(), indices = c.index_count();
   const auto in_indices = [&](std::uint64_t first, std::uint64_t count) {
     return count % 3 == 0 && first + count <= indices;
   };
@@ -380,14 +407,14 @@ const char* outcome_name(CacheOutcome outcome) {
 }
 
 std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles) {
-  if (c.original_indices > c.indices.size() || c.original_indices % 3 != 0)
+  if (c.original_indices > c.index_count() || c.original_indices % 3 != 0)
     return "the original part exceeds the indices";
   for (std::uint32_t i : c.indices)
     if (i >= vertices) return "an index past the vertices";
   if (std::string why = check_nodes(c); !why.empty()) return why;
   for (const ClusterLevel& l : c.levels)
     if (!std::isfinite(l.error) || l.count % 3 != 0 ||
-        std::uint64_t{l.first} + l.count > c.indices.size())
+        std::uint64_t{l.first} + l.count > c.index_count())
       return "a level outside the indices";
   for (std::int32_t r : c.roots)
     if (r < 0 || static_cast<std::size_t>(r) >= c.nodes.size()) return "a root out of range";

@@ -12,8 +12,10 @@
 // Never trusted: a file is used only when its magic, version, key and sizes match, its XXH3-64
 // checksum over all it holds is right, and the hierarchy passes validate_clusters (every index
 // names a vertex, every range lies inside its array, children after their parents); anything
-// else (stale, foreign, truncated, bit-flipped) is rebuilt and written over. The folder is kept
-// below kCacheBytes by removing the files least recently used.
+// else (stale, foreign, truncated, bit-flipped) is rebuilt and written over. A hit checks the
+// indices, the file's bulk, as they stream past and leaves them in the file
+// (MeshClusters::stored_indices) for the GPU upload to copy. The folder is kept below kCacheBytes
+// by removing the files least recently used.
 #include "core/mesh/mesh_clusters.h"
 #include "core/util/stage_times.h"
 
@@ -67,7 +69,8 @@ struct CacheResult {
 };
 const char* outcome_name(CacheOutcome outcome); // "off", "hit", "written", "rebuilt", ...
 
-// Checks what a reader must before it draws from c: every index below `vertices`, every node's
+// Checks what a reader must before it draws from c: every index in memory below `vertices`
+// (stored ones are checked as the cache read streams them, and again when copied), every node's
 // ranges inside `indices` and `levels`, children numbered after their parents, the leaves'
 // ranges tiling [0, original_indices), roots in range, the triangles ascending and below
 // `triangles`, errors and bounds finite. Returns what is wrong, or "" when nothing is.

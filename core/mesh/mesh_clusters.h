@@ -52,11 +52,13 @@
 // simplifier sees one connected surface where a file or subdivide() duplicated vertices at
 // seams); a welded index draws the same position, so without simplify the leaves draw the very
 // triangles the scene has.
+#include "core/mesh/stored_indices.h"
 #include "core/scene/bounds.h"
 #include "core/scene/scene.h"
 #include "core/util/stage_times.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace irad {
@@ -110,7 +112,13 @@ struct ClusterNode {
 
 struct MeshClusters {
   std::vector<std::uint32_t> indices; // into Scene::positions, 3 per triangle
-  std::vector<ClusterNode> nodes;     // every tree's nodes, parents before children
+  // A hierarchy read back from the cache leaves `indices` empty: they stay in its file until
+  // the GPU upload copies them (core/mesh/stored_indices.h).
+  std::shared_ptr<const StoredIndices> stored_indices;
+  std::size_t index_count() const {
+    return stored_indices ? stored_indices->size() : indices.size();
+  }
+  std::vector<ClusterNode> nodes; // every tree's nodes, parents before children
   // The trees' roots: one per connected component of at least ClusterOptions::leaf_triangles
   // triangles (its coarser levels simplify the whole component, from its original triangles,
   // with no region border inside it locked), one for all smaller components together. Empty

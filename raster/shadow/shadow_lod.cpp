@@ -1,5 +1,7 @@
 #include "raster/shadow/shadow_lod.h"
 
+#include "core/util/error.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -50,13 +52,30 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
                      bool simplify)
     : api_(&api), gpu_(&gpu), clusters_(std::move(clusters)), simplify_(simplify),
       indices_(make_buffer(api)) {
+  index_count_ = clusters_.index_count();
+  const auto bytes = static_cast<GLsizeiptr>(index_count_ * sizeof(std::uint32_t));
   api.BindBuffer(GL_ARRAY_BUFFER, indices_.get()); // not the bound VAO's element buffer
-  api.BufferData(GL_ARRAY_BUFFER,
-                 static_cast<GLsizeiptr>(clusters_.indices.size() * sizeof(std::uint32_t)),
-                 clusters_.indices.data(), GL_STATIC_DRAW);
+  if (!clusters_.stored_indices || bytes == 0) {
+    api.BufferData(GL_ARRAY_BUFFER, bytes, clusters_.indices.data(), GL_STATIC_DRAW);
+  } else {
+    // Straight from the cache file into the buffer's storage.
+    api.BufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_STATIC_DRAW);
+    void* storage = api.MapBufferRange(GL_ARRAY_BUFFER, 0, bytes,
+                                       GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
+    if (storage == nullptr) throw Error("", "shadow hierarchy", "cannot map its index buffer");
+    try {
+      clusters_.stored_indices->copy_to(static_cast<std::uint32_t*>(storage));
+    } catch (...) {
+      api.UnmapBuffer(GL_ARRAY_BUFFER);
+      api.BindBuffer(GL_ARRAY_BUFFER, 0);
+      throw;
+    }
+    if (api.UnmapBuffer(GL_ARRAY_BUFFER) == GL_FALSE)
+      throw Error("", "shadow hierarchy", "its index buffer was lost while written");
+  }
   api.BindBuffer(GL_ARRAY_BUFFER, 0);
-  index_count_ = clusters_.indices.size();
   std::vector<std::uint32_t>().swap(clusters_.indices);
+  clusters_.stored_indices.reset(); // closes the cache file
 }
 
 // Per node visited: what it draws (a mesh range, its children, or nothing) and how many

@@ -1,0 +1,58 @@
+#include "core/mesh/stored_indices.h"
+
+#include "core/util/error.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace irad {
+
+OpenFile::OpenFile(const std::filesystem::path& path)
+    : fd_(::open(path.c_str(), O_RDONLY | O_CLOEXEC)), path_(path) {}
+
+OpenFile::~OpenFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::uint64_t OpenFile::size() const {
+  struct stat st {};
+  if (fd_ < 0 || ::fstat(fd_, &st) != 0 || st.st_size < 0) return 0;
+  return static_cast<std::uint64_t>(st.st_size);
+}
+
+bool OpenFile::read_at(void* out, std::size_t n, std::uint64_t offset) const {
+  auto* p = static_cast<char*>(out);
+  while (n > 0) {
+    const ssize_t got = ::pread(fd_, p, n, static_cast<off_t>(offset));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    p += got;
+    n -= static_cast<std::size_t>(got);
+    offset += static_cast<std::uint64_t>(got);
+  }
+  return true;
+}
+
+bool below(const std::uint32_t* words, std::size_t count, std::size_t vertices) {
+  std::uint32_t largest = 0;
+  for (std::size_t k = 0; k < count; ++k) largest = std::max(largest, words[k]);
+  return count == 0 || largest < vertices;
+}
+
+void StoredIndices::copy_to(std::uint32_t* out) const {
+  if (!file_->read_at(out, count_ * sizeof(std::uint32_t), offset_) ||
+      !below(out, count_, vertices_))
+    throw Error(file_->path().string(), "shadow hierarchy",
+                "the cache file changed while in use; remove it and render again");
+}
+
+std::vector<std::uint32_t> StoredIndices::read() const {
+  std::vector<std::uint32_t> v(count_);
+  copy_to(v.data());
+  return v;
+}
+
+} // namespace irad

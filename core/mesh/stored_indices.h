@@ -1,0 +1,65 @@
+#pragma once
+// The shadow hierarchy's indices where they lie in its cache file (core/mesh/cluster_cache.h): a
+// hit checks them as it streams the file (checksum, every index below the vertex count) but keeps
+// none of them; the one reader that needs them, the upload to the GPU (raster/shadow/shadow_lod.h),
+// copies them from the file straight into the buffer it uploads. The process then never holds
+// them: the 10M-triangle terrain's warm raster peaks at 1828 MiB, against 2185 MiB with the
+// 469 MiB of indices read in beside the GPU's copy (docs/performance.md "Big scenes").
+//
+// The file stays open from the check to the copy, so a writer that renames another file into its
+// place, or a trim that removes it, leaves this one readable as it was. Only a change of the file
+// in place (never irad's: it writes atomically) can make the copy differ from what was checked:
+// copy_to checks every index again and throws then.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+namespace irad {
+
+// A file open for reading at any offset from any thread (pread); closed with its last owner.
+class OpenFile {
+public:
+  // valid() is false when `path` cannot be opened.
+  explicit OpenFile(const std::filesystem::path& path);
+  ~OpenFile();
+  OpenFile(const OpenFile&) = delete;
+  OpenFile& operator=(const OpenFile&) = delete;
+
+  bool valid() const { return fd_ >= 0; }
+  const std::filesystem::path& path() const { return path_; }
+  // Its size in bytes now (0 when it cannot be told).
+  std::uint64_t size() const;
+  // Reads bytes [offset, offset + n) into out; false when the file ends before or a read fails.
+  bool read_at(void* out, std::size_t n, std::uint64_t offset) const;
+
+private:
+  int fd_ = -1;
+  std::filesystem::path path_;
+};
+
+class StoredIndices {
+public:
+  // `count` 32-bit indices from byte `offset` of `file`, each below `vertices` when checked.
+  StoredIndices(std::shared_ptr<const OpenFile> file, std::uint64_t offset, std::size_t count,
+                std::size_t vertices)
+      : file_(std::move(file)), offset_(offset), count_(count), vertices_(vertices) {}
+
+  std::size_t size() const { return count_; }
+  // Copies them into out[0, size()). Throws Error (naming the file) when a read comes short or
+  // an index is not below the vertex count: the file changed after it was checked.
+  void copy_to(std::uint32_t* out) const;
+  // The same, into a vector.
+  std::vector<std::uint32_t> read() const;
+
+private:
+  std::shared_ptr<const OpenFile> file_;
+  std::uint64_t offset_;
+  std::size_t count_, vertices_;
+};
+
+// Whether the `count` indices in `words` are all below `vertices`.
+bool below(const std::uint32_t* words, std::size_t count, std::size_t vertices);
+
+} // namespace irad
