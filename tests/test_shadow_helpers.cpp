@@ -51,7 +51,9 @@ struct BoxField {
   VplSet vpls;
   View view;
   // mirror: the x = 0 wall carries a mirror (its VPLs' batches draw the reflected scene too).
-  explicit BoxField(bool boxes = true, bool mirror = false);
+  // sun: a directional light besides (its VPL shades in a batch of its own, from the
+  // orthographic atlas).
+  explicit BoxField(bool boxes = true, bool mirror = false, bool sun = false);
 };
 
 void add_boxes(Scene& s, std::uint32_t wall) {
@@ -71,7 +73,7 @@ void add_boxes(Scene& s, std::uint32_t wall) {
   }
 }
 
-BoxField::BoxField(bool boxes, bool mirror) {
+BoxField::BoxField(bool boxes, bool mirror, bool sun) {
   const std::uint32_t wall = add_material(s, glm::vec3(0.6f));
   const std::uint32_t light = add_material(s, glm::vec3(0.6f), glm::vec3(8.0f));
   add_room(s, {0.0f, 0.0f, 0.0f}, {4.0f, 3.0f, 4.0f}, wall);
@@ -83,6 +85,13 @@ BoxField::BoxField(bool boxes, bool mirror) {
     s.materials[m].specular = true;
     add_quad(s, {0.001f, 0.5f, 1.0f}, {0.001f, 0.5f, 3.0f}, {0.001f, 2.5f, 3.0f},
              {0.001f, 2.5f, 1.0f}, m); // facing +x
+  }
+  if (sun) {
+    PunctualLight l;
+    l.kind = PunctualLight::Kind::Directional;
+    l.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    l.intensity = glm::vec3(0.05f); // most paths still start at the panel
+    s.lights.push_back(l);
   }
   finish(s);
   Log log = quiet_log();
@@ -136,11 +145,13 @@ struct Pair {
   RasterTimings own_t, helped_t;
 };
 
-Pair render_both(const BoxField& f, ShadowLodMode mode, GlBackend backend = GlBackend::OsMesa) {
+Pair render_both(const BoxField& f, ShadowLodMode mode, GlBackend backend = GlBackend::OsMesa,
+                 ShadowPlanes planes = ShadowPlanes::Auto) {
   Pair p;
   RasterOptions o;
   o.backend = backend;
   o.shadow_lod.mode = mode;
+  o.shadow_lod.planes = planes;
   o.hierarchy_cache.clear();
   o.shadow_helpers = 0;
   p.own = RasterRenderer(f.s, o).render(f.view, f.vpls, &p.own_t);
@@ -181,6 +192,29 @@ TEST(ShadowHelpers, TheSameImageWithMirroredVpls) {
   ASSERT_TRUE(std::any_of(f.vpls.vpls.begin(), f.vpls.vpls.end(),
                           [](const Vpl& v) { return v.mirror >= 0; }));
   const Pair p = render_both(f, ShadowLodMode::On);
+  EXPECT_EQ(p.helped_t.shadow_helpers, 2);
+  EXPECT_TRUE(p.own.pixels() == p.helped.pixels());
+}
+
+// A batch of directional VPLs alone, drawn where the helpers draw the cubes, binds a cube atlas
+// and its gradients too when the occluder planes are on (a sun in zdm2 at 128x128 threw "shadow
+// lookup without gradients").
+TEST(ShadowHelpers, TheSameImageWithADirectionalLightAndOccluderPlanes) {
+  BoxField f(true, false, true);
+  // The sun's VPLs last, split in 40 (a batch of directional VPLs alone, after the helpers
+  // started).
+  std::vector<Vpl>& v = f.vpls.vpls;
+  const auto sun = std::stable_partition(
+      v.begin(), v.end(), [](const Vpl& x) { return x.kind != VplKind::Directional; });
+  ASSERT_NE(sun, v.end());
+  Vpl light = *sun; // one direction: their sum
+  for (auto d = sun + 1; d != v.end(); ++d) light.intensity += d->intensity;
+  v.erase(sun, v.end());
+  for (int k = 0; k < 40; ++k) {
+    v.push_back(light);
+    v.back().intensity = light.intensity / 40.0f;
+  }
+  const Pair p = render_both(f, ShadowLodMode::On, GlBackend::OsMesa, ShadowPlanes::On);
   EXPECT_EQ(p.helped_t.shadow_helpers, 2);
   EXPECT_TRUE(p.own.pixels() == p.helped.pixels());
 }

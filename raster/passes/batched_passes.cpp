@@ -239,7 +239,11 @@ std::size_t BatchedPasses::draw_with_helpers(const std::vector<Batch>& batches, 
     start_more(i);
     const Batch& b = batches[first + i];
     gather(b.entries);
+    // Directional VPLs alone: no cube read, but the lookup binds this context's atlas and its
+    // gradients as flush() does.
     ShadowHelpers::Drawn none;
+    none.texture = atlas_.texture();
+    none.gradient = atlas_.gradient_texture();
     const ShadowHelpers::Drawn& d = vpls_.empty() ? none : helpers_->finish(jobs[i]);
     shadow_triangles_ += d.triangles;
     complete(d.texture, d.gradient, d.frames, d.fars, d.blocks, into, gpu, timer);
