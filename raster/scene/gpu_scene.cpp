@@ -49,6 +49,21 @@ Vertex vertex_of(const Scene& scene, std::size_t i) {
   return {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}};
 }
 
+// A new store of `bytes` for the buffer bound to `target`, written by fill(storage) through a
+// mapping: no copy of it in the process's memory.
+template <class Fill>
+void fill_buffer(const GladGLContext& api, GLenum target, std::size_t bytes, GLenum usage,
+                 const Fill& fill) {
+  api.BufferData(target, static_cast<GLsizeiptr>(bytes), nullptr, usage);
+  if (bytes == 0) return;
+  void* storage = api.MapBufferRange(target, 0, static_cast<GLsizeiptr>(bytes),
+                                     GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
+  if (storage == nullptr) throw Error("", "gpu scene", "cannot map a buffer to upload it");
+  fill(storage);
+  if (api.UnmapBuffer(target) == GL_FALSE)
+    throw Error("", "gpu scene", "a buffer was lost while uploaded");
+}
+
 // A tightly packed float attribute array (vec2 or vec4 per vertex).
 template <class V>
 Buffer upload_attribute(const GladGLContext& api, const std::vector<V>& values) {
@@ -101,27 +116,13 @@ void GpuScene::update_vertices() {
 GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
     : api_(&api), scene_(&scene), vao_(make_vertex_array(api)), vertices_(make_buffer(api)),
       indices_(make_buffer(api)), features_(MaterialFeatures::of(scene)) {
-  std::vector<Vertex> vertices(scene.positions.size());
-  for (std::size_t i = 0; i < vertices.size(); ++i) vertices[i] = vertex_of(scene, i);
-  // Triangles grouped by material (stable, so the file's order is kept within a material).
-  std::vector<std::uint32_t> order(scene.triangle_count());
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return scene.triangle_material[a] < scene.triangle_material[b];
-  });
-  std::vector<std::uint32_t> indices;
-  indices.reserve(3 * order.size());
-  for (std::uint32_t t : order) {
-    const std::uint32_t m = scene.triangle_material[t];
-    if (ranges_.empty() || ranges_.back().material != m) ranges_.push_back({m, indices.size(), 0});
-    for (int c = 0; c < 3; ++c) indices.push_back(scene.triangles[t][c]);
-    ranges_.back().count += 3;
-  }
-  index_count_ = static_cast<GLsizei>(indices.size());
-
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
-  api.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(Vertex)),
-                 vertices.data(), scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW);
+  fill_buffer(api, GL_ARRAY_BUFFER, scene.positions.size() * sizeof(Vertex),
+              scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW, [&](void* storage) {
+                auto* out = static_cast<Vertex*>(storage);
+                for (std::size_t i = 0; i < scene.positions.size(); ++i)
+                  out[i] = vertex_of(scene, i);
+              });
   // The optional arrays run parallel to the positions (core/scene/scene.h): GL must never read past
   // one.
   if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
@@ -134,13 +135,36 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
 
   api.BindVertexArray(vao_.get());
   api.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
-  api.BufferData(GL_ELEMENT_ARRAY_BUFFER,
-                 static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
-                 GL_STATIC_DRAW);
+  upload_grouped_indices(scene);
   attach_attributes();
 
   for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
   if (features_.glossy) albedo_table_ = albedo_table_texture(api);
+}
+
+void GpuScene::upload_grouped_indices(const Scene& scene) {
+  // Triangles grouped by material, in the file's order within a material (a counting sort).
+  std::vector<std::size_t> first;
+  for (std::uint32_t m : scene.triangle_material) {
+    if (m >= first.size()) first.resize(m + 1, 0);
+    ++first[m];
+  }
+  std::size_t at = 0;
+  for (std::size_t m = 0; m < first.size(); ++m) {
+    const std::size_t triangles = first[m];
+    first[m] = at;
+    if (triangles > 0)
+      ranges_.push_back(
+          {static_cast<std::uint32_t>(m), 3 * at, static_cast<GLsizei>(3 * triangles)});
+    at += triangles;
+  }
+  index_count_ = static_cast<GLsizei>(3 * at);
+  fill_buffer(*api_, GL_ELEMENT_ARRAY_BUFFER, 3 * at * sizeof(std::uint32_t), GL_STATIC_DRAW,
+              [&](void* storage) {
+                auto* out = static_cast<glm::uvec3*>(storage);
+                for (std::size_t t = 0; t < scene.triangle_count(); ++t)
+                  out[first[scene.triangle_material[t]]++] = scene.triangles[t];
+              });
 }
 
 void GpuScene::attach_attributes() const {

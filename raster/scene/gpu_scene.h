@@ -66,6 +66,9 @@ private:
     std::size_t first; // first index (not triangle)
     GLsizei count;     // indices
   };
+  // ranges_, index_count_ and the bound element buffer's indices: the triangles grouped by
+  // material.
+  void upload_grouped_indices(const Scene& scene);
   void draw_range(const Range& r, GLsizei instances = 1) const;
   // Every index, `instances` times, through `vao` (nullptr: the own one).
   void draw_everything(GLsizei instances, const VertexArray* vao) const;
