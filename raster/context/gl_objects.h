@@ -1,6 +1,8 @@
 #pragma once
 // RAII owners of GL object names. Each holds the function table it was created with and deletes
 // its name when it goes out of scope; they move but never copy.
+#include <cstddef>
+#include <functional>
 #include <glad/gl.h>
 #include <utility>
 
@@ -99,6 +101,13 @@ inline Texture make_float_texture(const GladGLContext& api, int width, int heigh
 inline Texture make_gradient_texture(const GladGLContext& api, int width, int height) {
   return make_float_texture(api, width, height, GL_RG16F, GL_RG);
 }
+
+// Gives the buffer bound to `target` a new store of `bytes` (`usage` as glBufferData's) that
+// fill(storage) writes through a write-only mapping: the data is never copied in the process.
+// Throws irad::Error naming `what` when the store cannot be mapped or was lost while mapped;
+// what fill throws passes on, the buffer unmapped.
+void fill_buffer(const GladGLContext& api, GLenum target, std::size_t bytes, GLenum usage,
+                 const std::function<void(void*)>& fill, const char* what);
 
 // Throws irad::Error naming `what` unless the bound draw framebuffer is complete.
 void check_framebuffer(const GladGLContext& api, const char* what);

@@ -96,6 +96,10 @@ void BatchedPasses::complete(GLuint texture, GLuint gradient, const std::vector<
     a.far = fars[c];
     a.blocks = blocks[c];
   }
+  if (cubes_.empty()) { // no cube is read, but the shading binds an atlas and its gradients
+    texture = atlas_.texture();
+    gradient = atlas_.gradient_texture();
+  }
   if (timer) timer->begin(PassTimer::Shading);
   ShadowLookup lookup{texture, atlas_.resolution()};
   if (ortho_) lookup = {texture, atlas_.resolution(), ortho_->texture(), ortho_->resolution()};
@@ -239,11 +243,7 @@ std::size_t BatchedPasses::draw_with_helpers(const std::vector<Batch>& batches, 
     start_more(i);
     const Batch& b = batches[first + i];
     gather(b.entries);
-    // Directional VPLs alone: no cube read, but the lookup binds this context's atlas and its
-    // gradients as flush() does.
-    ShadowHelpers::Drawn none;
-    none.texture = atlas_.texture();
-    none.gradient = atlas_.gradient_texture();
+    const ShadowHelpers::Drawn none;
     const ShadowHelpers::Drawn& d = vpls_.empty() ? none : helpers_->finish(jobs[i]);
     shadow_triangles_ += d.triangles;
     complete(d.texture, d.gradient, d.frames, d.fars, d.blocks, into, gpu, timer);

@@ -4,9 +4,6 @@
 #include "core/material/albedo_table.h"
 #include "core/util/error.h"
 
-#include <algorithm>
-#include <numeric>
-
 namespace irad::gl {
 
 namespace {
@@ -47,21 +44,6 @@ Vertex vertex_of(const Scene& scene, std::size_t i) {
   const glm::vec3& n = scene.normals[i];
   const glm::vec2 uv = scene.uvs.empty() ? glm::vec2(0.0f) : scene.uvs[i];
   return {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}};
-}
-
-// A new store of `bytes` for the buffer bound to `target`, written by fill(storage) through a
-// mapping: no copy of it in the process's memory.
-template <class Fill>
-void fill_buffer(const GladGLContext& api, GLenum target, std::size_t bytes, GLenum usage,
-                 const Fill& fill) {
-  api.BufferData(target, static_cast<GLsizeiptr>(bytes), nullptr, usage);
-  if (bytes == 0) return;
-  void* storage = api.MapBufferRange(target, 0, static_cast<GLsizeiptr>(bytes),
-                                     GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
-  if (storage == nullptr) throw Error("", "gpu scene", "cannot map a buffer to upload it");
-  fill(storage);
-  if (api.UnmapBuffer(target) == GL_FALSE)
-    throw Error("", "gpu scene", "a buffer was lost while uploaded");
 }
 
 // A tightly packed float attribute array (vec2 or vec4 per vertex).
@@ -117,12 +99,14 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
     : api_(&api), scene_(&scene), vao_(make_vertex_array(api)), vertices_(make_buffer(api)),
       indices_(make_buffer(api)), features_(MaterialFeatures::of(scene)) {
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
-  fill_buffer(api, GL_ARRAY_BUFFER, scene.positions.size() * sizeof(Vertex),
-              scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW, [&](void* storage) {
-                auto* out = static_cast<Vertex*>(storage);
-                for (std::size_t i = 0; i < scene.positions.size(); ++i)
-                  out[i] = vertex_of(scene, i);
-              });
+  fill_buffer(
+      api, GL_ARRAY_BUFFER, scene.positions.size() * sizeof(Vertex),
+      scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW,
+      [&](void* storage) {
+        auto* out = static_cast<Vertex*>(storage);
+        for (std::size_t i = 0; i < scene.positions.size(); ++i) out[i] = vertex_of(scene, i);
+      },
+      "gpu scene");
   // The optional arrays run parallel to the positions (core/scene/scene.h): GL must never read past
   // one.
   if ((features_.uv1 && scene.uvs1.size() != scene.positions.size()) ||
@@ -159,12 +143,14 @@ void GpuScene::upload_grouped_indices(const Scene& scene) {
     at += triangles;
   }
   index_count_ = static_cast<GLsizei>(3 * at);
-  fill_buffer(*api_, GL_ELEMENT_ARRAY_BUFFER, 3 * at * sizeof(std::uint32_t), GL_STATIC_DRAW,
-              [&](void* storage) {
-                auto* out = static_cast<glm::uvec3*>(storage);
-                for (std::size_t t = 0; t < scene.triangle_count(); ++t)
-                  out[first[scene.triangle_material[t]]++] = scene.triangles[t];
-              });
+  fill_buffer(
+      *api_, GL_ELEMENT_ARRAY_BUFFER, 3 * at * sizeof(std::uint32_t), GL_STATIC_DRAW,
+      [&](void* storage) {
+        auto* out = static_cast<glm::uvec3*>(storage);
+        for (std::size_t t = 0; t < scene.triangle_count(); ++t)
+          out[first[scene.triangle_material[t]]++] = scene.triangles[t];
+      },
+      "gpu scene");
 }
 
 void GpuScene::attach_attributes() const {

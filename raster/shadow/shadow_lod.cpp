@@ -1,7 +1,5 @@
 #include "raster/shadow/shadow_lod.h"
 
-#include "core/util/error.h"
-
 #include <algorithm>
 #include <cmath>
 
@@ -55,23 +53,14 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
   index_count_ = clusters_.index_count();
   const auto bytes = static_cast<GLsizeiptr>(index_count_ * sizeof(std::uint32_t));
   api.BindBuffer(GL_ARRAY_BUFFER, indices_.get()); // not the bound VAO's element buffer
-  if (!clusters_.stored_indices || bytes == 0) {
+  if (!clusters_.stored_indices) {
     api.BufferData(GL_ARRAY_BUFFER, bytes, clusters_.indices.data(), GL_STATIC_DRAW);
-  } else {
-    // Straight from the cache file into the buffer's storage.
-    api.BufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_STATIC_DRAW);
-    void* storage = api.MapBufferRange(GL_ARRAY_BUFFER, 0, bytes,
-                                       GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
-    if (storage == nullptr) throw Error("", "shadow hierarchy", "cannot map its index buffer");
-    try {
-      clusters_.stored_indices->copy_to(static_cast<std::uint32_t*>(storage));
-    } catch (...) {
-      api.UnmapBuffer(GL_ARRAY_BUFFER);
-      api.BindBuffer(GL_ARRAY_BUFFER, 0);
-      throw;
-    }
-    if (api.UnmapBuffer(GL_ARRAY_BUFFER) == GL_FALSE)
-      throw Error("", "shadow hierarchy", "its index buffer was lost while written");
+  } else { // straight from the cache file into the buffer's storage (a throw deletes it)
+    const StoredIndices& stored = *clusters_.stored_indices;
+    fill_buffer(
+        api, GL_ARRAY_BUFFER, static_cast<std::size_t>(bytes), GL_STATIC_DRAW,
+        [&](void* storage) { stored.copy_to(static_cast<std::uint32_t*>(storage)); },
+        "shadow hierarchy");
   }
   api.BindBuffer(GL_ARRAY_BUFFER, 0);
   std::vector<std::uint32_t>().swap(clusters_.indices);
