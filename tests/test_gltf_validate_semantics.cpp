@@ -54,6 +54,9 @@ std::string rel(const ConformanceFile& f) {
 }
 
 TEST(GltfValidateSemantics, ConformanceFiles) {
+  // ../shared is the project's, beside the checkout: a clone elsewhere has none (CI's has it).
+  if (!std::filesystem::is_directory(irad::test::conformance_dir()))
+    GTEST_SKIP() << "no conformance files at " << irad::test::conformance_dir();
   const auto documents = irad::test::conformance_documents();
   ASSERT_GT(documents.size(), 300u) << "conformance files not found";
   int valid = 0, valid_clean = 0, scoped = 0, caught = 0, skipped = 0;
@@ -140,6 +143,9 @@ void mutate(nlohmann::json& v, int depth, const std::vector<nlohmann::json>& hos
 // hostile values, and with its buffers cut short: check_semantics must neither throw nor crash
 // (built with the sanitizers, this also checks for undefined behaviour and stray reads).
 TEST(GltfValidateSemantics, MutatedConformanceFilesNeverThrow) {
+  // ../shared is the project's, beside the checkout: a clone elsewhere has none (CI's has it).
+  if (!std::filesystem::is_directory(irad::test::conformance_dir()))
+    GTEST_SKIP() << "no conformance files at " << irad::test::conformance_dir();
   const std::vector<nlohmann::json> hostile = {
       -1, 4294967295u, 1e30, 4611686018427387904, "x", nlohmann::json::array(), nullptr};
   std::size_t runs = 0;
@@ -226,4 +232,4 @@ TEST(GltfValidateSemantics, HostileJsonNeverThrows) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
