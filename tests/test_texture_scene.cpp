@@ -1,4 +1,6 @@
 // The texture sampler and the scene model's surface queries.
+#include "core/material/brdf.h"
+#include "core/material/surface_material.h"
 #include "core/scene/scene.h"
 #include "core/scene/texture.h"
 #include "tests/gltf_test_scene.h"
@@ -125,6 +127,38 @@ TEST(SceneModel, MeanAlbedoIsAreaWeighted) {
   EXPECT_NEAR(irad::mean_albedo(coloured), (2 * 0.4 + 1 * 0.8) / 3.0, 1e-6);
 }
 
+// The per-material sums against every triangle's albedo taken on its own (brdf_inputs_at at the
+// centroid, hemispherical_albedo): a metal used by two triangles, a Lambertian one and an unused
+// material, without and with COLOR_0 (which the BRDF's Fresnel terms do not take linearly).
+TEST(SceneModel, MeanAlbedoOfBrdfsAndVertexColoursPerTriangle) {
+  Scene s = two_triangles();
+  s.positions.insert(s.positions.end(), {{0, 0, 2}, {1, 0, 2}, {0, 1, 2}});
+  s.normals.assign(9, glm::vec3(0, 0, 1));
+  s.triangles.push_back({6, 7, 8}); // area 0.5
+  s.triangle_material = {0, 1, 0};
+  s.materials[0].metallic = 1.0f;
+  s.materials[0].roughness = 0.4f;
+  s.materials[0].base_color = {0.9f, 0.6f, 0.2f};
+  s.materials.push_back(irad::Material{}); // unused
+  auto expected = [](const Scene& scene) {
+    double weighted = 0.0, total = 0.0;
+    for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+      const glm::vec3 rho =
+          irad::hemispherical_albedo(irad::brdf_inputs_at(scene, t, glm::vec2(1.0f / 3.0f)));
+      const double a = irad::triangle_area(scene, t);
+      weighted += a * (rho.x + rho.y + rho.z) / 3.0;
+      total += a;
+    }
+    return weighted / total;
+  };
+  ASSERT_GT(std::abs(expected(s) - (2 * 0.5 + 1 * 0.8 + 0.5 * 0.5) / 3.5), 0.01); // a metal
+  EXPECT_NEAR(irad::mean_albedo(s), expected(s), 1e-6); // float albedos summed in double
+  s.colors = {{1, 0.5, 0.5, 1},   {0.5, 1, 0.5, 1},   {0.5, 0.5, 1, 1},
+              {0.2, 0.2, 0.2, 1}, {0.4, 0.4, 0.4, 1}, {0.6, 0.6, 0.6, 1},
+              {1, 1, 1, 1},       {0, 0, 0, 1},       {0.1, 0.9, 0.3, 1}};
+  EXPECT_NEAR(irad::mean_albedo(s), expected(s), 1e-6);
+}
+
 TEST(SceneModel, TexturedAlbedoAndEmissionInterpolateUvs) {
   Scene s = two_triangles();
   s.textures = {two_by_two(irad::Wrap::Repeat, irad::Wrap::Repeat)};
@@ -143,4 +177,4 @@ TEST(SceneModel, TexturedAlbedoAndEmissionInterpolateUvs) {
   EXPECT_NEAR(irad::mean_albedo(s), (2 * 0.25 + 1 * 0.8) / 3.0, 1e-6);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID

@@ -2,6 +2,7 @@
 
 #include "core/material/surface_material.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -119,7 +120,8 @@ glm::vec3 emission_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
 float coverage_at(const Scene& scene, std::size_t t, glm::vec2 bary) {
   const Material& m = scene.material_of(t);
   if (m.alpha_mode == AlphaMode::Opaque) return 1.0f;
-  const std::optional<glm::vec4> c = texture_at(scene, t, bary, m.base_color_texture, m.base_color_map);
+  const std::optional<glm::vec4> c =
+      texture_at(scene, t, bary, m.base_color_texture, m.base_color_map);
   return m.base_alpha * (c ? c->w : 1.0f) * vertex_color_at(scene, t, bary).w;
 }
 
@@ -138,24 +140,45 @@ bool covered(const Material& material, float coverage, float u) {
 double mean_albedo(const Scene& scene) {
   const std::vector<glm::vec4> means = texture_means(scene); // once per texture
   auto mean = [&means](std::size_t texture) { return means[texture]; };
-  double weighted = 0.0;
-  double area = 0.0;
+  const bool coloured = !scene.colors.empty();
+  // Per material: its area and, under COLOR_0, the area-weighted sum of its centroid colours,
+  // which a Lambertian or mirror albedo scales linearly; its first triangle stands for it where
+  // the albedo does not depend on the triangle. (rho = 1 everywhere gives exactly 1.)
+  const std::size_t materials = scene.materials.size();
+  std::vector<double> area(materials, 0.0);
+  std::vector<glm::dvec3> colour_area(materials, glm::dvec3(0.0));
+  std::vector<std::size_t> first(materials, scene.triangles.size());
+  double weighted = 0.0; // the per-triangle albedos (a BRDF's under COLOR_0)
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
-    const Material& m = scene.material_of(t);
-    glm::dvec3 rho;
-    if (m.lambertian() || m.specular) {
-      rho = glm::dvec3(
-          mean_textured(scene, m.base_color, m.base_color_texture, m.base_color_map, mean));
-      if (!scene.colors.empty())
-        rho *= glm::dvec3(vertex_color_at(scene, t, glm::vec2(1.0f / 3.0f)));
-    } else {
-      rho = glm::dvec3(hemispherical_albedo(mean_brdf_inputs(scene, t, means)));
-    }
+    const std::uint32_t k = scene.triangle_material[t];
+    const Material& m = scene.materials[k];
     const double a = 0.5 * glm::length(edge_cross(scene, t));
-    weighted += a * (rho.x + rho.y + rho.z) / 3.0;
-    area += a;
+    area[k] += a;
+    first[k] = std::min(first[k], t);
+    if (!coloured) continue;
+    if (m.lambertian() || m.specular) {
+      colour_area[k] += a * glm::dvec3(vertex_color_at(scene, t, glm::vec2(1.0f / 3.0f)));
+    } else {
+      const glm::dvec3 rho(hemispherical_albedo(mean_brdf_inputs(scene, t, means)));
+      weighted += a * (rho.x + rho.y + rho.z) / 3.0;
+    }
   }
-  return area > 0.0 ? weighted / area : 0.0;
+  double total = 0.0;
+  for (std::size_t k = 0; k < materials; ++k) {
+    if (first[k] == scene.triangles.size()) continue; // unused
+    total += area[k];
+    const Material& m = scene.materials[k];
+    if (m.lambertian() || m.specular) {
+      const glm::dvec3 rho(
+          mean_textured(scene, m.base_color, m.base_color_texture, m.base_color_map, mean));
+      const glm::dvec3 a = coloured ? colour_area[k] : glm::dvec3(area[k]);
+      weighted += (rho.x * a.x + rho.y * a.y + rho.z * a.z) / 3.0;
+    } else if (!coloured) {
+      const glm::dvec3 rho(hemispherical_albedo(mean_brdf_inputs(scene, first[k], means)));
+      weighted += area[k] * (rho.x + rho.y + rho.z) / 3.0;
+    }
+  }
+  return total > 0.0 ? weighted / total : 0.0;
 }
 
 glm::vec3 mean_emission(const Scene& scene, std::size_t t) {

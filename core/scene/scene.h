@@ -60,8 +60,8 @@ struct Material {
   int metallic_roughness_texture = -1;
   TexCoordMap metallic_roughness_map;
   // Dielectric Fresnel: f0 = ((ior - 1)/(ior + 1))^2 (KHR_materials_ior), scaled by
-  // KHR_materials_specular: f0 = min(f0 * specular_color, 1) * s, f90 = s with s = specular_factor *
-  // specular_texture's alpha, specular_color = its factor * specular_color_texture's rgb.
+  // KHR_materials_specular: f0 = min(f0 * specular_color, 1) * s, f90 = s with s = specular_factor
+  // * specular_texture's alpha, specular_color = its factor * specular_color_texture's rgb.
   float ior = 1.5f;
   float specular_factor = 0.0f;
   int specular_texture = -1;
@@ -152,7 +152,7 @@ struct Scene {
   bool has_emitters() const;
   bool has_environment() const { return environment && !environment->black(); }
   bool has_textures() const { return !textures.empty(); }
-  bool has_specular() const; // any material is a mirror
+  bool has_specular() const;   // any material is a mirror
   bool all_lambertian() const; // every material is a mirror or Material::lambertian()
 };
 
@@ -194,7 +194,8 @@ bool covered(const Material& material, float coverage, float u);
 // textured albedos taken at their texel mean and COLOR_0 at the triangle's centroid. rho_k is the
 // base colour of a Lambertian material or a mirror, else the BRDF's hemispherical albedo
 // (core/material/brdf.h, specular lobe included). Time linear in triangles plus texels: each
-// texture's mean is taken once.
+// texture's mean is taken once, and each material's albedo once (per triangle only for a BRDF
+// under COLOR_0).
 double mean_albedo(const Scene& scene);
 // Triangle t's emission with its texture at the texel mean (emitter powers): emission_at's rule,
 // so a texture whose TEXCOORD set the scene lacks counts as absent in both.
