@@ -2,7 +2,11 @@
 // against the declared min/max.
 #include "core/gltf/validate/validate_semantics_read.h"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
+#include <span>
+#include <vector>
 
 namespace irad::gltf::sem {
 
@@ -79,39 +83,74 @@ std::string format(double v) {
   return s;
 }
 
-// Declared bounds against the data, component by component.
-void check_bounds(const Context& ctx, const json& acc, const AccessorView& a, const AccessorData& d,
-                  const std::string& ptr) {
-  const bool is_float = a.component_type == kFloat;
-  const auto n = static_cast<std::size_t>(a.components);
-  for (const char* key : {"min", "max"}) {
-    const auto declared = numbers(acc, key);
-    if (!declared || declared->size() != n || a.count == 0) continue;
-    const bool is_min = key[1] == 'i';
-    for (std::size_t c = 0; c < n; ++c) {
-      double actual = is_min ? HUGE_VAL : -HUGE_VAL;
-      std::size_t outside = 0;
-      const double want =
-          is_float ? static_cast<double>(static_cast<float>((*declared)[c])) : (*declared)[c];
-      for (std::size_t e = c; e < d.values.size(); e += n) {
-        const double v = d.values[e];
-        if (!std::isfinite(v)) continue;
-        actual = is_min ? std::min(actual, v) : std::max(actual, v);
-        if (is_min ? v < want : v > want) ++outside;
+// Declared bounds against the data, component by component, gathered chunk by chunk.
+class BoundsCheck {
+public:
+  BoundsCheck(const json& acc, const AccessorView& a) : a_(a) {
+    const auto n = static_cast<std::size_t>(a.components);
+    for (int m = 0; m < 2; ++m) {
+      const auto declared = numbers(acc, m == 0 ? "min" : "max");
+      if (!declared || declared->size() != n || a.count == 0) continue;
+      Side& side = sides_[m];
+      side.declared = true;
+      for (std::size_t c = 0; c < n; ++c) {
+        // A float accessor's bounds as the floats the data is compared with.
+        side.want.push_back(a.component_type == kFloat
+                                ? static_cast<double>(static_cast<float>((*declared)[c]))
+                                : (*declared)[c]);
+        side.actual.push_back(m == 0 ? HUGE_VAL : -HUGE_VAL);
       }
-      if (!std::isfinite(actual)) continue;
-      const std::string cp = at(at(ptr, key), static_cast<std::int64_t>(c));
-      if (actual != want)
-        ctx.add(cp, is_min ? "ACCESSOR_MIN_MISMATCH" : "ACCESSOR_MAX_MISMATCH",
-                std::string("declared ") + key + " " + format(want) + " but the data's is " +
-                    format(actual));
-      if (outside > 0)
-        ctx.add(cp,
-                is_min ? "ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND" : "ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND",
-                std::to_string(outside) + " element(s) lie outside the declared " + key);
+      side.outside.assign(n, 0);
     }
   }
-}
+
+  void add(std::span<const double> values) {
+    const auto n = static_cast<std::size_t>(a_.components);
+    for (int m = 0; m < 2; ++m) {
+      Side& side = sides_[m];
+      if (!side.declared) continue;
+      const bool is_min = m == 0;
+      for (std::size_t e = 0; e < values.size(); e += n) {
+        for (std::size_t c = 0; c < n; ++c) {
+          const double v = values[e + c];
+          if (!std::isfinite(v)) continue;
+          side.actual[c] = is_min ? std::min(side.actual[c], v) : std::max(side.actual[c], v);
+          if (is_min ? v < side.want[c] : v > side.want[c]) ++side.outside[c];
+        }
+      }
+    }
+  }
+
+  void report(const Context& ctx, const std::string& ptr) const {
+    for (int m = 0; m < 2; ++m) {
+      const Side& side = sides_[m];
+      const bool is_min = m == 0;
+      const char* key = is_min ? "min" : "max";
+      for (std::size_t c = 0; side.declared && c < side.want.size(); ++c) {
+        if (!std::isfinite(side.actual[c])) continue;
+        const std::string cp = at(at(ptr, key), static_cast<std::int64_t>(c));
+        if (side.actual[c] != side.want[c])
+          ctx.add(cp, is_min ? "ACCESSOR_MIN_MISMATCH" : "ACCESSOR_MAX_MISMATCH",
+                  std::string("declared ") + key + " " + format(side.want[c]) +
+                      " but the data's is " + format(side.actual[c]));
+        if (side.outside[c] > 0)
+          ctx.add(cp,
+                  is_min ? "ACCESSOR_ELEMENT_OUT_OF_MIN_BOUND"
+                         : "ACCESSOR_ELEMENT_OUT_OF_MAX_BOUND",
+                  std::to_string(side.outside[c]) + " element(s) lie outside the declared " + key);
+      }
+    }
+  }
+
+private:
+  struct Side {
+    bool declared = false;
+    std::vector<double> want, actual;
+    std::vector<std::size_t> outside;
+  };
+  const AccessorView& a_;
+  Side sides_[2]; // min, max
+};
 
 void check_accessor(const Context& ctx, const json& acc, std::int64_t i) {
   const auto a = accessor_view(ctx, i);
@@ -122,17 +161,21 @@ void check_accessor(const Context& ctx, const json& acc, std::int64_t i) {
             "only byte and short accessors can be normalized");
   if (a->buffer_view) check_layout(ctx, *a, ptr);
   check_sparse(ctx, acc, *a, ptr);
-  const AccessorData d = read_accessor(ctx, i);
-  if (!d.ok) return;
-  if (a->component_type == kFloat) {
-    for (std::size_t e = 0; e < d.values.size(); ++e) {
-      if (std::isfinite(d.values[e])) continue;
-      ctx.add(ptr, "ACCESSOR_INVALID_FLOAT",
-              "component " + std::to_string(e) + " is NaN or infinite");
-      break;
-    }
-  }
-  check_bounds(ctx, acc, *a, d, ptr);
+  BoundsCheck bounds(acc, *a);
+  std::optional<std::int64_t> non_finite; // the first NaN or infinite component of a float one
+  const auto n = static_cast<std::int64_t>(a->components);
+  const bool read =
+      stream_accessor(ctx, i, [&](std::span<const double> values, std::int64_t first) {
+        for (std::size_t e = 0; !non_finite && a->component_type == kFloat && e < values.size();
+             ++e)
+          if (!std::isfinite(values[e])) non_finite = first * n + static_cast<std::int64_t>(e);
+        bounds.add(values);
+      });
+  if (!read) return;
+  if (non_finite)
+    ctx.add(ptr, "ACCESSOR_INVALID_FLOAT",
+            "component " + std::to_string(*non_finite) + " is NaN or infinite");
+  bounds.report(ctx, ptr);
 }
 
 } // namespace

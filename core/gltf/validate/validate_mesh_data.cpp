@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <span>
 
 namespace irad::gltf::sem {
 
@@ -41,15 +42,16 @@ void check_indices_data(const Context& ctx, std::int64_t acc, std::int64_t verti
     restart = 4294967295.0;
   else
     return;
-  const AccessorData d = read_accessor(ctx, acc);
-  if (!d.ok) return;
   bool oob = false, restarted = false;
-  for (double v : d.values) {
-    if (v == restart)
-      restarted = true;
-    else if (vertices >= 0 && v >= static_cast<double>(vertices))
-      oob = true;
-  }
+  const bool read = stream_accessor(ctx, acc, [&](std::span<const double> values, std::int64_t) {
+    for (double v : values) {
+      if (v == restart)
+        restarted = true;
+      else if (vertices >= 0 && v >= static_cast<double>(vertices))
+        oob = true;
+    }
+  });
+  if (!read) return;
   if (restarted)
     ctx.add(ptr, "ACCESSOR_INDEX_PRIMITIVE_RESTART", "an index is the primitive restart value");
   if (oob) ctx.add(ptr, "ACCESSOR_INDEX_OOB", "an index is not less than the number of vertices");
@@ -59,23 +61,24 @@ void check_indices_data(const Context& ctx, std::int64_t acc, std::int64_t verti
 void check_unit(const Context& ctx, std::int64_t acc, bool tangent, const std::string& ptr) {
   const auto a = accessor_view(ctx, acc);
   if (!a || !a->valid || a->components != (tangent ? 4 : 3)) return;
-  const AccessorData d = read_accessor(ctx, acc);
-  if (!d.ok) return;
   const auto n = static_cast<std::size_t>(a->components);
   const double tol = tolerance(a->component_type);
   bool non_unit = false, bad_sign = false;
-  for (std::size_t e = 0; e + n <= d.values.size(); e += n) {
-    double len2 = 0;
-    for (std::size_t c = 0; c < 3; ++c) {
-      const double v = normalize(d.values[e + c], a->component_type, a->normalized);
-      len2 += v * v;
+  const bool read = stream_accessor(ctx, acc, [&](std::span<const double> values, std::int64_t) {
+    for (std::size_t e = 0; e + n <= values.size(); e += n) {
+      double len2 = 0;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double v = normalize(values[e + c], a->component_type, a->normalized);
+        len2 += v * v;
+      }
+      if (std::isfinite(len2) && std::fabs(std::sqrt(len2) - 1.0) > tol) non_unit = true;
+      if (tangent) {
+        const double w = normalize(values[e + 3], a->component_type, a->normalized);
+        if (std::fabs(std::fabs(w) - 1.0) > tol) bad_sign = true;
+      }
     }
-    if (std::isfinite(len2) && std::fabs(std::sqrt(len2) - 1.0) > tol) non_unit = true;
-    if (tangent) {
-      const double w = normalize(d.values[e + 3], a->component_type, a->normalized);
-      if (std::fabs(std::fabs(w) - 1.0) > tol) bad_sign = true;
-    }
-  }
+  });
+  if (!read) return;
   if (non_unit) ctx.add(ptr, "ACCESSOR_VECTOR3_NON_UNIT", "a vector is not of unit length");
   if (bad_sign) ctx.add(ptr, "ACCESSOR_INVALID_SIGN", "a tangent's w is not 1 or -1");
 }
@@ -83,14 +86,12 @@ void check_unit(const Context& ctx, std::int64_t acc, bool tangent, const std::s
 void check_color(const Context& ctx, std::int64_t acc, const std::string& ptr) {
   const auto a = accessor_view(ctx, acc);
   if (!a || !a->valid || a->component_type != kFloat) return;
-  const AccessorData d = read_accessor(ctx, acc);
-  if (!d.ok) return;
-  for (double v : d.values) {
-    if (v >= 0.0 && v <= 1.0) continue;
-    if (!std::isfinite(v)) continue; // ACCESSOR_INVALID_FLOAT
-    ctx.add(ptr, "ACCESSOR_NON_CLAMPED", "a colour component is outside 0..1");
-    return;
-  }
+  bool clamped = true;
+  const bool read = stream_accessor(ctx, acc, [&](std::span<const double> values, std::int64_t) {
+    for (double v : values)
+      if (!(v >= 0.0 && v <= 1.0) && std::isfinite(v)) clamped = false; // NaN: INVALID_FLOAT
+  });
+  if (read && !clamped) ctx.add(ptr, "ACCESSOR_NON_CLAMPED", "a colour component is outside 0..1");
 }
 
 // Per mesh, the fewest joints among the skins nodes apply to it (meshes no node skins: absent).

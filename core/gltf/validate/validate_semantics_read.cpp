@@ -200,27 +200,37 @@ const unsigned char* view_bytes(const Context& ctx, std::int64_t view, std::int6
   return b.data + bv_offset + offset;
 }
 
-// Applies the accessor's sparse substitution to `values`; false when it cannot be read.
-bool apply_sparse(const Context& ctx, const json& acc, const AccessorView& a,
-                  std::vector<double>& values) {
+// The accessor's sparse substitutions, by element: entries in ascending element order, a later
+// entry for the same element after an earlier one (it wins); elements outside [0, count) left
+// out. nullopt when they cannot be read.
+struct Substitutions {
+  std::vector<std::pair<std::int64_t, std::size_t>> entries; // (element, k into values)
+  std::vector<double> values;                                // components per entry
+};
+std::optional<Substitutions> read_sparse(const Context& ctx, const json& acc,
+                                         const AccessorView& a) {
   const json* sparse = member(acc, "sparse");
   const auto count = sparse ? index(*sparse, "count") : std::nullopt;
   const json* indices = sparse ? member(*sparse, "indices") : nullptr;
   const json* vals = sparse ? member(*sparse, "values") : nullptr;
   if (!count || *count < 0 || *count > 0x1000000 || indices == nullptr || vals == nullptr)
-    return false;
-  std::vector<double> idx, sub;
+    return std::nullopt;
+  std::vector<double> idx;
+  Substitutions out;
   const auto idx_type = index(*indices, "componentType").value_or(0);
-  if (!read_packed(ctx, *indices, *count, idx_type, 1, idx)) return false;
-  if (!read_packed(ctx, *vals, *count, a.component_type, a.components, sub)) return false;
-  const auto n = static_cast<std::size_t>(a.components);
-  for (std::size_t k = 0; k < idx.size(); ++k) {
-    if (idx[k] < 0 || idx[k] >= static_cast<double>(a.count)) continue;
-    const auto e = static_cast<std::size_t>(idx[k]);
-    for (std::size_t c = 0; c < n; ++c) values[e * n + c] = sub[k * n + c];
-  }
-  return true;
+  if (!read_packed(ctx, *indices, *count, idx_type, 1, idx)) return std::nullopt;
+  if (!read_packed(ctx, *vals, *count, a.component_type, a.components, out.values))
+    return std::nullopt;
+  for (std::size_t k = 0; k < idx.size(); ++k)
+    if (idx[k] >= 0 && idx[k] < static_cast<double>(a.count))
+      out.entries.emplace_back(static_cast<std::int64_t>(idx[k]), k);
+  std::stable_sort(out.entries.begin(), out.entries.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  return out;
 }
+
+// Elements per chunk of stream_accessor: at most 16 components each, 2 MiB of doubles.
+constexpr std::int64_t kChunkElements = 1 << 14;
 
 } // namespace
 
@@ -279,40 +289,58 @@ std::int64_t last_element_size(const AccessorView& a) {
   return (rows - 1) * column_stride(a) + std::int64_t{rows} * a.comp_size;
 }
 
-AccessorData read_accessor(const Context& ctx, std::int64_t i) {
-  AccessorData out;
+bool stream_accessor(const Context& ctx, std::int64_t i, const AccessorSink& sink) {
   const auto a = accessor_view(ctx, i);
-  if (!a || !a->valid || a->compressed) return out;
+  if (!a || !a->valid || a->compressed) return false;
   // Without a bufferView the data is all zeros: the validator checks it only when sparse.
-  if (!a->buffer_view && !a->has_sparse) return out;
-  const auto n = static_cast<std::size_t>(a->components);
+  if (!a->buffer_view && !a->has_sparse) return false;
   const unsigned char* p = nullptr;
   const std::int64_t stride = a->byte_stride.value_or(element_size(*a));
   if (a->buffer_view && a->count > 0) {
-    // The bytes must all be there before anything is allocated for them.
+    // The bytes must all be there before any of them is decoded.
     const std::int64_t length = stride * (a->count - 1) + last_element_size(*a);
     p = view_bytes(ctx, *a->buffer_view, a->byte_offset, length);
-    if (p == nullptr) return {};
+    if (p == nullptr) return false;
   } else if (a->count > (std::int64_t{1} << 22)) {
-    return {}; // sparse over zeros: no bytes bound the count
+    return false; // sparse over zeros: no bytes bound the count
   }
-  out.values.assign(static_cast<std::size_t>(a->count) * n, 0.0);
-  if (p != nullptr) {
-    const int rows = matrix_rows(*a);
-    const std::int64_t col = rows == 0 ? 0 : column_stride(*a);
-    for (std::int64_t e = 0; e < a->count; ++e) {
-      for (std::size_t c = 0; c < n; ++c) {
-        const auto ci = static_cast<std::int64_t>(c);
-        const std::int64_t off =
-            rows == 0 ? ci * a->comp_size : (ci / rows) * col + (ci % rows) * a->comp_size;
-        out.values[static_cast<std::size_t>(e) * n + c] =
-            read_component(p + e * stride + off, a->component_type);
-      }
+  std::optional<Substitutions> sparse;
+  if (a->has_sparse && !(sparse = read_sparse(ctx, *ctx.object("accessors", i), *a))) return false;
+  const auto n = static_cast<std::size_t>(a->components);
+  const int rows = matrix_rows(*a);
+  const std::int64_t col = rows == 0 ? 0 : column_stride(*a);
+  std::vector<std::int64_t> offset(n); // of each component in an element
+  for (std::size_t c = 0; c < n; ++c) {
+    const auto ci = static_cast<std::int64_t>(c);
+    offset[c] = rows == 0 ? ci * a->comp_size : (ci / rows) * col + (ci % rows) * a->comp_size;
+  }
+  std::vector<double> chunk;
+  std::size_t next_sub = 0;
+  for (std::int64_t first = 0; first < a->count; first += kChunkElements) {
+    const std::int64_t last = std::min(a->count, first + kChunkElements);
+    chunk.assign(static_cast<std::size_t>(last - first) * n, 0.0);
+    if (p != nullptr)
+      for (std::int64_t e = first; e < last; ++e)
+        for (std::size_t c = 0; c < n; ++c)
+          chunk[static_cast<std::size_t>(e - first) * n + c] =
+              read_component(p + e * stride + offset[c], a->component_type);
+    for (; sparse && next_sub < sparse->entries.size() && sparse->entries[next_sub].first < last;
+         ++next_sub) {
+      const auto [e, k] = sparse->entries[next_sub];
+      for (std::size_t c = 0; c < n; ++c)
+        chunk[static_cast<std::size_t>(e - first) * n + c] = sparse->values[k * n + c];
     }
+    sink(chunk, first);
   }
-  const json* acc = ctx.object("accessors", i);
-  if (a->has_sparse && !apply_sparse(ctx, *acc, *a, out.values)) return {};
-  out.ok = true;
+  return true;
+}
+
+AccessorData read_accessor(const Context& ctx, std::int64_t i) {
+  AccessorData out;
+  out.ok = stream_accessor(ctx, i, [&out](std::span<const double> values, std::int64_t) {
+    out.values.insert(out.values.end(), values.begin(), values.end());
+  });
+  if (!out.ok) out.values.clear();
   return out;
 }
 

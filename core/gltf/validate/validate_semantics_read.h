@@ -5,7 +5,9 @@
 #include "core/gltf/validate/validate_parts.h"
 
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -89,6 +91,13 @@ struct AccessorData {
   std::vector<double> values;
 };
 AccessorData read_accessor(const Context& ctx, std::int64_t i);
+// The same values in element order, a chunk of whole elements at a time (at most 2 MiB of
+// doubles): sink(values, first) gets elements [first, first + values.size() / components).
+// Returns false, having called sink never, where read_accessor's data would be empty (whether
+// the bytes and the sparse part are all there is known before the first chunk). The checks
+// over mesh data use it: a mesh's accessors whole as doubles would be 8 bytes per component.
+using AccessorSink = std::function<void(std::span<const double> values, std::int64_t first)>;
+bool stream_accessor(const Context& ctx, std::int64_t i, const AccessorSink& sink);
 
 // Reads `count` tightly packed elements of `components` values from the bufferView and
 // byteOffset named in `part` (a sparse accessor's indices or values); false when not all there.
