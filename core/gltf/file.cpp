@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <limits>
 #include <string_view>
+#include <sys/stat.h>
 #include <system_error>
 
 namespace irad::gltf {
@@ -256,15 +257,22 @@ std::vector<unsigned char> read_file_limited(const std::filesystem::path& path,
     throw Error(file, element, "cannot open file: " + std::generic_category().message(errno));
   }
   std::vector<unsigned char> bytes;
+  // Room for the whole file at once (a file that grows meanwhile is read to its end all the
+  // same): growing by doubling would touch and copy about twice its size.
+  auto too_large = [&] {
+    std::fclose(in);
+    return Error(
+        file, element,
+        fmt::format("file larger than the limit of {} bytes (--max-file-size)", max_bytes));
+  };
+  if (struct stat st{}; fstat(fileno(in), &st) == 0 && st.st_size > 0) {
+    if (static_cast<std::uint64_t>(st.st_size) > max_bytes) throw too_large();
+    bytes.reserve(static_cast<std::size_t>(st.st_size));
+  }
   std::array<unsigned char, 65536> block;
   std::size_t n = 0;
   while ((n = std::fread(block.data(), 1, block.size(), in)) > 0) {
-    if (bytes.size() + n > max_bytes) {
-      std::fclose(in);
-      throw Error(
-          file, element,
-          fmt::format("file larger than the limit of {} bytes (--max-file-size)", max_bytes));
-    }
+    if (bytes.size() + n > max_bytes) throw too_large();
     bytes.insert(bytes.end(), block.begin(), block.begin() + std::ptrdiff_t(n));
   }
   const bool failed = std::ferror(in) != 0;
