@@ -5,6 +5,7 @@
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "core/image/image_metrics.h"
+#include "core/mesh/cluster_cache.h"
 #include "core/mesh/mesh_clusters.h"
 #include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
@@ -12,6 +13,7 @@
 #include "raster/raster_renderer.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/shadow/shadow_atlas.h"
+#include "raster/shadow/shadow_lod.h"
 #include "tests/side_by_side.h"
 #include "tests/test_paths.h"
 #include "tests/test_rooms.h"
@@ -23,6 +25,8 @@
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <map>
+#include <random>
+#include <unistd.h>
 #include <utility>
 
 namespace irad {
@@ -347,6 +351,101 @@ TEST(ShadowLod, TheFacesDrawFewerTrianglesWithLod) {
   EXPECT_LT(drawn[0], all);
   EXPECT_LT(drawn[1], drawn[0] / 40);
   EXPECT_GT(drawn[1], 0u);
+}
+
+// The GPU holds only the pages the faces draw, copied on first use into slabs: every node's
+// mesh, original triangles and levels, picked in shuffled rounds, read back through select()'s
+// ranges from the slabs, against the hierarchy's own indices; once from a build (indices in
+// memory), once from a cache hit (indices in the file). Slabs of 8 pages, so that runs of pages
+// cross slabs. After the first round (one leaf) the GPU holds one slab, not the hierarchy.
+TEST(ShadowLod, PagesCopiedOnFirstUseDrawTheHierarchysIndices) {
+  const Scene s = cornell_with_sphere(60); // 14k triangles, 58 pages
+  const ClusterOptions options{128, true};
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("irad_lod_pages_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(folder);
+  const auto context = gl::create_osmesa_context();
+  const gl::CurrentScope current(*context);
+  const GladGLContext& api = context->api();
+  const gl::GpuScene gpu(api, s);
+  for (int source = 0; source < 2; ++source) {
+    CacheResult result;
+    cached_mesh_clusters(s, options, folder, nullptr, &result); // written (or hit on round 2)
+    MeshClusters clusters = source == 0
+                                ? build_mesh_clusters(s, options)
+                                : cached_mesh_clusters(s, options, folder, nullptr, &result);
+    ASSERT_EQ(source == 1, clusters.stored_indices != nullptr);
+    const std::vector<std::uint32_t> indices =
+        source == 0 ? clusters.indices : clusters.stored_indices->read();
+    std::vector<gl::ClusterPick> all;
+    for (std::size_t n = 0; n < clusters.nodes.size(); ++n) {
+      const ClusterNode& node = clusters.nodes[n];
+      const auto id = static_cast<std::int32_t>(n);
+      all.push_back({node.mesh_first, node.mesh_count, id});
+      all.push_back({node.leaf_first, node.leaf_count, id});
+      for (std::uint32_t l = 0; l < node.levels_count; ++l) {
+        const ClusterLevel& level = clusters.levels[node.levels_first + l];
+        all.push_back({level.first, level.count, id});
+      }
+    }
+    std::shuffle(all.begin(), all.end(), std::mt19937(7));
+    // A leaf first: the first round draws one page or two.
+    const auto leaf = std::find_if(clusters.nodes.begin(), clusters.nodes.end(),
+                                   [](const ClusterNode& n) { return n.leaf(); });
+    ASSERT_NE(leaf, clusters.nodes.end());
+    all.insert(all.begin(), {leaf->leaf_first, leaf->leaf_count, 0});
+    const gl::ShadowLod lod(api, gpu, std::move(clusters), true, 8);
+    const std::size_t pages =
+        (indices.size() + gl::ShadowLod::kPageIndices - 1) / gl::ShadowLod::kPageIndices;
+    ASSERT_GT(pages, 40u);
+    EXPECT_EQ(lod.gpu_bytes(), 0u);
+    gl::ClusterSelection selection;
+    const std::size_t rounds[] = {1, 5, 40, all.size()};
+    std::size_t begin = 0;
+    for (std::size_t end : rounds) {
+      end = std::min(end, all.size());
+      std::vector<gl::ClusterPick> round(all.begin() + static_cast<std::ptrdiff_t>(begin),
+                                         all.begin() + static_cast<std::ptrdiff_t>(end));
+      std::sort(round.begin(), round.end(),
+                [](const auto& a, const auto& b) { return a.first < b.first; });
+      lod.make_resident({round});
+      lod.select(round, selection);
+      std::vector<std::uint32_t> drawn, wanted;
+      std::size_t triangles = 0;
+      for (const gl::ClusterPick& p : round) {
+        wanted.insert(wanted.end(), indices.begin() + p.first, indices.begin() + p.first + p.count);
+        triangles += p.count / 3;
+      }
+      for (const gl::ClusterSelection::Slab& slab : selection.slabs) {
+        GLint size = 0;
+        api.BindBuffer(GL_COPY_READ_BUFFER, slab.buffer);
+        api.GetBufferParameteriv(GL_COPY_READ_BUFFER, GL_BUFFER_SIZE, &size);
+        std::vector<std::uint32_t> words(static_cast<std::size_t>(size) / 4);
+        api.GetBufferSubData(GL_COPY_READ_BUFFER, 0, size, words.data());
+        for (std::size_t r = 0; r < slab.counts.size(); ++r) {
+          const auto at = reinterpret_cast<std::uintptr_t>(slab.offsets[r]) / 4;
+          drawn.insert(drawn.end(), words.begin() + static_cast<std::ptrdiff_t>(at),
+                       words.begin() + static_cast<std::ptrdiff_t>(at) + slab.counts[r]);
+        }
+      }
+      api.BindBuffer(GL_COPY_READ_BUFFER, 0);
+      // Slab by slab, the ranges of one slab in pick order: the same multiset of triangles.
+      auto triangles_of = [](const std::vector<std::uint32_t>& v) {
+        std::vector<std::array<std::uint32_t, 3>> t;
+        for (std::size_t k = 0; k + 2 < v.size(); k += 3) t.push_back({v[k], v[k + 1], v[k + 2]});
+        std::sort(t.begin(), t.end());
+        return t;
+      };
+      EXPECT_EQ(selection.triangles, triangles);
+      EXPECT_EQ(drawn.size(), wanted.size()) << "round to " << end;
+      EXPECT_TRUE(triangles_of(drawn) == triangles_of(wanted)) << "round to " << end;
+      if (begin == 0) EXPECT_EQ(lod.gpu_bytes(), 8 * gl::ShadowLod::kPageIndices * 4);
+      begin = end;
+    }
+    // Every pick made resident: all pages, in slabs of 8 (the last one holds what is left).
+    EXPECT_EQ(lod.gpu_bytes(), pages * gl::ShadowLod::kPageIndices * 4);
+  }
+  std::filesystem::remove_all(folder);
 }
 
 // ---------------------------------------------------------------------------------------------

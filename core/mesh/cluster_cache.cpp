@@ -252,6 +252,22 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t 
   return c;
 }
 
+// After c was written to `path`: its indices from there (as a hit has them), their memory freed,
+// when the file opens and has the size c's counts give; else c as it is.
+void leave_indices_in(const fs::path& path, std::size_t vertices, MeshClusters& c) {
+  const auto file = std::make_shared<const OpenFile>(path);
+  Header h{};
+  h.counts[0] = c.indices.size();
+  h.counts[1] = c.nodes.size();
+  h.counts[2] = c.roots.size();
+  h.counts[3] = c.levels.size();
+  h.counts[4] = c.triangles.size();
+  if (!file->valid() || file->size() != expected_size(h)) return;
+  c.stored_indices =
+      std::make_shared<const StoredIndices>(file, sizeof(Header), c.indices.size(), vertices);
+  std::vector<std::uint32_t>().swap(c.indices);
+}
+
 // Removes the least recently used files (hierarchies, walk/wall_cache.h's walls) until the folder
 // holds at most kCacheBytes, and temporary files an hour old (a writer that died).
 void trim_folder(const fs::path& folder) {
@@ -456,6 +472,7 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
     out = {CacheOutcome::Unwritable, why};
   } else {
     if (out.outcome == CacheOutcome::Off) out.outcome = CacheOutcome::Written;
+    leave_indices_in(path, scene.positions.size(), c);
     trim_folder(folder);
   }
   stages.lap("cache write", start);

@@ -77,7 +77,9 @@ const char* outcome_name(CacheOutcome outcome); // "off", "hit", "written", "reb
 std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles);
 
 // build_mesh_clusters through the cache in `folder` (empty: off). times gets the build's stages,
-// or "cache read"; then "cache write" when it wrote. Throws only what the build throws: a
+// or "cache read"; then "cache write" when it wrote. After a hit, and after a write, the
+// indices are left in the file (MeshClusters::stored_indices); with the cache off, or a write
+// that failed, they are in memory. Throws only what the build throws: a
 // cache that cannot be read or written is reported in `result`, never an error.
 MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
                                   const std::filesystem::path& folder, StageTimes* times = nullptr,

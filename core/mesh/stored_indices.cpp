@@ -42,9 +42,12 @@ bool below(const std::uint32_t* words, std::size_t count, std::size_t vertices) 
   return count == 0 || largest < vertices;
 }
 
-void StoredIndices::copy_to(std::uint32_t* out) const {
-  if (!file_->read_at(out, count_ * sizeof(std::uint32_t), offset_) ||
-      !below(out, count_, vertices_))
+void StoredIndices::copy_range(std::size_t first, std::size_t count, std::uint32_t* out) const {
+  if (first > count_ || count > count_ - first)
+    throw Error(file_->path().string(), "shadow hierarchy", "indices read past their end");
+  if (!file_->read_at(out, count * sizeof(std::uint32_t),
+                      offset_ + first * sizeof(std::uint32_t)) ||
+      !below(out, count, vertices_))
     throw Error(file_->path().string(), "shadow hierarchy",
                 "the cache file changed while in use; remove it and render again");
 }

@@ -1,15 +1,14 @@
 #pragma once
 // The shadow hierarchy's indices where they lie in its cache file (core/mesh/cluster_cache.h): a
 // hit checks them as it streams the file (checksum, every index below the vertex count) but keeps
-// none of them; the one reader that needs them, the upload to the GPU (raster/shadow/shadow_lod.h),
-// copies them from the file straight into the buffer it uploads. The process then never holds
-// them: the 10M-triangle terrain's warm raster peaks at 1828 MiB, against 2185 MiB with the
-// 469 MiB of indices read in beside the GPU's copy (docs/performance.md "Big scenes").
+// none of them; the one reader that needs them, the GPU buffer (raster/shadow/shadow_lod.h),
+// copies the parts the shadow faces draw from the file straight into its storage. The process
+// then never holds them (docs/performance.md "Big scenes").
 //
-// The file stays open from the check to the copy, so a writer that renames another file into its
-// place, or a trim that removes it, leaves this one readable as it was. Only a change of the file
-// in place (never irad's: it writes atomically) can make the copy differ from what was checked:
-// copy_to checks every index again and throws then.
+// The file stays open from the check to the last copy, so a writer that renames another file into
+// its place, or a trim that removes it, leaves this one readable as it was. Only a change of the
+// file in place (never irad's: it writes atomically) can make a copy differ from what was
+// checked: every copy checks its indices again and throws then.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -49,7 +48,9 @@ public:
   std::size_t size() const { return count_; }
   // Copies them into out[0, size()). Throws Error (naming the file) when a read comes short or
   // an index is not below the vertex count: the file changed after it was checked.
-  void copy_to(std::uint32_t* out) const;
+  void copy_to(std::uint32_t* out) const { copy_range(0, count_, out); }
+  // Copies indices [first, first + count) (within size()) into out[0, count), checked as copy_to.
+  void copy_range(std::size_t first, std::size_t count, std::uint32_t* out) const;
   // The same, into a vector.
   std::vector<std::uint32_t> read() const;
 

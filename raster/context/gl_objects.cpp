@@ -21,4 +21,28 @@ void fill_buffer(const GladGLContext& api, GLenum target, std::size_t bytes, GLe
     throw Error("", what, "a buffer's data was lost while it was written");
 }
 
+void fill_buffer_range(const GladGLContext& api, GLuint buffer, std::size_t offset,
+                       std::size_t bytes, const std::function<void(void*)>& fill,
+                       const char* what) {
+  if (bytes == 0) return;
+  api.BindBuffer(GL_COPY_WRITE_BUFFER, buffer);
+  void* storage = api.MapBufferRange(
+      GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes),
+      GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_RANGE_BIT | GL_MAP_UNSYNCHRONIZED_BIT);
+  if (storage == nullptr) {
+    api.BindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    throw Error("", what, "cannot map a buffer to fill it");
+  }
+  try {
+    fill(storage);
+  } catch (...) {
+    api.UnmapBuffer(GL_COPY_WRITE_BUFFER);
+    api.BindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    throw;
+  }
+  const bool kept = api.UnmapBuffer(GL_COPY_WRITE_BUFFER) != GL_FALSE;
+  api.BindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  if (!kept) throw Error("", what, "a buffer's data was lost while it was written");
+}
+
 } // namespace irad::gl

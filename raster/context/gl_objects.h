@@ -108,6 +108,12 @@ inline Texture make_gradient_texture(const GladGLContext& api, int width, int he
 // what fill throws passes on, the buffer unmapped.
 void fill_buffer(const GladGLContext& api, GLenum target, std::size_t bytes, GLenum usage,
                  const std::function<void(void*)>& fill, const char* what);
+// Writes bytes [offset, offset + bytes) of `buffer`'s existing store through fill(storage), a
+// write-only mapping of that range alone, unsynchronised: the range must be one no draw has
+// read or is reading (a part not yet written). Binds `buffer` to GL_COPY_WRITE_BUFFER (no VAO
+// state changes), unbinds it after. Throws as fill_buffer.
+void fill_buffer_range(const GladGLContext& api, GLuint buffer, std::size_t offset,
+                       std::size_t bytes, const std::function<void(void*)>& fill, const char* what);
 
 // Throws irad::Error naming `what` unless the bound draw framebuffer is complete.
 void check_framebuffer(const GladGLContext& api, const char* what);

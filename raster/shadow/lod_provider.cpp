@@ -31,7 +31,7 @@ const ShadowLod* LodProvider::get() {
     }
     prebuilt_.reset(); // taken, or a build of other options: not asked again
     lod_ = std::make_unique<ShadowLod>(*api_, *gpu_, std::move(clusters), on);
-    release_freed_memory(); // the build's transients and the indices now on the GPU
+    release_freed_memory(); // the build's transients
     times_.lap("hierarchy upload", start);
   }
   return lod_.get();

@@ -24,12 +24,14 @@ public:
               std::filesystem::path cache = {},
               std::shared_ptr<BackgroundClusters> prebuilt = nullptr);
 
-  // The hierarchy, built (or taken) and uploaded on the first call; nullptr with
+  // The hierarchy, built (or taken) on the first call (its pages reach the GPU as the faces
+  // first draw them: ShadowLod::make_resident); nullptr with
   // ShadowLodMode::Off and for an animated scene (its faces draw every triangle).
   const ShadowLod* get();
   // What getting it cost this thread: "hierarchy <stage>" for build_mesh_clusters's stages (or
   // "hierarchy cache read"; "hierarchy cache write" after a build), or "hierarchy wait" for the
-  // time spent waiting on a prebuilt one; then "hierarchy upload". Empty before the first get()
+  // time spent waiting on a prebuilt one; then "hierarchy upload" (the ShadowLod's set-up; the
+  // page copies count in the passes that draw them). Empty before the first get()
   // that built it.
   const StageTimes& setup_times() const { return times_; }
   // A prebuilt hierarchy's own stages (as setup_times names them), which ran beside this

@@ -231,14 +231,15 @@ void ShadowAtlas::cull_occluded(std::vector<std::vector<ClusterPick>>& per_face)
 }
 
 void ShadowAtlas::draw_faces(std::vector<std::vector<ClusterPick>>& per_face) {
+  lod_->make_resident(per_face);
   for (std::size_t i = 0; i < faces_.size(); ++i) {
     std::vector<ClusterPick>& picks = per_face[i];
     if (picks.empty()) continue;
-    // In buffer order, so that ranges that touch become one.
+    // In the hierarchy's order, so that ranges that touch (there, and in the slabs where their
+    // pages were copied together) become one.
     std::sort(picks.begin(), picks.end(),
               [](const ClusterPick& a, const ClusterPick& b) { return a.first < b.first; });
-    selection_.clear();
-    for (const ClusterPick& p : picks) add_pick(p, selection_);
+    lod_->select(picks, selection_);
     cluster_triangles_ += selection_.triangles;
     api_->Uniform1i(u_face_, faces_[i].instance);
     lod_->draw(selection_, lod_vao_);

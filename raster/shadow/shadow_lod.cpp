@@ -18,21 +18,20 @@ glm::vec2 plane_range(const glm::vec4& plane, const Bounds& b) {
 
 } // namespace
 
-void add_pick(const ClusterPick& pick, ClusterSelection& out) {
-  if (pick.count == 0) return;
+void add_range(std::size_t first, std::size_t count, ClusterSelection::Slab& out) {
+  if (count == 0) return;
   // Byte offsets into the index buffer, as glMultiDrawElements takes them (pointers that are no
   // address: their arithmetic is done on integers).
-  const std::uintptr_t offset = std::uintptr_t(pick.first) * sizeof(std::uint32_t);
-  out.triangles += pick.count / 3;
+  const std::uintptr_t offset = std::uintptr_t(first) * sizeof(std::uint32_t);
   const auto end_of_last = [&] {
     return reinterpret_cast<std::uintptr_t>(out.offsets.back()) +
            std::uintptr_t(out.counts.back()) * sizeof(std::uint32_t);
   };
   if (!out.counts.empty() && end_of_last() == offset) {
-    out.counts.back() += static_cast<GLsizei>(pick.count);
+    out.counts.back() += static_cast<GLsizei>(count);
     return;
   }
-  out.counts.push_back(static_cast<GLsizei>(pick.count));
+  out.counts.push_back(static_cast<GLsizei>(count));
   out.offsets.push_back(reinterpret_cast<const void*>(offset));
 }
 
@@ -47,24 +46,97 @@ std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm
 }
 
 ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters,
-                     bool simplify)
+                     bool simplify, std::size_t slab_pages)
     : api_(&api), gpu_(&gpu), clusters_(std::move(clusters)), simplify_(simplify),
-      indices_(make_buffer(api)) {
+      slab_pages_(std::max<std::size_t>(slab_pages, 1)) {
   index_count_ = clusters_.index_count();
-  const auto bytes = static_cast<GLsizeiptr>(index_count_ * sizeof(std::uint32_t));
-  api.BindBuffer(GL_ARRAY_BUFFER, indices_.get()); // not the bound VAO's element buffer
-  if (!clusters_.stored_indices) {
-    api.BufferData(GL_ARRAY_BUFFER, bytes, clusters_.indices.data(), GL_STATIC_DRAW);
-  } else { // straight from the cache file into the buffer's storage (a throw deletes it)
-    const StoredIndices& stored = *clusters_.stored_indices;
-    fill_buffer(
-        api, GL_ARRAY_BUFFER, static_cast<std::size_t>(bytes), GL_STATIC_DRAW,
-        [&](void* storage) { stored.copy_to(static_cast<std::uint32_t*>(storage)); },
-        "shadow hierarchy");
+  slot_of_page_.assign((index_count_ + kPageIndices - 1) / kPageIndices, 0);
+}
+
+GLuint ShadowLod::slab_of(std::size_t slot) const {
+  const std::size_t slab = slot / slab_pages_;
+  if (slab == slabs_.size()) { // the slots fill in order: at most the pages there are
+    const std::size_t pages = std::min(slab_pages_, slot_of_page_.size() - slot);
+    slabs_.push_back(make_buffer(*api_));
+    api_->BindBuffer(GL_COPY_WRITE_BUFFER, slabs_.back().get());
+    api_->BufferData(GL_COPY_WRITE_BUFFER,
+                     static_cast<GLsizeiptr>(pages * kPageIndices * sizeof(std::uint32_t)), nullptr,
+                     GL_STATIC_DRAW);
+    api_->BindBuffer(GL_COPY_WRITE_BUFFER, 0);
   }
-  api.BindBuffer(GL_ARRAY_BUFFER, 0);
-  std::vector<std::uint32_t>().swap(clusters_.indices);
-  clusters_.stored_indices.reset(); // closes the cache file
+  return slabs_[slab].get();
+}
+
+void ShadowLod::copy_pages(std::size_t page, std::size_t slot, std::size_t count) const {
+  const std::size_t first = page * kPageIndices;
+  const std::size_t indices = std::min((page + count) * kPageIndices, index_count_) - first;
+  fill_buffer_range(
+      *api_, slab_of(slot), (slot % slab_pages_) * kPageIndices * sizeof(std::uint32_t),
+      indices * sizeof(std::uint32_t),
+      [&](void* storage) {
+        auto* out = static_cast<std::uint32_t*>(storage);
+        if (clusters_.stored_indices)
+          clusters_.stored_indices->copy_range(first, indices, out);
+        else
+          std::copy_n(clusters_.indices.begin() + static_cast<std::ptrdiff_t>(first), indices, out);
+      },
+      "shadow hierarchy");
+}
+
+void ShadowLod::make_resident(const std::vector<std::vector<ClusterPick>>& picks) const {
+  const std::lock_guard lock(pages_mutex_);
+  std::vector<std::size_t> missing;
+  for (const std::vector<ClusterPick>& face : picks)
+    for (const ClusterPick& p : face) {
+      if (p.count == 0) continue;
+      const std::size_t last = (std::size_t{p.first} + p.count - 1) / kPageIndices;
+      for (std::size_t page = p.first / kPageIndices; page <= last; ++page)
+        if (slot_of_page_[page] == 0) {
+          slot_of_page_[page] = 1; // (placed below; a throw there ends the render)
+          missing.push_back(page);
+        }
+    }
+  if (missing.empty()) return;
+  std::sort(missing.begin(), missing.end());
+  for (std::size_t i = 0; i < missing.size();) {
+    // A run of consecutive pages into consecutive slots of one slab: one read, one mapping.
+    const std::size_t slot = slots_used_;
+    std::size_t j = i + 1;
+    while (j < missing.size() && missing[j] == missing[j - 1] + 1 &&
+           (slot + (j - i)) % slab_pages_ != 0)
+      ++j;
+    for (std::size_t k = i; k < j; ++k)
+      slot_of_page_[missing[k]] = static_cast<std::uint32_t>(slot + (k - i) + 1);
+    slots_used_ += j - i;
+    copy_pages(missing[i], slot, j - i);
+    i = j;
+  }
+  api_->Finish();
+}
+
+void ShadowLod::select(const std::vector<ClusterPick>& picks, ClusterSelection& out) const {
+  const std::lock_guard lock(pages_mutex_);
+  out.clear();
+  if (out.slabs.size() < slabs_.size()) out.slabs.resize(slabs_.size());
+  for (std::size_t s = 0; s < slabs_.size(); ++s) out.slabs[s].buffer = slabs_[s].get();
+  for (const ClusterPick& p : picks) {
+    out.triangles += p.count / 3;
+    // Page by page (a page's indices lie together in its slot).
+    for (std::size_t at = p.first, end = std::size_t{p.first} + p.count; at < end;) {
+      const std::size_t page = at / kPageIndices;
+      const std::size_t until = std::min(end, (page + 1) * kPageIndices);
+      const std::size_t slot = slot_of_page_[page] - 1;
+      add_range((slot % slab_pages_) * kPageIndices + at % kPageIndices, until - at,
+                out.slabs[slot / slab_pages_]);
+      at = until;
+    }
+  }
+}
+
+std::size_t ShadowLod::gpu_bytes() const {
+  const std::lock_guard lock(pages_mutex_);
+  return std::min(slabs_.size() * slab_pages_, slot_of_page_.size()) * kPageIndices *
+         sizeof(std::uint32_t);
 }
 
 // Per node visited: what it draws (a mesh range, its children, or nothing) and how many
@@ -140,10 +212,14 @@ void ShadowLod::pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& or
 }
 
 void ShadowLod::draw(const ClusterSelection& selection, const VertexArray& vao) const {
-  if (selection.counts.empty()) return;
   api_->BindVertexArray(vao.get());
-  api_->MultiDrawElements(GL_TRIANGLES, selection.counts.data(), GL_UNSIGNED_INT,
-                          selection.offsets.data(), static_cast<GLsizei>(selection.counts.size()));
+  for (const ClusterSelection::Slab& slab : selection.slabs) {
+    if (slab.counts.empty()) continue;
+    // Bound again for every draw: pages another context wrote are then visible in this one.
+    api_->BindBuffer(GL_ELEMENT_ARRAY_BUFFER, slab.buffer);
+    api_->MultiDrawElements(GL_TRIANGLES, slab.counts.data(), GL_UNSIGNED_INT, slab.offsets.data(),
+                            static_cast<GLsizei>(slab.counts.size()));
+  }
 }
 
 } // namespace irad::gl

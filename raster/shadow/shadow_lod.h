@@ -9,38 +9,55 @@
 // With error_per_distance = f * (2 / R), the angle of a texel at a face's centre times a factor
 // f, a chosen node's mesh lies within f texels of the original surface as the VPL sees it.
 // Culling is exact: a node is left out only when its box lies wholly outside a plane of the
-// face's pyramid, where GL would clip all of it. The selected index ranges are drawn with one
-// glMultiDrawElements over one index buffer (ranges that touch are merged).
+// face's pyramid, where GL would clip all of it.
+//
+// On the GPU only the parts the faces draw: the hierarchy's indices in pages of kPageIndices
+// (256 triangles), each copied on its first use (make_resident) from the hierarchy's indices (in
+// memory after a build, in the cache file after a hit) into the next free slot of a list of
+// index buffers (slabs of kSlabPages pages, made as they fill). The faces of a render draw a
+// small part of the hierarchy: on the 10M-triangle terrain at 256x256 (1252 VPLs) 5.1 % of its
+// 470 MiB of indices, in pages of 69 MiB; on the sphere box 4.4 % of 85 MiB, in 10 MiB (a
+// buffer's store costs its whole size at creation: llvmpipe clears it). A face's ranges are
+// drawn with one glMultiDrawElements per slab (ranges that touch are merged).
 #include "core/mesh/mesh_clusters.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/gpu_scene.h"
 
 #include <glm/glm.hpp>
+#include <mutex>
 #include <vector>
 
 namespace irad::gl {
 
-// What one face draws: index ranges of ShadowLod's buffer.
-struct ClusterSelection {
-  std::vector<GLsizei> counts;
-  std::vector<const void*> offsets; // bytes
-  std::size_t triangles = 0;
-  void clear() {
-    counts.clear();
-    offsets.clear();
-    triangles = 0;
-  }
-};
-
-// One node's part of a face's cut: indices [first, first + count) of ShadowLod's buffer (its
-// mesh, a coarser level or its original triangles), whose triangles lie in the node's bounds.
+// One node's part of a face's cut: indices [first, first + count) of the hierarchy (its mesh, a
+// coarser level or its original triangles), whose triangles lie in the node's bounds.
 struct ClusterPick {
   std::uint32_t first = 0, count = 0;
   std::int32_t node = -1;
 };
 
-// Appends a pick's range to `out`, merged with the last range when they touch.
-void add_pick(const ClusterPick& pick, ClusterSelection& out);
+// What one face draws: per slab, index ranges of its buffer (byte offsets, as
+// glMultiDrawElements takes them).
+struct ClusterSelection {
+  struct Slab {
+    GLuint buffer = 0;
+    std::vector<GLsizei> counts;
+    std::vector<const void*> offsets;
+  };
+  std::vector<Slab> slabs; // by slab; those without ranges are skipped
+  std::size_t triangles = 0;
+  void clear() {
+    for (Slab& s : slabs) {
+      s.counts.clear();
+      s.offsets.clear();
+    }
+    triangles = 0;
+  }
+};
+
+// Appends the range of `count` indices at index `first` of a slab to `out`, merged with its last
+// range when they touch.
+void add_range(std::size_t first, std::size_t count, ClusterSelection::Slab& out);
 
 // The four planes a * p + d >= 0 of the pyramid that face pixels p of [x0, x1] x [y0, y1]
 // (rect) see through the face view-projection `view_projection` (R texels per edge):
@@ -50,10 +67,23 @@ std::array<glm::vec4, 4> face_planes(const glm::mat4& view_projection, const glm
 
 class ShadowLod {
 public:
-  // Uploads `clusters` (of gpu's scene) as one index buffer, then frees their indices here (the
-  // GPU's copy is the one drawn; at 10M triangles they are half a GiB); `simplify`: whether the
-  // inner nodes' meshes may be drawn (false: culling only, the original triangles).
-  ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters, bool simplify);
+  static constexpr std::size_t kPageIndices = 768; // 3 KiB, 256 triangles
+  static constexpr std::size_t kSlabPages = 4096;  // 12 MiB per buffer
+
+  // Keeps `clusters` (of gpu's scene) for the pages the faces will draw; none is on the GPU yet.
+  // `simplify`: whether the inner nodes' meshes may be drawn (false: culling only, the original
+  // triangles).
+  // slab_pages: the pages per buffer (tests take fewer).
+  ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters clusters, bool simplify,
+            std::size_t slab_pages = kSlabPages);
+
+  // Copies the pages `picks` draw that no call copied before, from any thread whose context
+  // shares this one's objects (one call at a time); when it copied any, it returns after
+  // glFinish, so that a draw in another context, which binds the buffers again (draw()), sees
+  // them. Throws Error when the cache file changed since it was checked.
+  void make_resident(const std::vector<std::vector<ClusterPick>>& picks) const;
+  // The ranges of `picks` (made resident) in the slabs.
+  void select(const std::vector<ClusterPick>& picks, ClusterSelection& out) const;
 
   // A node's plan for one face (pick()): a range of indices, or its children's plans.
   struct Choice {
@@ -72,14 +102,18 @@ public:
             std::vector<ClusterPick>& out) const;
   // A vertex array of the current context over the scene's vertices and this hierarchy's
   // indices (vertex arrays are not shared between contexts): what draw() draws through.
-  VertexArray vertex_array() const { return gpu_->vertex_array_with(indices_); }
-  // Draws `selection` through `vao` (the bound program's state is the caller's).
+  // (Its element buffer is bound per slab by draw().)
+  VertexArray vertex_array() const { return gpu_->vertex_array_with(Buffer{}); }
+  // Draws `selection` through `vao` (the bound program's state is the caller's); its ranges
+  // must have been made resident.
   void draw(const ClusterSelection& selection, const VertexArray& vao) const;
 
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
-  // drawn by the caller. Its indices are empty (on the GPU only).
+  // drawn by the caller.
   const MeshClusters& clusters() const { return clusters_; }
-  std::size_t gpu_bytes() const { return index_count_ * sizeof(std::uint32_t); }
+  // The bytes of the hierarchy's indices, and of the slabs made so far.
+  std::size_t bytes() const { return index_count_ * sizeof(std::uint32_t); }
+  std::size_t gpu_bytes() const;
 
 private:
   struct Query {
@@ -93,12 +127,21 @@ private:
   std::uint32_t plan(std::int32_t id, const Query& q) const;
   void emit_plan(std::int32_t id, const Plans& plans, std::vector<ClusterPick>& out) const;
 
+  // Copies `count` pages from page `page` into consecutive slots from `slot` (in one slab).
+  void copy_pages(std::size_t page, std::size_t slot, std::size_t count) const;
+  // The slab for `slot`, made when it is the first slot of a new one.
+  GLuint slab_of(std::size_t slot) const;
+
   const GladGLContext* api_;
   const GpuScene* gpu_;
-  MeshClusters clusters_;
-  std::size_t index_count_ = 0; // of the uploaded indices
+  MeshClusters clusters_;       // its indices (or stored_indices): the source of the pages
+  std::size_t index_count_ = 0; // of the hierarchy
   bool simplify_;
-  Buffer indices_;
+  std::size_t slab_pages_;
+  mutable std::mutex pages_mutex_;                  // guards what follows
+  mutable std::vector<std::uint32_t> slot_of_page_; // its slot + 1; 0: not on the GPU
+  mutable std::vector<Buffer> slabs_;
+  mutable std::size_t slots_used_ = 0;
 };
 
 } // namespace irad::gl
