@@ -88,17 +88,22 @@ TEST_F(ClusterCache, AHitGivesWhatTheBuildGives) {
   const Scene s = two_spheres();
   const MeshClusters built = build_mesh_clusters(s, options_);
   CacheResult result;
-  EXPECT_TRUE(same(cached(s, result), built));
+  const MeshClusters written = cached(s, result);
+  EXPECT_TRUE(same(written, built));
   EXPECT_EQ(result.outcome, CacheOutcome::Written);
+  // Written, its indices are left in the file as a hit's are (none held in memory).
+  EXPECT_TRUE(written.stored_indices && written.indices.empty());
   EXPECT_EQ(file().filename().string(), cluster_key(s, options_).hex() + ".lod");
   StageTimes times;
   EXPECT_TRUE(same(cached(s, result, &times), built));
   EXPECT_EQ(result.outcome, CacheOutcome::Hit);
   ASSERT_EQ(times.stages().size(), 1u);
   EXPECT_EQ(times.stages()[0].first, "cache read");
-  // Off: built, nothing written.
+  // Off: built, nothing written, the indices in memory.
   fs::remove_all(folder_);
-  EXPECT_TRUE(same(cached_mesh_clusters(s, options_, {}, nullptr, &result), built));
+  const MeshClusters off = cached_mesh_clusters(s, options_, {}, nullptr, &result);
+  EXPECT_TRUE(same(off, built));
+  EXPECT_TRUE(!off.stored_indices && !off.indices.empty());
   EXPECT_EQ(result.outcome, CacheOutcome::Off);
   EXPECT_FALSE(fs::exists(folder_));
 }
@@ -213,6 +218,13 @@ TEST_F(ClusterCache, AHitReadsItsIndicesFromTheFileItChecked) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
   }
+  // A part (what the shadow passes copy page by page) is checked alike: the range with the
+  // changed index throws, the one before it reads as built; a range past the end throws.
+  std::uint32_t part[4] = {};
+  EXPECT_THROW(changed.stored_indices->copy_range(5, 4, part), Error);
+  changed.stored_indices->copy_range(3, 4, part);
+  EXPECT_TRUE(std::equal(part, part + 4, built.indices.begin() + 3));
+  EXPECT_THROW(changed.stored_indices->copy_range(changed.index_count() - 2, 4, part), Error);
   fs::resize_file(path, 100);
   EXPECT_THROW(changed.stored_indices->read(), Error);
 }

@@ -91,24 +91,23 @@ void ShadowLod::make_resident(const std::vector<std::vector<ClusterPick>>& picks
       if (p.count == 0) continue;
       const std::size_t last = (std::size_t{p.first} + p.count - 1) / kPageIndices;
       for (std::size_t page = p.first / kPageIndices; page <= last; ++page)
-        if (slot_of_page_[page] == 0) {
-          slot_of_page_[page] = 1; // (placed below; a throw there ends the render)
-          missing.push_back(page);
-        }
+        if (slot_of_page_[page] == 0) missing.push_back(page);
     }
   if (missing.empty()) return;
   std::sort(missing.begin(), missing.end());
+  missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
   for (std::size_t i = 0; i < missing.size();) {
     // A run of consecutive pages into consecutive slots of one slab: one read, one mapping.
+    // (Marked placed once copied: a copy that throws leaves its pages absent.)
     const std::size_t slot = slots_used_;
     std::size_t j = i + 1;
     while (j < missing.size() && missing[j] == missing[j - 1] + 1 &&
            (slot + (j - i)) % slab_pages_ != 0)
       ++j;
+    copy_pages(missing[i], slot, j - i);
     for (std::size_t k = i; k < j; ++k)
       slot_of_page_[missing[k]] = static_cast<std::uint32_t>(slot + (k - i) + 1);
     slots_used_ += j - i;
-    copy_pages(missing[i], slot, j - i);
     i = j;
   }
   api_->Finish();
