@@ -193,6 +193,7 @@ struct Builder {
     const std::size_t ranges[3] = {begin, mid, end};
     parallel_tasks(2, 2, [&](int h, unsigned) {
       const auto k = static_cast<std::size_t>(h);
+      halves[k].out.indices.reserve(3 * (ranges[k + 1] - ranges[k])); // its leaves' indices
       halves[k].build_parallel(ranges[k], ranges[k + 1], depth - 1);
     });
     const std::int32_t c0 = append(halves[0].out);
