@@ -1,6 +1,7 @@
 #include "core/gltf/file.h"
 
 #include "core/util/error.h"
+#include "core/util/freed_memory.h"
 
 #include <algorithm>
 #include <array>
@@ -267,7 +268,7 @@ std::vector<unsigned char> read_file_limited(const std::filesystem::path& path,
   };
   if (struct stat st{}; fstat(fileno(in), &st) == 0 && st.st_size > 0) {
     if (static_cast<std::uint64_t>(st.st_size) > max_bytes) throw too_large();
-    bytes.reserve(static_cast<std::size_t>(st.st_size));
+    reserve_huge(bytes, static_cast<std::size_t>(st.st_size));
   }
   std::array<unsigned char, 65536> block;
   std::size_t n = 0;

@@ -1,7 +1,11 @@
 #include "core/util/freed_memory.h"
 
+#include <cstdint>
 #if defined(__GLIBC__)
 #include <malloc.h>
+#endif
+#if defined(__linux__)
+#include <sys/mman.h>
 #endif
 
 namespace irad {
@@ -9,6 +13,21 @@ namespace irad {
 void release_freed_memory() {
 #if defined(__GLIBC__)
   malloc_trim(0);
+#endif
+}
+
+void advise_huge_pages(const void* data, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
+  if (bytes < 2 * kHuge) return;
+  const auto begin = reinterpret_cast<std::uintptr_t>(data);
+  const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);
+  const std::uintptr_t last = (begin + bytes) & ~(kHuge - 1);
+  if (last > first)
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE); // advice: may fail
+#else
+  (void)data;
+  (void)bytes;
 #endif
 }
 

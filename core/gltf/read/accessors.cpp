@@ -1,6 +1,7 @@
 #include "core/gltf/read/accessors.h"
 
 #include "core/gltf/decode/codecs.h"
+#include "core/util/freed_memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -348,6 +349,7 @@ Values read_values(const Context& ctx, std::uint64_t accessor, const std::string
   const Elements e = elements(ctx, accessor, l);
   Values out;
   out.components = l.components;
+  reserve_huge(out.data, e.count * l.components);
   out.data.resize(e.count * l.components);
   for (std::size_t i = 0; i < e.count; ++i) {
     const unsigned char* p = e.at(i);
@@ -362,9 +364,10 @@ std::vector<glm::vec3> read_vec3(const Context& ctx, std::uint64_t accessor,
                                  const std::string& use) {
   const Values v = read_values(ctx, accessor, use, {"VEC3"},
                                {kByte, kUnsignedByte, kShort, kUnsignedShort, kFloat});
-  std::vector<glm::vec3> out(v.count());
-  for (std::size_t i = 0; i < out.size(); ++i)
-    out[i] = {v.data[3 * i], v.data[3 * i + 1], v.data[3 * i + 2]};
+  std::vector<glm::vec3> out;
+  reserve_huge(out, v.count());
+  for (std::size_t i = 0; i < v.count(); ++i)
+    out.emplace_back(v.data[3 * i], v.data[3 * i + 1], v.data[3 * i + 2]);
   return out;
 }
 
@@ -372,8 +375,9 @@ std::vector<glm::vec2> read_texcoords(const Context& ctx, std::uint64_t accessor
                                       const std::string& use) {
   const Values v = read_values(ctx, accessor, use, {"VEC2"},
                                {kByte, kUnsignedByte, kShort, kUnsignedShort, kFloat});
-  std::vector<glm::vec2> out(v.count());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {v.data[2 * i], v.data[2 * i + 1]};
+  std::vector<glm::vec2> out;
+  reserve_huge(out, v.count());
+  for (std::size_t i = 0; i < v.count(); ++i) out.emplace_back(v.data[2 * i], v.data[2 * i + 1]);
   return out;
 }
 
@@ -421,8 +425,9 @@ std::vector<std::uint32_t> read_indices(const Context& ctx, std::uint64_t access
                        "ints");
   }
   const Elements e = elements(ctx, accessor, l);
-  std::vector<std::uint32_t> out(e.count);
-  for (std::size_t i = 0; i < e.count; ++i) out[i] = read_uint(e.at(i), l.component_type);
+  std::vector<std::uint32_t> out;
+  reserve_huge(out, e.count);
+  for (std::size_t i = 0; i < e.count; ++i) out.push_back(read_uint(e.at(i), l.component_type));
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include "core/gltf/read/accessors.h"
 #include "core/gltf/read/skins.h"
 #include "core/mesh/tangents.h"
+#include "core/util/freed_memory.h"
 
 #include <algorithm>
 #include <cmath>
@@ -460,7 +461,7 @@ namespace {
 template <class T>
 void grow(std::vector<T>& v, std::size_t n) {
   if (n <= v.capacity()) return;
-  v.reserve(v.capacity() == 0 ? n : std::max(n, v.capacity() + v.capacity() / 2));
+  reserve_huge(v, v.capacity() == 0 ? n : std::max(n, v.capacity() + v.capacity() / 2));
 }
 
 // Room for `vertices` more vertices and `triangles` more triangles.
