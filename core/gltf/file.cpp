@@ -258,14 +258,14 @@ std::vector<unsigned char> read_file_limited(const std::filesystem::path& path,
     throw Error(file, element, "cannot open file: " + std::generic_category().message(errno));
   }
   std::vector<unsigned char> bytes;
-  // Room for the whole file at once (a file that grows meanwhile is read to its end all the
-  // same): growing by doubling would touch and copy about twice its size.
   auto too_large = [&] {
     std::fclose(in);
     return Error(
         file, element,
         fmt::format("file larger than the limit of {} bytes (--max-file-size)", max_bytes));
   };
+  // Room for the whole file at once (a file that grows meanwhile is read to its end all the
+  // same): growing by doubling would touch and copy about twice its size.
   if (struct stat st{}; fstat(fileno(in), &st) == 0 && st.st_size > 0) {
     if (static_cast<std::uint64_t>(st.st_size) > max_bytes) throw too_large();
     reserve_huge(bytes, static_cast<std::size_t>(st.st_size));

@@ -159,8 +159,8 @@ std::uintmax_t expected_size(const Header& h) {
          sizeof(std::uint64_t);
 }
 
-bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& key) {
-  HashedWriter w(path);
+// The header write_file gives c (its indices in memory) under `key`.
+Header header_of(const MeshClusters& c, const ClusterKey& key) {
   Header h{};
   std::memcpy(h.magic, kMagic, sizeof kMagic);
   h.format = kFormat;
@@ -171,6 +171,12 @@ bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& k
                                               c.roots.size(),     c.levels.size(),
                                               c.triangles.size(), c.original_indices};
   std::memcpy(h.counts, counts, sizeof counts);
+  return h;
+}
+
+bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& key) {
+  HashedWriter w(path);
+  const Header h = header_of(c, key);
   w.bytes(&h, sizeof h);
   w.values(c.indices);
   std::vector<std::uint32_t> words;
@@ -254,15 +260,10 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t 
 
 // After c was written to `path`: its indices from there (as a hit has them), their memory freed,
 // when the file opens and has the size c's counts give; else c as it is.
-void leave_indices_in(const fs::path& path, std::size_t vertices, MeshClusters& c) {
+void leave_indices_in(const fs::path& path, const ClusterKey& key, std::size_t vertices,
+                      MeshClusters& c) {
   const auto file = std::make_shared<const OpenFile>(path);
-  Header h{};
-  h.counts[0] = c.indices.size();
-  h.counts[1] = c.nodes.size();
-  h.counts[2] = c.roots.size();
-  h.counts[3] = c.levels.size();
-  h.counts[4] = c.triangles.size();
-  if (!file->valid() || file->size() != expected_size(h)) return;
+  if (!file->valid() || file->size() != expected_size(header_of(c, key))) return;
   c.stored_indices =
       std::make_shared<const StoredIndices>(file, sizeof(Header), c.indices.size(), vertices);
   std::vector<std::uint32_t>().swap(c.indices);
@@ -472,7 +473,7 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
     out = {CacheOutcome::Unwritable, why};
   } else {
     if (out.outcome == CacheOutcome::Off) out.outcome = CacheOutcome::Written;
-    leave_indices_in(path, scene.positions.size(), c);
+    leave_indices_in(path, key, scene.positions.size(), c);
     trim_folder(folder);
   }
   stages.lap("cache write", start);

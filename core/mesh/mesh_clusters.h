@@ -112,8 +112,8 @@ struct ClusterNode {
 
 struct MeshClusters {
   std::vector<std::uint32_t> indices; // into Scene::positions, 3 per triangle
-  // A hierarchy read back from the cache leaves `indices` empty: they stay in its file until
-  // the GPU upload copies them (core/mesh/stored_indices.h).
+  // Through the cache (a hit, or a write) `indices` is empty: they stay in its file, from which
+  // the shadow passes copy the pages they draw (core/mesh/stored_indices.h).
   std::shared_ptr<const StoredIndices> stored_indices;
   std::size_t index_count() const {
     return stored_indices ? stored_indices->size() : indices.size();

@@ -54,7 +54,7 @@ void StoredIndices::copy_range(std::size_t first, std::size_t count, std::uint32
 
 std::vector<std::uint32_t> StoredIndices::read() const {
   std::vector<std::uint32_t> v(count_);
-  copy_to(v.data());
+  copy_range(0, count_, v.data());
   return v;
 }
 

@@ -46,12 +46,11 @@ public:
       : file_(std::move(file)), offset_(offset), count_(count), vertices_(vertices) {}
 
   std::size_t size() const { return count_; }
-  // Copies them into out[0, size()). Throws Error (naming the file) when a read comes short or
-  // an index is not below the vertex count: the file changed after it was checked.
-  void copy_to(std::uint32_t* out) const { copy_range(0, count_, out); }
-  // Copies indices [first, first + count) (within size()) into out[0, count), checked as copy_to.
+  // Copies indices [first, first + count) (within size()) into out[0, count). Throws Error
+  // (naming the file) when a read comes short or an index is not below the vertex count: the
+  // file changed after it was checked.
   void copy_range(std::size_t first, std::size_t count, std::uint32_t* out) const;
-  // The same, into a vector.
+  // All of them, copied as above.
   std::vector<std::uint32_t> read() const;
 
 private:

@@ -1,13 +1,15 @@
 #pragma once
-// Hands the heap's free pages back to the system (glibc's malloc_trim; nothing elsewhere). Where
-// the process keeps freed heap for speed (apps/main.cpp keeps up to 128 MiB at its top), the holes
-// a one-time stage leaves (the loader's arrays, the BVH builder's) would otherwise stay resident
-// for the whole render; a stage calls this when its transients are gone.
+// How the process's big arrays meet the kernel's pages: freed heap handed back, fresh arrays
+// backed by huge pages.
 #include <cstddef>
 #include <vector>
 
 namespace irad {
 
+// Hands the heap's free pages back to the system (glibc's malloc_trim; nothing elsewhere). Where
+// the process keeps freed heap for speed (apps/main.cpp keeps up to 128 MiB at its top), the holes
+// a one-time stage leaves (the loader's arrays, the BVH builder's) would otherwise stay resident
+// for the whole render; a stage calls this when its transients are gone.
 void release_freed_memory();
 
 // Asks the kernel to back the 2 MiB-aligned pages inside [data, data + bytes) with transparent

@@ -111,8 +111,7 @@ public:
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
   // drawn by the caller.
   const MeshClusters& clusters() const { return clusters_; }
-  // The bytes of the hierarchy's indices, and of the slabs made so far.
-  std::size_t bytes() const { return index_count_ * sizeof(std::uint32_t); }
+  // The bytes of the slabs made so far.
   std::size_t gpu_bytes() const;
 
 private:
