@@ -75,6 +75,30 @@ TEST(Gl, DebugMessagesAreRouted) {
   EXPECT_THROW(context->check("after a bad bind"), Error);
 }
 
+// Errors reach the sink every time; any other kind of message (source, type, id) once, as a
+// driver's performance hint can come once per draw.
+TEST(Gl, RepeatedHintsAreToldOnce) {
+  const auto context = gl::create_osmesa_context();
+  std::vector<std::string> messages;
+  context->route_debug_messages([&](const std::string& m) { messages.push_back(m); });
+  const GladGLContext& gl = context->api();
+  if (!gl.KHR_debug || !gl.DebugMessageInsert) GTEST_SKIP() << "no KHR_debug";
+  const auto insert = [&](GLenum type, GLuint id, GLenum severity, const char* text) {
+    gl.DebugMessageInsert(GL_DEBUG_SOURCE_APPLICATION, type, id, severity, -1, text);
+  };
+  for (int i = 0; i < 3; ++i) {
+    insert(GL_DEBUG_TYPE_PERFORMANCE, 7, GL_DEBUG_SEVERITY_MEDIUM, "slow path");
+    insert(GL_DEBUG_TYPE_PERFORMANCE, 8, GL_DEBUG_SEVERITY_MEDIUM, "another slow path");
+    insert(GL_DEBUG_TYPE_ERROR, 9, GL_DEBUG_SEVERITY_HIGH, "broken");
+    insert(GL_DEBUG_TYPE_OTHER, 10, GL_DEBUG_SEVERITY_NOTIFICATION, "fine");
+  }
+  ASSERT_EQ(messages.size(), 5u);
+  EXPECT_NE(messages[0].find("slow path (its repeats are not shown)"), std::string::npos)
+      << messages[0];
+  EXPECT_NE(messages[1].find("another slow path"), std::string::npos) << messages[1];
+  for (int i : {2, 3, 4}) EXPECT_NE(messages[i].find("OpenGL error"), std::string::npos);
+}
+
 TEST(Gl, CompileErrorIsOneLineNamingTheShader) {
   const auto context = gl::create_osmesa_context();
   const std::string m = message_of([&] {

@@ -24,25 +24,28 @@ bool Context::cpu_renderer() const {
 
 namespace {
 
-void GLAD_API_PTR on_debug_message(GLenum /*source*/, GLenum type, GLuint id, GLenum severity,
+void GLAD_API_PTR on_debug_message(GLenum source, GLenum type, GLuint id, GLenum severity,
                                    GLsizei length, const GLchar* message, const void* user) {
   if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
-  const auto* sink = static_cast<const std::function<void(const std::string&)>*>(user);
+  auto* routing = static_cast<DebugRouting*>(const_cast<void*>(user));
+  const bool error = severity == GL_DEBUG_SEVERITY_HIGH || type == GL_DEBUG_TYPE_ERROR;
+  const bool first = routing->seen.insert({source, type, id}).second;
+  if (!error && !first) return;
   std::string text(message, length > 0 ? static_cast<std::size_t>(length) : std::strlen(message));
   for (char& c : text)
     if (c == '\n') c = ' ';
-  (*sink)(fmt::format("OpenGL {} 0x{:x} (id {}): {}",
-                      severity == GL_DEBUG_SEVERITY_HIGH ? "error" : "message", type, id, text));
+  routing->sink(fmt::format("OpenGL {} 0x{:x} (id {}): {}{}", error ? "error" : "message", type, id,
+                            text, error ? "" : " (its repeats are not shown)"));
 }
 
 } // namespace
 
 void Context::route_debug_messages(std::function<void(const std::string&)> sink) {
   if (!api_.KHR_debug || !api_.DebugMessageCallback) return;
-  debug_sink_ = std::move(sink);
+  debug_ = DebugRouting{std::move(sink), {}};
   api_.Enable(GL_DEBUG_OUTPUT);
   api_.Enable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-  api_.DebugMessageCallback(on_debug_message, &debug_sink_);
+  api_.DebugMessageCallback(on_debug_message, &debug_);
 }
 
 void Context::check(const char* where) const {

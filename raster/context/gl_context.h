@@ -10,9 +10,17 @@
 #include <functional>
 #include <glad/gl.h>
 #include <memory>
+#include <set>
 #include <string>
+#include <tuple>
 
 namespace irad::gl {
+
+// Where a context's KHR_debug messages go, and the kinds already told (source, type, id).
+struct DebugRouting {
+  std::function<void(const std::string&)> sink;
+  std::set<std::tuple<GLenum, GLenum, GLuint>> seen;
+};
 
 class Context {
 public:
@@ -40,8 +48,9 @@ public:
   void check(const char* where) const;
 
   // Routes the driver's KHR_debug messages (where the extension exists) to `sink`, one line each,
-  // synchronously on the rendering thread; notifications are left out. The sink must outlive
-  // the context or be replaced.
+  // synchronously on the rendering thread: every error, the first of every other kind (source,
+  // type and id: a driver's performance hint can repeat once per draw); notifications are left
+  // out. The sink must outlive the context or be replaced.
   void route_debug_messages(std::function<void(const std::string&)> sink);
 
 protected:
@@ -50,7 +59,7 @@ protected:
 
 private:
   friend class CurrentScope;
-  std::function<void(const std::string&)> debug_sink_;
+  DebugRouting debug_;
   int scopes_ = 0; // CurrentScope nesting depth
 };
 

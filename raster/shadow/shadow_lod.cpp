@@ -55,13 +55,15 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
 
 GLuint ShadowLod::slab_of(std::size_t slot) const {
   const std::size_t slab = slot / slab_pages_;
-  if (slab == slabs_.size()) { // the slots fill in order: at most the pages there are
+  // The slots fill in order: at most the pages there are. A slab is written page by page over
+  // the render (dynamic use: Mesa warns of every mapped write into a static buffer).
+  if (slab == slabs_.size()) {
     const std::size_t pages = std::min(slab_pages_, slot_of_page_.size() - slot);
     slabs_.push_back(make_buffer(*api_));
     api_->BindBuffer(GL_COPY_WRITE_BUFFER, slabs_.back().get());
     api_->BufferData(GL_COPY_WRITE_BUFFER,
                      static_cast<GLsizeiptr>(pages * kPageIndices * sizeof(std::uint32_t)), nullptr,
-                     GL_STATIC_DRAW);
+                     GL_DYNAMIC_DRAW);
     api_->BindBuffer(GL_COPY_WRITE_BUFFER, 0);
   }
   return slabs_[slab].get();
