@@ -309,13 +309,44 @@ TEST_F(ClusterCache, ABuildBesideGivesWhatTheBuildGives) {
   EXPECT_TRUE(beside.builds(s, options_, folder_));
   EXPECT_FALSE(beside.builds(s, {128, false}, folder_));
   EXPECT_FALSE(beside.builds(s, options_, {}));
-  EXPECT_TRUE(same(beside.take(), built));
-  EXPECT_FALSE(beside.builds(s, options_, folder_)); // taken
-  EXPECT_EQ(beside.cache_result().outcome, CacheOutcome::Written);
+  const MeshClusters taken = beside.take();
+  EXPECT_TRUE(same(taken, built));
+  // Handed on before its file is written: the indices in memory, shared with the writer.
+  ASSERT_TRUE(taken.stored_indices && taken.indices.empty());
+  ASSERT_NE(taken.stored_indices->in_memory(), nullptr);
+  EXPECT_FALSE(beside.builds(s, options_, folder_));               // taken
+  EXPECT_EQ(beside.cache_result().outcome, CacheOutcome::Written); // waits for the write
   EXPECT_EQ(beside.times().stages().back().first, "cache write");
+  EXPECT_EQ(file().filename().string(), cluster_key(s, options_).hex() + ".lod");
   BackgroundClusters again(s, options_, folder_);
-  EXPECT_TRUE(same(again.take(), built));
+  const MeshClusters hit = again.take();
+  EXPECT_TRUE(same(hit, built));
   EXPECT_EQ(again.cache_result().outcome, CacheOutcome::Hit);
+  ASSERT_TRUE(hit.stored_indices);
+  EXPECT_EQ(hit.stored_indices->in_memory(), nullptr); // in the file
+  // What the first one handed on still reads the same after its writer let go.
+  EXPECT_TRUE(same(taken, built));
+}
+
+// A write left for later that fails (the cache folder is a file) is reported, never thrown; the
+// hierarchy handed on is whole.
+TEST_F(ClusterCache, ALaterWriteThatFailsIsReported) {
+  const Scene s = two_spheres();
+  fs::create_directories(folder_);
+  std::ofstream(folder_ / "a_file") << "not a folder";
+  CacheResult result;
+  StageTimes times;
+  PendingCacheWrite later;
+  const MeshClusters c =
+      cached_mesh_clusters(s, options_, folder_ / "a_file", &times, &result, &later);
+  EXPECT_TRUE(later.pending());
+  EXPECT_EQ(result.outcome, CacheOutcome::Off); // nothing written yet
+  later.run(&times, &result);
+  EXPECT_FALSE(later.pending());
+  EXPECT_EQ(result.outcome, CacheOutcome::Unwritable);
+  EXPECT_FALSE(result.reason.empty());
+  EXPECT_EQ(times.stages().back().first, "cache write");
+  EXPECT_TRUE(same(c, build_mesh_clusters(s, options_)));
 }
 
 TEST_F(ClusterCache, TheRasterTakesABuildBesideIt) {

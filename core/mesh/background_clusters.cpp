@@ -4,14 +4,23 @@ namespace irad {
 
 BackgroundClusters::BackgroundClusters(const Scene& scene, const ClusterOptions& options,
                                        std::filesystem::path cache)
-    : scene_(&scene), options_(options), cache_(std::move(cache)) {
-  future_ = std::async(std::launch::async, [this] {
-    return cached_mesh_clusters(*scene_, options_, cache_, &times_, &result_);
+    : scene_(&scene), options_(options), cache_(std::move(cache)),
+      future_(hierarchy_.get_future()) {
+  done_ = std::async(std::launch::async, [this] {
+    PendingCacheWrite write;
+    try {
+      hierarchy_.set_value(
+          cached_mesh_clusters(*scene_, options_, cache_, &times_, &result_, &write));
+    } catch (...) {
+      hierarchy_.set_exception(std::current_exception());
+      return;
+    }
+    write.run(&times_, &result_);
   });
 }
 
 BackgroundClusters::~BackgroundClusters() {
-  if (future_.valid()) future_.wait();
+  if (done_.valid()) done_.wait();
 }
 
 bool BackgroundClusters::builds(const Scene& scene, const ClusterOptions& options,
@@ -23,6 +32,16 @@ bool BackgroundClusters::builds(const Scene& scene, const ClusterOptions& option
 
 MeshClusters BackgroundClusters::take() {
   return future_.get(); // leaves future_ invalid: taken
+}
+
+const StageTimes& BackgroundClusters::times() const {
+  done_.wait();
+  return times_;
+}
+
+const CacheResult& BackgroundClusters::cache_result() const {
+  done_.wait();
+  return result_;
 }
 
 } // namespace irad

@@ -8,6 +8,9 @@
 //
 // The same hierarchy as a build in place, bit for bit (the build's result does not depend on its
 // threads). An exception of the build reaches the caller of take(); one never taken is dropped.
+// A build is handed on before its cache file is written: the thread writes it while the
+// hierarchy is in use (the indices shared, in memory), off the raster's critical path (0.2 s on
+// the 2.1M sphere box, 0.9 s on the 10M terrain).
 #include "core/mesh/cluster_cache.h"
 #include "core/mesh/mesh_clusters.h"
 #include "core/util/stage_times.h"
@@ -23,7 +26,7 @@ public:
   // this object and stay unchanged until take() returns.
   BackgroundClusters(const Scene& scene, const ClusterOptions& options,
                      std::filesystem::path cache);
-  // Waits for the build (a build that is never taken still runs to its end).
+  // Waits for the build and the cache write (a build that is never taken still runs to its end).
   ~BackgroundClusters();
   BackgroundClusters(const BackgroundClusters&) = delete;
   BackgroundClusters& operator=(const BackgroundClusters&) = delete;
@@ -34,18 +37,20 @@ public:
               const std::filesystem::path& cache) const;
   // The hierarchy, once: waits for it; rethrows what the build threw.
   MeshClusters take();
-  // After take(): the build's stages (as cached_mesh_clusters reports them) and the cache's
-  // outcome.
-  const StageTimes& times() const { return times_; }
-  const CacheResult& cache_result() const { return result_; }
+  // After take(): the build's stages (as cached_mesh_clusters reports them, "cache write"
+  // included) and the cache's outcome; both wait for the cache write.
+  const StageTimes& times() const;
+  const CacheResult& cache_result() const;
 
 private:
   const Scene* scene_;
   ClusterOptions options_;
   std::filesystem::path cache_;
-  StageTimes times_;   // written by the build's thread, read after take()
+  StageTimes times_;   // written by the thread, read once it has ended
   CacheResult result_; // likewise
-  std::future<MeshClusters> future_;
+  std::promise<MeshClusters> hierarchy_;
+  std::future<MeshClusters> future_; // the hierarchy
+  std::future<void> done_;           // the thread: the build, then the cache write
 };
 
 } // namespace irad

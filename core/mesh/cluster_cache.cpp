@@ -159,6 +159,12 @@ std::uintmax_t expected_size(const Header& h) {
          sizeof(std::uint64_t);
 }
 
+// The indices of a hierarchy whose indices are in memory (its own, or shared with its user).
+const std::vector<std::uint32_t>& indices_in_memory(const MeshClusters& c) {
+  if (c.stored_indices && c.stored_indices->in_memory()) return *c.stored_indices->in_memory();
+  return c.indices;
+}
+
 // The header write_file gives c (its indices in memory) under `key`.
 Header header_of(const MeshClusters& c, const ClusterKey& key) {
   Header h{};
@@ -167,7 +173,7 @@ Header header_of(const MeshClusters& c, const ClusterKey& key) {
   h.meshopt = MESHOPTIMIZER_VERSION;
   h.key_low = key.low;
   h.key_high = key.high;
-  const std::uint64_t counts[kCountFields] = {c.indices.size(),   c.nodes.size(),
+  const std::uint64_t counts[kCountFields] = {c.index_count(),    c.nodes.size(),
                                               c.roots.size(),     c.levels.size(),
                                               c.triangles.size(), c.original_indices};
   std::memcpy(h.counts, counts, sizeof counts);
@@ -178,7 +184,7 @@ bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& k
   HashedWriter w(path);
   const Header h = header_of(c, key);
   w.bytes(&h, sizeof h);
-  w.values(c.indices);
+  w.values(indices_in_memory(c));
   std::vector<std::uint32_t> words;
   words.reserve(c.nodes.size() * kNodeWords);
   for (const ClusterNode& n : c.nodes) {
@@ -265,7 +271,7 @@ void leave_indices_in(const fs::path& path, const ClusterKey& key, std::size_t v
   const auto file = std::make_shared<const OpenFile>(path);
   if (!file->valid() || file->size() != expected_size(header_of(c, key))) return;
   c.stored_indices =
-      std::make_shared<const StoredIndices>(file, sizeof(Header), c.indices.size(), vertices);
+      std::make_shared<const StoredIndices>(file, sizeof(Header), c.index_count(), vertices);
   std::vector<std::uint32_t>().swap(c.indices);
 }
 
@@ -442,8 +448,30 @@ std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::
   return "";
 }
 
+void PendingCacheWrite::run(StageTimes* times, CacheResult* result) noexcept {
+  if (!pending()) return;
+  const auto start = StageTimes::Clock::now();
+  CacheResult own;
+  CacheResult& out = result ? *result : own;
+  try {
+    std::string why;
+    if (!write_atomically(
+            path_, [&](const fs::path& to) { return write_file(to, hierarchy_, key_); }, why)) {
+      out = {CacheOutcome::Unwritable, why};
+    } else {
+      if (out.outcome == CacheOutcome::Off) out.outcome = CacheOutcome::Written;
+      trim_folder(path_.parent_path());
+    }
+  } catch (const std::exception& e) { // memory, the file system
+    out = {CacheOutcome::Unwritable, e.what()};
+  }
+  if (times) times->lap("cache write", start);
+  hierarchy_ = {}; // the indices stay with their other user
+}
+
 MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
-                                  const fs::path& folder, StageTimes* times, CacheResult* result) {
+                                  const fs::path& folder, StageTimes* times, CacheResult* result,
+                                  PendingCacheWrite* later) {
   CacheResult own;
   CacheResult& out = result ? *result : own;
   out = {};
@@ -466,17 +494,19 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
     out = {CacheOutcome::Rebuilt, why};
   }
   MeshClusters c = build_mesh_clusters(scene, options, &stages);
-  start = StageTimes::Clock::now();
-  std::string why;
-  if (!write_atomically(
-          path, [&](const fs::path& to) { return write_file(to, c, key); }, why)) {
-    out = {CacheOutcome::Unwritable, why};
-  } else {
-    if (out.outcome == CacheOutcome::Off) out.outcome = CacheOutcome::Written;
+  // The indices shared between the hierarchy's user and the writer.
+  auto shared = std::make_shared<const std::vector<std::uint32_t>>(std::move(c.indices));
+  c.indices = {};
+  c.stored_indices = std::make_shared<const StoredIndices>(std::move(shared));
+  PendingCacheWrite now;
+  PendingCacheWrite& write = later ? *later : now;
+  write.hierarchy_ = c;
+  write.path_ = path;
+  write.key_ = key;
+  if (later) return c;
+  now.run(&stages, &out);
+  if (out.outcome != CacheOutcome::Unwritable)
     leave_indices_in(path, key, scene.positions.size(), c);
-    trim_folder(folder);
-  }
-  stages.lap("cache write", start);
   return c;
 }
 

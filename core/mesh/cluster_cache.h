@@ -76,14 +76,36 @@ const char* outcome_name(CacheOutcome outcome); // "off", "hit", "written", "reb
 // `triangles`, errors and bounds finite. Returns what is wrong, or "" when nothing is.
 std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles);
 
+// The cache file a build still has to write (cached_mesh_clusters with `later`), for a caller
+// that hands the hierarchy on first and writes while it is in use.
+class PendingCacheWrite {
+public:
+  bool pending() const { return !path_.empty() && hierarchy_.stored_indices != nullptr; }
+  // Writes the file as cached_mesh_clusters would have (atomically, then the folder trimmed):
+  // `result` becomes Written (a Rebuilt stays so) or Unwritable with the reason, `times` gets
+  // "cache write". Then holds nothing. Never throws.
+  void run(StageTimes* times, CacheResult* result) noexcept;
+
+private:
+  friend MeshClusters cached_mesh_clusters(const Scene&, const ClusterOptions&,
+                                           const std::filesystem::path&, StageTimes*, CacheResult*,
+                                           PendingCacheWrite*);
+  std::filesystem::path path_;
+  ClusterKey key_;
+  MeshClusters hierarchy_; // its indices shared with the hierarchy handed on
+};
+
 // build_mesh_clusters through the cache in `folder` (empty: off). times gets the build's stages,
 // or "cache read"; then "cache write" when it wrote. After a hit, and after a write, the
 // indices are left in the file (MeshClusters::stored_indices); with the cache off, or a write
-// that failed, they are in memory. Throws only what the build throws: a
-// cache that cannot be read or written is reported in `result`, never an error.
+// that failed, they are in memory. With `later`, a build is returned before its file is written:
+// its indices in memory, shared with *later, which writes the file when run (result's outcome is
+// then Off, or Rebuilt, until it has). Throws only what the build throws: a cache that cannot be
+// read or written is reported in `result`, never an error.
 MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
                                   const std::filesystem::path& folder, StageTimes* times = nullptr,
-                                  CacheResult* result = nullptr);
+                                  CacheResult* result = nullptr,
+                                  PendingCacheWrite* later = nullptr);
 
 // Writes `path` through a temporary file beside it (write(temporary) returns whether every write
 // succeeded) renamed into place, so that a reader sees a whole file or none; the folder is made

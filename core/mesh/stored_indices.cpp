@@ -44,7 +44,12 @@ bool below(const std::uint32_t* words, std::size_t count, std::size_t vertices) 
 
 void StoredIndices::copy_range(std::size_t first, std::size_t count, std::uint32_t* out) const {
   if (first > count_ || count > count_ - first)
-    throw Error(file_->path().string(), "shadow hierarchy", "indices read past their end");
+    throw Error(file_ ? file_->path().string() : std::string(), "shadow hierarchy",
+                "indices read past their end");
+  if (memory_) {
+    std::copy_n(memory_->begin() + static_cast<std::ptrdiff_t>(first), count, out);
+    return;
+  }
   if (!file_->read_at(out, count * sizeof(std::uint32_t),
                       offset_ + first * sizeof(std::uint32_t)) ||
       !below(out, count, vertices_))

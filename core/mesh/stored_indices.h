@@ -1,5 +1,7 @@
 #pragma once
-// The shadow hierarchy's indices where they lie in its cache file (core/mesh/cluster_cache.h): a
+// The shadow hierarchy's indices where they lie: in memory shared with the cache's writer (a build
+// handed on before its file is written: core/mesh/background_clusters.h), or in its cache file
+// (core/mesh/cluster_cache.h): a
 // hit checks them as it streams the file (checksum, every index below the vertex count) but keeps
 // none of them; the one reader that needs them, the GPU buffer (raster/shadow/shadow_lod.h),
 // copies the parts the shadow faces draw from the file straight into its storage. The process
@@ -44,6 +46,9 @@ public:
   StoredIndices(std::shared_ptr<const OpenFile> file, std::uint64_t offset, std::size_t count,
                 std::size_t vertices)
       : file_(std::move(file)), offset_(offset), count_(count), vertices_(vertices) {}
+  // Indices a build made, shared with whoever else reads them (checked by the build).
+  explicit StoredIndices(std::shared_ptr<const std::vector<std::uint32_t>> memory)
+      : memory_(std::move(memory)), count_(memory_->size()) {}
 
   std::size_t size() const { return count_; }
   // Copies indices [first, first + count) (within size()) into out[0, count). Throws Error
@@ -52,11 +57,14 @@ public:
   void copy_range(std::size_t first, std::size_t count, std::uint32_t* out) const;
   // All of them, copied as above.
   std::vector<std::uint32_t> read() const;
+  // The indices when they are in memory; nullptr when in a file.
+  const std::vector<std::uint32_t>* in_memory() const { return memory_.get(); }
 
 private:
   std::shared_ptr<const OpenFile> file_;
-  std::uint64_t offset_;
-  std::size_t count_, vertices_;
+  std::shared_ptr<const std::vector<std::uint32_t>> memory_;
+  std::uint64_t offset_ = 0;
+  std::size_t count_ = 0, vertices_ = 0;
 };
 
 // Whether the `count` indices in `words` are all below `vertices`.

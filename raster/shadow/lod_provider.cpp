@@ -21,8 +21,7 @@ const ShadowLod* LodProvider::get() {
     if (prebuilt_ && prebuilt_->builds(gpu_->scene(), wanted, cache_)) {
       clusters = prebuilt_->take();
       start = times_.lap("hierarchy wait", start);
-      beside_.add("hierarchy ", prebuilt_->times());
-      cache_result_ = prebuilt_->cache_result();
+      taken_ = prebuilt_; // its cache file may still be written
     } else {
       StageTimes build;
       clusters = cached_mesh_clusters(gpu_->scene(), wanted, cache_, &build, &cache_result_);
@@ -35,6 +34,16 @@ const ShadowLod* LodProvider::get() {
     times_.lap("hierarchy upload", start);
   }
   return lod_.get();
+}
+
+StageTimes LodProvider::beside_times() const {
+  StageTimes out;
+  if (taken_) out.add("hierarchy ", taken_->times());
+  return out;
+}
+
+CacheResult LodProvider::cache_result() const {
+  return taken_ ? taken_->cache_result() : cache_result_;
 }
 
 } // namespace irad::gl

@@ -35,9 +35,10 @@ public:
   // that built it.
   const StageTimes& setup_times() const { return times_; }
   // A prebuilt hierarchy's own stages (as setup_times names them), which ran beside this
-  // thread's; empty otherwise.
-  const StageTimes& beside_times() const { return beside_; }
-  const CacheResult& cache_result() const { return cache_result_; }
+  // thread's, its cache write included (this waits for it); empty otherwise.
+  StageTimes beside_times() const;
+  // What the cache did (for a prebuilt hierarchy: once its file is written; this waits).
+  CacheResult cache_result() const;
 
 private:
   const GladGLContext* api_;
@@ -46,8 +47,9 @@ private:
   std::filesystem::path cache_;
   CacheResult cache_result_;
   std::shared_ptr<BackgroundClusters> prebuilt_;
+  std::shared_ptr<const BackgroundClusters> taken_; // the prebuilt hierarchy get() took
   std::unique_ptr<ShadowLod> lod_;
-  StageTimes times_, beside_;
+  StageTimes times_;
 };
 
 } // namespace irad::gl
