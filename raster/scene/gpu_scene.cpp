@@ -8,12 +8,6 @@ namespace irad::gl {
 
 namespace {
 
-struct Vertex {
-  float position[3];
-  float normal[3];
-  float uv[2];
-};
-
 GLint gl_wrap(Wrap w) {
   switch (w) {
   case Wrap::ClampToEdge:
@@ -39,11 +33,19 @@ Texture upload_texture(const GladGLContext& api, const irad::Texture& t) {
   return tex;
 }
 
-Vertex vertex_of(const Scene& scene, std::size_t i) {
+// The interleaved vertex: position, normal, and the uv where the scene has texture coordinates
+// (else attribute 2 stays off and reads GL's default (0, 0)): 24 instead of 32 bytes a vertex.
+std::size_t vertex_floats(const Scene& scene) {
+  return scene.uvs.empty() ? 6 : 8;
+}
+
+// Writes vertex i of the scene at `out` (vertex_floats(scene) floats).
+void write_vertex(const Scene& scene, std::size_t i, float* out) {
   const glm::vec3& p = scene.positions[i];
   const glm::vec3& n = scene.normals[i];
-  const glm::vec2 uv = scene.uvs.empty() ? glm::vec2(0.0f) : scene.uvs[i];
-  return {{p.x, p.y, p.z}, {n.x, n.y, n.z}, {uv.x, uv.y}};
+  out[0] = p.x, out[1] = p.y, out[2] = p.z;
+  out[3] = n.x, out[4] = n.y, out[5] = n.z;
+  if (!scene.uvs.empty()) out[6] = scene.uvs[i].x, out[7] = scene.uvs[i].y;
 }
 
 // A tightly packed float attribute array (vec2 or vec4 per vertex).
@@ -81,17 +83,21 @@ Texture albedo_table_texture(const GladGLContext& api) {
 void GpuScene::update_vertices() {
   if (!scene_->animation) return;
   api_->BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
-  std::vector<Vertex> run;
+  const std::size_t floats = vertex_floats(*scene_);
+  std::vector<float> run;
   // The moving vertices (ascending) form contiguous runs of the scene's arrays: one upload per
   // run.
   const std::vector<std::uint32_t> moving = scene_->animation->moving_vertices();
   for (std::size_t k = 0; k < moving.size();) {
     const std::uint32_t first = moving[k];
+    std::size_t count = 0;
     run.clear();
-    while (k < moving.size() && moving[k] == first + run.size())
-      run.push_back(vertex_of(*scene_, moving[k++]));
-    api_->BufferSubData(GL_ARRAY_BUFFER, GLintptr(first * sizeof(Vertex)),
-                        GLsizeiptr(run.size() * sizeof(Vertex)), run.data());
+    while (k < moving.size() && moving[k] == first + count) {
+      run.resize((count + 1) * floats);
+      write_vertex(*scene_, moving[k++], &run[count++ * floats]);
+    }
+    api_->BufferSubData(GL_ARRAY_BUFFER, GLintptr(first * floats * sizeof(float)),
+                        GLsizeiptr(run.size() * sizeof(float)), run.data());
   }
 }
 
@@ -99,12 +105,14 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
     : api_(&api), scene_(&scene), vao_(make_vertex_array(api)), vertices_(make_buffer(api)),
       indices_(make_buffer(api)), features_(MaterialFeatures::of(scene)) {
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
+  const std::size_t floats = vertex_floats(scene);
   fill_buffer(
-      api, GL_ARRAY_BUFFER, scene.positions.size() * sizeof(Vertex),
+      api, GL_ARRAY_BUFFER, scene.positions.size() * floats * sizeof(float),
       scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW,
       [&](void* storage) {
-        auto* out = static_cast<Vertex*>(storage);
-        for (std::size_t i = 0; i < scene.positions.size(); ++i) out[i] = vertex_of(scene, i);
+        auto* out = static_cast<float*>(storage);
+        for (std::size_t i = 0; i < scene.positions.size(); ++i)
+          write_vertex(scene, i, out + i * floats);
       },
       "gpu scene");
   // The optional arrays run parallel to the positions (core/scene/scene.h): GL must never read past
@@ -156,16 +164,19 @@ void GpuScene::upload_grouped_indices(const Scene& scene) {
 void GpuScene::attach_attributes() const {
   const GladGLContext& api = *api_;
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
-  const auto stride = static_cast<GLsizei>(sizeof(Vertex));
+  const std::size_t floats = vertex_floats(*scene_);
+  const auto stride = static_cast<GLsizei>(floats * sizeof(float));
+  const auto at = [](std::size_t first_float) {
+    return reinterpret_cast<const void*>(first_float * sizeof(float));
+  };
   api.EnableVertexAttribArray(0);
-  api.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride,
-                          reinterpret_cast<const void*>(offsetof(Vertex, position)));
+  api.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, at(0));
   api.EnableVertexAttribArray(1);
-  api.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride,
-                          reinterpret_cast<const void*>(offsetof(Vertex, normal)));
-  api.EnableVertexAttribArray(2);
-  api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride,
-                          reinterpret_cast<const void*>(offsetof(Vertex, uv)));
+  api.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, at(3));
+  if (floats == 8) {
+    api.EnableVertexAttribArray(2);
+    api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, at(6));
+  }
   if (uv1_) attach_packed(api, uv1_, kUv1Attribute, 2);
   if (colors_) attach_packed(api, colors_, kColorAttribute, 4);
   if (tangents_) attach_packed(api, tangents_, kTangentAttribute, 4);

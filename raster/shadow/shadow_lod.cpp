@@ -50,6 +50,8 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
     : api_(&api), gpu_(&gpu), clusters_(std::move(clusters)), simplify_(simplify),
       slab_pages_(std::max<std::size_t>(slab_pages, 1)) {
   index_count_ = clusters_.index_count();
+  std::vector<std::uint32_t>().swap(clusters_.triangles); // what the cache keeps, not the faces
+
   slot_of_page_.assign((index_count_ + kPageIndices - 1) / kPageIndices, 0);
 }
 

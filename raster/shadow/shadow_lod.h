@@ -109,7 +109,8 @@ public:
   void draw(const ClusterSelection& selection, const VertexArray& vao) const;
 
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
-  // drawn by the caller.
+  // drawn by the caller. Its `triangles` list is not kept (the cache's record, which no pass
+  // reads: 40 MiB at 10M triangles).
   const MeshClusters& clusters() const { return clusters_; }
   // The bytes of the slabs made so far.
   std::size_t gpu_bytes() const;
