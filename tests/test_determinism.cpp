@@ -90,4 +90,21 @@ TEST(ParallelTasks, RunsEachTaskOnceAndRethrows) {
                std::runtime_error);
 }
 
+// parallel_chunks (the loader's per-element loops): every element of [0, count) exactly once, in
+// chunks that do not overlap, across the chunk size's edges; nothing for an empty range.
+TEST(ParallelChunks, VisitsEveryElementOnce) {
+  for (std::size_t count : {std::size_t{0}, std::size_t{1}, std::size_t{65535}, std::size_t{65536},
+                            std::size_t{65537}, std::size_t{200001}}) {
+    std::vector<int> visits(count, 0);
+    std::atomic<std::size_t> calls{0};
+    irad::parallel_chunks(count, [&](std::size_t first, std::size_t end) {
+      ++calls;
+      EXPECT_LT(first, end);
+      for (std::size_t k = first; k < end; ++k) ++visits[k];
+    });
+    EXPECT_EQ(visits, std::vector<int>(count, 1)) << count;
+    EXPECT_EQ(calls, (count + 65535) / 65536) << count;
+  }
+}
+
 } // namespace IRAD_UNITY_ID

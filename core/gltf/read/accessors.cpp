@@ -2,6 +2,7 @@
 
 #include "core/gltf/decode/codecs.h"
 #include "core/util/freed_memory.h"
+#include "core/util/parallel_rows.h"
 
 #include <algorithm>
 #include <cmath>
@@ -332,9 +333,16 @@ std::size_t accessor_count(const Context& ctx, std::uint64_t accessor, const std
   return std::size_t(index_member(accessor_json(ctx, accessor, use), "count").value_or(0));
 }
 
-Values read_values(const Context& ctx, std::uint64_t accessor, const std::string& use,
+namespace {
+
+// The accessor's elements checked against the use's types (as read_values), decoded into
+// `out` as floats, `components` per element; out is sized here. T: float or a glm vector of
+// `components` floats.
+template <class T>
+void decode_floats(const Context& ctx, std::uint64_t accessor, const std::string& use,
                    std::initializer_list<const char*> types,
-                   std::initializer_list<int> component_types, bool normalized_only) {
+                   std::initializer_list<int> component_types, bool normalized_only,
+                   std::vector<T>& out, std::size_t* components = nullptr) {
   const json& a = accessor_json(ctx, accessor, use);
   const std::string name = element("accessors", std::size_t(accessor));
   const Layout l = layout_of(ctx, a, name);
@@ -347,37 +355,47 @@ Values read_values(const Context& ctx, std::uint64_t accessor, const std::string
                        expected_text(types, component_types, normalized_only));
   }
   const Elements e = elements(ctx, accessor, l);
+  const std::size_t floats_per_t = sizeof(T) / sizeof(float);
+  if (components) *components = l.components;
+  reserve_huge(out, e.count * l.components / floats_per_t);
+  out.resize(e.count * l.components / floats_per_t);
+  auto* dst = reinterpret_cast<float*>(out.data());
+  parallel_chunks(e.count, [&](std::size_t first, std::size_t end) {
+    for (std::size_t i = first; i < end; ++i) {
+      const unsigned char* p = e.at(i);
+      for (std::size_t k = 0; k < l.components; ++k)
+        dst[i * l.components + k] =
+            read_component(p + l.offset_of(k), l.component_type, l.normalized);
+    }
+  });
+}
+
+} // namespace
+
+Values read_values(const Context& ctx, std::uint64_t accessor, const std::string& use,
+                   std::initializer_list<const char*> types,
+                   std::initializer_list<int> component_types, bool normalized_only) {
   Values out;
-  out.components = l.components;
-  reserve_huge(out.data, e.count * l.components);
-  out.data.resize(e.count * l.components);
-  for (std::size_t i = 0; i < e.count; ++i) {
-    const unsigned char* p = e.at(i);
-    for (std::size_t k = 0; k < l.components; ++k)
-      out.data[i * l.components + k] =
-          read_component(p + l.offset_of(k), l.component_type, l.normalized);
-  }
+  decode_floats(ctx, accessor, use, types, component_types, normalized_only, out.data,
+                &out.components);
   return out;
 }
 
 std::vector<glm::vec3> read_vec3(const Context& ctx, std::uint64_t accessor,
                                  const std::string& use) {
-  const Values v = read_values(ctx, accessor, use, {"VEC3"},
-                               {kByte, kUnsignedByte, kShort, kUnsignedShort, kFloat});
-  std::vector<glm::vec3> out;
-  reserve_huge(out, v.count());
-  for (std::size_t i = 0; i < v.count(); ++i)
-    out.emplace_back(v.data[3 * i], v.data[3 * i + 1], v.data[3 * i + 2]);
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+  std::vector<glm::vec3> out; // straight into vec3s: the type check admits VEC3 only
+  decode_floats(ctx, accessor, use, {"VEC3"},
+                {kByte, kUnsignedByte, kShort, kUnsignedShort, kFloat}, false, out);
   return out;
 }
 
 std::vector<glm::vec2> read_texcoords(const Context& ctx, std::uint64_t accessor,
                                       const std::string& use) {
-  const Values v = read_values(ctx, accessor, use, {"VEC2"},
-                               {kByte, kUnsignedByte, kShort, kUnsignedShort, kFloat});
+  static_assert(sizeof(glm::vec2) == 2 * sizeof(float));
   std::vector<glm::vec2> out;
-  reserve_huge(out, v.count());
-  for (std::size_t i = 0; i < v.count(); ++i) out.emplace_back(v.data[2 * i], v.data[2 * i + 1]);
+  decode_floats(ctx, accessor, use, {"VEC2"},
+                {kByte, kUnsignedByte, kShort, kUnsignedShort, kFloat}, false, out);
   return out;
 }
 
@@ -427,7 +445,10 @@ std::vector<std::uint32_t> read_indices(const Context& ctx, std::uint64_t access
   const Elements e = elements(ctx, accessor, l);
   std::vector<std::uint32_t> out;
   reserve_huge(out, e.count);
-  for (std::size_t i = 0; i < e.count; ++i) out.push_back(read_uint(e.at(i), l.component_type));
+  out.resize(e.count);
+  parallel_chunks(e.count, [&](std::size_t first, std::size_t end) {
+    for (std::size_t i = first; i < end; ++i) out[i] = read_uint(e.at(i), l.component_type);
+  });
   return out;
 }
 

@@ -5,8 +5,10 @@
 #include "core/gltf/read/skins.h"
 #include "core/mesh/tangents.h"
 #include "core/util/freed_memory.h"
+#include "core/util/parallel_rows.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -313,7 +315,14 @@ std::vector<std::uint32_t> read_vertex_indices(const Context& ctx, const json& p
 
 void check_index_range(const Context& ctx, const std::vector<std::uint32_t>& indices, std::size_t n,
                        const std::string& where) {
-  for (std::uint32_t i : indices) {
+  std::atomic<bool> bad{false};
+  parallel_chunks(indices.size(), [&](std::size_t first, std::size_t end) {
+    std::uint32_t largest = 0;
+    for (std::size_t k = first; k < end; ++k) largest = std::max(largest, indices[k]);
+    if (end > first && largest >= n) bad = true;
+  });
+  if (!bad) return;
+  for (std::uint32_t i : indices) { // the first one out of range, for the message
     if (i >= n) {
       ctx.fail(where, fmt::format("index value {} out of range ({} vertices)", i, n));
     }
@@ -329,8 +338,12 @@ std::vector<glm::uvec3> assemble(const Context& ctx, int mode,
     if (idx.size() % 3 != 0)
       ctx.warn(where + ": TRIANGLES index count is not a multiple of 3; the "
                        "last incomplete triangle is dropped");
-    for (std::size_t k = 0; k + 2 < idx.size(); k += 3)
-      out.emplace_back(idx[k], idx[k + 1], idx[k + 2]);
+    reserve_huge(out, idx.size() / 3);
+    out.resize(idx.size() / 3);
+    parallel_chunks(out.size(), [&](std::size_t first, std::size_t end) {
+      for (std::size_t t = first; t < end; ++t)
+        out[t] = glm::uvec3(idx[3 * t], idx[3 * t + 1], idx[3 * t + 2]);
+    });
   } else if (mode == kTriangleStrip) {
     for (std::size_t k = 0; k + 2 < idx.size(); ++k) {
       if (k % 2 == 0)
@@ -436,7 +449,9 @@ bool finite(const glm::vec3& v) {
 std::vector<glm::uvec3> drop_non_finite(std::vector<glm::uvec3> triangles, const Attributes& a,
                                         const Placement& pl, const std::string& where, Soup& soup) {
   std::vector<char> ok(a.positions.size());
-  for (std::size_t v = 0; v < ok.size(); ++v) ok[v] = finite(place_point(pl, a.positions[v]));
+  parallel_chunks(ok.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t v = first; v < end; ++v) ok[v] = finite(place_point(pl, a.positions[v]));
+  });
   std::size_t kept = 0;
   for (const glm::uvec3& t : triangles) {
     if (ok[t.x] && ok[t.y] && ok[t.z]) triangles[kept++] = t;
@@ -445,6 +460,49 @@ std::vector<glm::uvec3> drop_non_finite(std::vector<glm::uvec3> triangles, const
   soup.non_finite_dropped += triangles.size() - kept;
   triangles.resize(kept);
   return triangles;
+}
+
+// Appends every vertex of a primitive with normals, each placed as push_vertex places one, on
+// all cores; returns the soup index of its first.
+std::uint32_t push_vertices(const Context& ctx, const Attributes& a, const Placement& pl,
+                            Soup& soup) {
+  const std::size_t base = soup.positions.size(), n = a.positions.size();
+  if (base + n > std::numeric_limits<std::uint32_t>::max()) {
+    ctx.fail("", "more than 2^32 - 1 vertices");
+  }
+  soup.positions.resize(base + n);
+  soup.normals.resize(base + n);
+  // The optional sets only from the first primitive that has them (earlier vertices filled).
+  if (!a.uvs.empty() || !soup.uvs.empty()) soup.uvs.resize(base + n, glm::vec2(0.0f));
+  if (!a.uvs1.empty() || !soup.uvs1.empty()) soup.uvs1.resize(base + n, glm::vec2(0.0f));
+  if (!a.colors.empty() || !soup.colors.empty()) soup.colors.resize(base + n, glm::vec4(1.0f));
+  if (!a.tangents.empty() || !soup.tangents.empty())
+    soup.tangents.resize(base + n, glm::vec4(0.0f));
+  parallel_chunks(n, [&](std::size_t first, std::size_t end) {
+    for (std::size_t v = first; v < end; ++v) {
+      soup.positions[base + v] = place_point(pl, a.positions[v]);
+      soup.normals[base + v] = place_normal(pl, a.normals[v]);
+      if (!a.uvs.empty()) soup.uvs[base + v] = a.uvs[v];
+      if (!a.uvs1.empty()) soup.uvs1[base + v] = a.uvs1[v];
+      if (!a.colors.empty()) soup.colors[base + v] = a.colors[v];
+      if (!a.tangents.empty()) soup.tangents[base + v] = place_tangent(pl, a.tangents[v]);
+    }
+  });
+  return static_cast<std::uint32_t>(base);
+}
+
+// Appends the triangles `local` (over vertices from `base`), on all cores.
+void push_triangles(const std::vector<glm::uvec3>& local, std::uint32_t base, bool flip,
+                    std::uint32_t material, Soup& soup) {
+  const std::size_t at = soup.triangles.size();
+  soup.triangles.resize(at + local.size());
+  soup.triangle_material.resize(at + local.size(), material);
+  parallel_chunks(local.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t k = first; k < end; ++k) {
+      const glm::uvec3 t = local[k] + base;
+      soup.triangles[at + k] = flip ? glm::uvec3(t.x, t.z, t.y) : t;
+    }
+  });
 }
 
 void push_triangle(glm::uvec3 t, bool flip, std::uint32_t material, Soup& soup) {
@@ -591,11 +649,10 @@ void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitiv
   if (soup.record_deforms && deformed)
     deform = &start_deform(raw, pose, skinned, a.normals.empty() && pl.flip, soup);
   if (!a.normals.empty()) {
-    const std::uint32_t base = push_vertex(ctx, a, 0, pl, soup);
-    for (std::size_t v = 1; v < a.positions.size(); ++v) push_vertex(ctx, a, v, pl, soup);
+    const std::uint32_t base = push_vertices(ctx, a, pl, soup);
     if (deform)
       for (std::size_t v = 0; v < a.positions.size(); ++v) record(raw, v, base + v, *deform);
-    for (const glm::uvec3& t : local) push_triangle(t + base, pl.flip, material, soup);
+    push_triangles(local, base, pl.flip, material, soup);
     return;
   }
   for (const glm::uvec3& t : local) { // flat normals: every triangle gets its own vertices
