@@ -2,7 +2,9 @@
 #include "core/gltf/read/geometry.h"
 
 #include "core/mesh/tangents.h"
+#include "core/util/parallel_rows.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -16,27 +18,47 @@ glm::dvec3 edge_cross(const Soup& s, const glm::uvec3& t) {
   return glm::cross(glm::dvec3(s.positions[t.y]) - p0, glm::dvec3(s.positions[t.z]) - p0);
 }
 
+// The bounds of the triangles' vertices, chunks on all cores merged in order.
 Bounds triangle_bounds(const std::vector<glm::vec3>& positions,
                        const std::vector<glm::uvec3>& triangles) {
+  constexpr std::size_t kChunk = std::size_t{1} << 16;
+  std::vector<Bounds> parts((triangles.size() + kChunk - 1) / kChunk);
+  parallel_chunks(triangles.size(), [&](std::size_t first, std::size_t end) {
+    Bounds& b = parts[first / kChunk];
+    for (std::size_t k = first; k < end; ++k) {
+      const glm::uvec3& t = triangles[k];
+      b.extend(positions[t.x]);
+      b.extend(positions[t.y]);
+      b.extend(positions[t.z]);
+    }
+  });
   Bounds b;
-  for (const glm::uvec3& t : triangles) {
-    b.extend(positions[t.x]);
-    b.extend(positions[t.y]);
-    b.extend(positions[t.z]);
+  for (const Bounds& part : parts) {
+    if (part.empty()) continue;
+    b.extend(part.lo);
+    b.extend(part.hi);
   }
   return b;
 }
 
-// Keeps the non-degenerate triangles; returns how many were dropped.
+// Keeps the non-degenerate triangles (tested on all cores, kept in order); returns how many
+// were dropped.
 std::size_t drop_degenerate(Soup& s) {
   const double diagonal = triangle_bounds(s.positions, s.triangles).diagonal();
   const double min_area = 1e-12 * diagonal * diagonal;
+  std::vector<char> keep(s.triangles.size());
+  parallel_chunks(keep.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t i = first; i < end; ++i) {
+      const glm::uvec3 t = s.triangles[i];
+      const bool repeated = t.x == t.y || t.y == t.z || t.z == t.x;
+      keep[i] = !repeated && 0.5 * glm::length(edge_cross(s, t)) > min_area;
+    }
+  });
+  if (std::find(keep.begin(), keep.end(), 0) == keep.end()) return 0;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < s.triangles.size(); ++i) {
-    const glm::uvec3 t = s.triangles[i];
-    const bool repeated = t.x == t.y || t.y == t.z || t.z == t.x;
-    if (repeated || !(0.5 * glm::length(edge_cross(s, t)) > min_area)) continue;
-    s.triangles[kept] = t;
+    if (!keep[i]) continue;
+    s.triangles[kept] = s.triangles[i];
     s.triangle_material[kept++] = s.triangle_material[i];
   }
   const std::size_t dropped = s.triangles.size() - kept;
@@ -45,8 +67,10 @@ std::size_t drop_degenerate(Soup& s) {
   return dropped;
 }
 
-// Vertices without a usable normal take the geometric normal of the first triangle using them.
+// Vertices without a usable normal take the geometric normal of the first triangle using them
+// (nothing to do, and no pass over the triangles, where every vertex has one).
 void fill_normals(Soup& s) {
+  if (std::find(s.normals.begin(), s.normals.end(), glm::vec3(0.0f)) == s.normals.end()) return;
   for (const glm::uvec3& t : s.triangles) {
     const glm::vec3 n(glm::normalize(edge_cross(s, t)));
     for (std::uint32_t v : {t.x, t.y, t.z}) {
@@ -58,9 +82,11 @@ void fill_normals(Soup& s) {
 // Vertices without a usable tangent (0: from a primitive without a normal map, or placed to
 // nothing) take a unit one orthogonal to their normal, w = 1.
 void fill_tangents(Soup& s) {
-  for (std::size_t v = 0; v < s.tangents.size(); ++v)
-    if (glm::vec3(s.tangents[v]) == glm::vec3(0.0f))
-      s.tangents[v] = glm::vec4(any_tangent(s.normals[v]), 1.0f);
+  parallel_chunks(s.tangents.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t v = first; v < end; ++v)
+      if (glm::vec3(s.tangents[v]) == glm::vec3(0.0f))
+        s.tangents[v] = glm::vec4(any_tangent(s.normals[v]), 1.0f);
+  });
 }
 
 // Removes vertices no triangle uses, keeping the order of the others.
@@ -100,6 +126,7 @@ void remap_deform(const std::vector<std::uint32_t>& remap, const std::vector<cha
 void compact(Soup& s) {
   std::vector<std::uint32_t> remap(s.positions.size(), 0);
   for (const glm::uvec3& t : s.triangles) remap[t.x] = remap[t.y] = remap[t.z] = 1;
+  if (std::find(remap.begin(), remap.end(), 0u) == remap.end()) return; // every vertex used
   const std::vector<char> used(remap.begin(), remap.end());
   std::uint32_t next = 0;
   for (std::size_t v = 0; v < s.positions.size(); ++v) {
