@@ -93,6 +93,16 @@ public:
     soup_.record_deforms = track_nodes_;
   }
 
+  // Adds what `instance` will append to the soup's size hints (gltf::add_size_hint).
+  void hint(const gltf::NodeInstance& instance) {
+    const auto mesh = gltf::index_member(ctx_.array("nodes")[instance.node], "mesh");
+    if (!mesh || *mesh >= ctx_.count("meshes")) return;
+    const json* primitives = gltf::member(ctx_.array("meshes")[std::size_t(*mesh)], "primitives");
+    if (!primitives || !primitives->is_array()) return;
+    for (std::size_t p = 0; p < primitives->size(); ++p)
+      gltf::add_size_hint(ctx_, std::size_t(*mesh), p, soup_);
+  }
+
   void add(const gltf::NodeInstance& instance) {
     const json& n = ctx_.array("nodes")[instance.node];
     if (const auto mesh = gltf::index_member(n, "mesh")) add_mesh(instance, std::size_t(*mesh));
@@ -202,6 +212,7 @@ Scene load_gltf(const std::filesystem::path& path, Log& log, const LoadLimits& l
       ctx, scene,
       gltf::convert_materials(ctx, referenced_materials(ctx, instances), scene, decoded_images),
       skins);
+  for (const gltf::NodeInstance& instance : instances) builder.hint(instance);
   for (const gltf::NodeInstance& instance : instances) builder.add(instance);
   gltf::ContentNodes content = builder.finish();
 

@@ -514,25 +514,26 @@ void push_triangle(glm::uvec3 t, bool flip, std::uint32_t material, Soup& soup) 
 
 namespace {
 
-// Capacity for n elements: exactly n the first time (one large primitive allocates no more
-// than it needs), else at least 1.5 x the capacity (many small ones grow geometrically).
+// Capacity for n elements: the first time the scene's hint (at least n), else at least 1.5 x the
+// capacity (a hint that fell short still grows geometrically).
 template <class T>
-void grow(std::vector<T>& v, std::size_t n) {
+void grow(std::vector<T>& v, std::size_t n, std::size_t hint) {
   if (n <= v.capacity()) return;
-  reserve_huge(v, v.capacity() == 0 ? n : std::max(n, v.capacity() + v.capacity() / 2));
+  reserve_huge(v, v.capacity() == 0 ? std::max(n, hint)
+                                    : std::max(n, v.capacity() + v.capacity() / 2));
 }
 
 // Room for `vertices` more vertices and `triangles` more triangles.
 void reserve(Soup& soup, std::size_t vertices, std::size_t triangles, const Attributes& a) {
-  const std::size_t n = soup.positions.size() + vertices;
-  grow(soup.positions, n);
-  grow(soup.normals, n);
-  if (!a.uvs.empty() || !soup.uvs.empty()) grow(soup.uvs, n);
-  if (!a.uvs1.empty() || !soup.uvs1.empty()) grow(soup.uvs1, n);
-  if (!a.colors.empty() || !soup.colors.empty()) grow(soup.colors, n);
-  if (!a.tangents.empty() || !soup.tangents.empty()) grow(soup.tangents, n);
-  grow(soup.triangles, soup.triangles.size() + triangles);
-  grow(soup.triangle_material, soup.triangle_material.size() + triangles);
+  const std::size_t n = soup.positions.size() + vertices, h = soup.vertex_hint;
+  grow(soup.positions, n, h);
+  grow(soup.normals, n, h);
+  if (!a.uvs.empty() || !soup.uvs.empty()) grow(soup.uvs, n, h);
+  if (!a.uvs1.empty() || !soup.uvs1.empty()) grow(soup.uvs1, n, h);
+  if (!a.colors.empty() || !soup.colors.empty()) grow(soup.colors, n, h);
+  if (!a.tangents.empty() || !soup.tangents.empty()) grow(soup.tangents, n, h);
+  grow(soup.triangles, soup.triangles.size() + triangles, soup.triangle_hint);
+  grow(soup.triangle_material, soup.triangle_material.size() + triangles, soup.triangle_hint);
 }
 
 Soup::Deform& start_deform(const RawPrimitive& raw, const PrimitivePose& pose, bool skinned,
@@ -602,6 +603,31 @@ std::vector<glm::uvec3> read_triangles(const Context& ctx, const json& p, int mo
 }
 
 } // namespace
+
+void add_size_hint(const Context& ctx, std::size_t mesh, std::size_t primitive, Soup& soup) {
+  const json& accessors = ctx.array("accessors");
+  const auto count = [&](std::optional<std::uint64_t> a) -> std::optional<std::uint64_t> {
+    if (!a || *a >= accessors.size()) return std::nullopt;
+    return index_member(accessors[std::size_t(*a)], "count");
+  };
+  const json& meshes = ctx.array("meshes");
+  if (mesh >= meshes.size()) return;
+  const json* primitives = member(meshes[mesh], "primitives");
+  if (!primitives || !primitives->is_array() || primitive >= primitives->size()) return;
+  const json& p = (*primitives)[primitive];
+  const json* attrs = member(p, "attributes");
+  const auto mode = static_cast<int>(number_member(p, "mode", kTriangles));
+  if (!attrs || !attrs->is_object() || mode < kTriangles || mode > 6) return;
+  const auto vertices = count(attribute(*attrs, "POSITION"));
+  if (!vertices) return;
+  const std::uint64_t indices = count(index_member(p, "indices")).value_or(*vertices);
+  const std::uint64_t triangles = std::min(triangle_count(mode, indices), ctx.limits.max_triangles);
+  const std::uint64_t placed = attribute(*attrs, "NORMAL") ? *vertices : 3 * triangles;
+  const std::uint64_t most = 3 * ctx.limits.max_triangles; // the vertex limit
+  soup.vertex_hint = std::size_t(std::min(soup.vertex_hint + std::min(placed, most), most));
+  soup.triangle_hint =
+      std::size_t(std::min(soup.triangle_hint + triangles, ctx.limits.max_triangles));
+}
 
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
                       const PrimitivePose& pose, std::uint32_t material, UvSets uv, Soup& soup) {

@@ -42,6 +42,9 @@ struct Soup {
   bool record_deforms = false;
   std::size_t non_finite_dropped = 0; // triangles with a NaN or Inf (placed) vertex position
   std::string non_finite_where;       // the primitive of the first of them
+  // What the whole scene appends (add_size_hint), so that each array is allocated once instead
+  // of growing by half at the first primitive that does not fit.
+  std::size_t vertex_hint = 0, triangle_hint = 0;
 };
 
 // The TEXCOORD sets a material's textures read, in the scene's two uv slots (Scene::uvs and
@@ -87,6 +90,11 @@ struct PrimitivePose {
 // KHR_draco_mesh_compression primitive is decoded first (core/gltf/decode/codecs.h).
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
                       const PrimitivePose& pose, std::uint32_t material, UvSets uv, Soup& soup);
+
+// Adds meshes[mesh].primitives[primitive]'s vertices and triangles to soup's hints, as its
+// accessors' counts give them (the JSON alone: nothing is read or checked; append_primitive
+// checks the real counts), capped by ctx.limits.
+void add_size_hint(const Context& ctx, std::size_t mesh, std::size_t primitive, Soup& soup);
 
 // Moves the soup into scene (and soup.vertex_node, compacted like the vertices, into
 // *vertex_node when given) (positions, normals, uvs, tangents, triangles, triangle_material,
