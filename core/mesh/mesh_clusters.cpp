@@ -263,17 +263,22 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     }
   }
   start = stages.lap("planar", start);
-  for (const glm::uvec3& v : in.triangles)
-    in.centroids.push_back((scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) /
-                           3.0f);
+  in.centroids.resize(in.triangles.size());
+  parallel_chunks(in.triangles.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t t = first; t < end; ++t) {
+      const glm::uvec3& v = in.triangles[t];
+      in.centroids[t] = (scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) / 3.0f;
+    }
+  });
   if (in.triangles.empty()) return std::move(b.out);
   // One tree per connected component of at least a leaf's triangles, one for all the others.
   const std::vector<std::uint32_t> group =
       component_groups(in.triangles, scene.positions.size(), options.leaf_triangles);
   in.order.resize(in.triangles.size());
   std::iota(in.order.begin(), in.order.end(), 0u);
-  std::stable_sort(in.order.begin(), in.order.end(),
-                   [&](std::uint32_t x, std::uint32_t y) { return group[x] < group[y]; });
+  const auto by_group = [&](std::uint32_t x, std::uint32_t y) { return group[x] < group[y]; };
+  if (!std::is_sorted(in.order.begin(), in.order.end(), by_group)) // (one component: it is)
+    std::stable_sort(in.order.begin(), in.order.end(), by_group);
   b.out.indices.reserve(3 * in.triangles.size());
   std::vector<bool> whole;
   // The top levels split on one thread, the subtrees below them on as many as the build has.
