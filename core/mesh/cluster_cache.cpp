@@ -448,24 +448,35 @@ std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::
   return "";
 }
 
-void PendingCacheWrite::run(StageTimes* times, CacheResult* result) noexcept {
-  if (!pending()) return;
+namespace {
+
+// Writes c (its indices in memory) to `path` atomically and trims the folder: `out` becomes
+// Written (a Rebuilt stays so) or Unwritable with the reason; "cache write" into `times`. Never
+// throws.
+void write_cache_file(const fs::path& path, const ClusterKey& key, const MeshClusters& c,
+                      StageTimes* times, CacheResult& out) noexcept {
   const auto start = StageTimes::Clock::now();
-  CacheResult own;
-  CacheResult& out = result ? *result : own;
   try {
     std::string why;
     if (!write_atomically(
-            path_, [&](const fs::path& to) { return write_file(to, hierarchy_, key_); }, why)) {
+            path, [&](const fs::path& to) { return write_file(to, c, key); }, why)) {
       out = {CacheOutcome::Unwritable, why};
     } else {
       if (out.outcome == CacheOutcome::Off) out.outcome = CacheOutcome::Written;
-      trim_folder(path_.parent_path());
+      trim_folder(path.parent_path());
     }
   } catch (const std::exception& e) { // memory, the file system
     out = {CacheOutcome::Unwritable, e.what()};
   }
   if (times) times->lap("cache write", start);
+}
+
+} // namespace
+
+void PendingCacheWrite::run(StageTimes* times, CacheResult* result) noexcept {
+  if (!pending()) return;
+  CacheResult own;
+  write_cache_file(path_, key_, hierarchy_, times, result ? *result : own);
   hierarchy_ = {}; // the indices stay with their other user
 }
 
@@ -494,17 +505,16 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
     out = {CacheOutcome::Rebuilt, why};
   }
   MeshClusters c = build_mesh_clusters(scene, options, &stages);
-  // The indices shared between the hierarchy's user and the writer.
-  auto shared = std::make_shared<const std::vector<std::uint32_t>>(std::move(c.indices));
-  c.indices = {};
-  c.stored_indices = std::make_shared<const StoredIndices>(std::move(shared));
-  PendingCacheWrite now;
-  PendingCacheWrite& write = later ? *later : now;
-  write.hierarchy_ = c;
-  write.path_ = path;
-  write.key_ = key;
-  if (later) return c;
-  now.run(&stages, &out);
+  if (later) { // the indices shared between the hierarchy's user and the writer
+    auto shared = std::make_shared<const std::vector<std::uint32_t>>(std::move(c.indices));
+    c.indices = {};
+    c.stored_indices = std::make_shared<const StoredIndices>(std::move(shared));
+    later->hierarchy_ = c;
+    later->path_ = path;
+    later->key_ = key;
+    return c;
+  }
+  write_cache_file(path, key, c, &stages, out);
   if (out.outcome != CacheOutcome::Unwritable)
     leave_indices_in(path, key, scene.positions.size(), c);
   return c;

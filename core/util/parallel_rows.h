@@ -63,16 +63,19 @@ inline void parallel_tasks(int tasks, unsigned threads,
   if (failed) std::rethrow_exception(failed);
 }
 
-// Runs body(first, end) over [0, count) in chunks of 2^16 elements on all cores, one thread where
-// there are fewer than two chunks (a small array is not worth the threads): the loaders' and
-// builders' per-element loops. body must only write its own elements and must not throw.
+// The elements of one chunk of parallel_chunks: chunk k is [k kParallelChunk, (k + 1)
+// kParallelChunk), the last one shorter.
+inline constexpr std::size_t kParallelChunk = std::size_t{1} << 16;
+
+// Runs body(first, end) over [0, count) chunk by chunk on all cores, one thread where there are
+// fewer than two chunks (a small array is not worth the threads): the loaders' and builders'
+// per-element loops. body must only write its own elements and must not throw.
 inline void parallel_chunks(std::size_t count,
                             const std::function<void(std::size_t first, std::size_t end)>& body) {
-  constexpr std::size_t kChunk = std::size_t{1} << 16;
-  const std::size_t chunks = (count + kChunk - 1) / kChunk;
+  const std::size_t chunks = (count + kParallelChunk - 1) / kParallelChunk;
   parallel_rows(static_cast<int>(chunks), chunks > 1 ? 0u : 1u, [&](int c) {
-    const std::size_t first = static_cast<std::size_t>(c) * kChunk;
-    body(first, std::min(count, first + kChunk));
+    const std::size_t first = static_cast<std::size_t>(c) * kParallelChunk;
+    body(first, std::min(count, first + kParallelChunk));
   });
 }
 

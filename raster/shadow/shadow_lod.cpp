@@ -51,7 +51,10 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
       slab_pages_(std::max<std::size_t>(slab_pages, 1)) {
   index_count_ = clusters_.index_count();
   std::vector<std::uint32_t>().swap(clusters_.triangles); // what the cache keeps, not the faces
-
+  if (!clusters_.stored_indices) // the pages' one source: a build's indices, moved behind it
+    clusters_.stored_indices = std::make_shared<const StoredIndices>(
+        std::make_shared<const std::vector<std::uint32_t>>(std::move(clusters_.indices)));
+  clusters_.indices = {};
   slot_of_page_.assign((index_count_ + kPageIndices - 1) / kPageIndices, 0);
 }
 
@@ -78,11 +81,7 @@ void ShadowLod::copy_pages(std::size_t page, std::size_t slot, std::size_t count
       *api_, slab_of(slot), (slot % slab_pages_) * kPageIndices * sizeof(std::uint32_t),
       indices * sizeof(std::uint32_t),
       [&](void* storage) {
-        auto* out = static_cast<std::uint32_t*>(storage);
-        if (clusters_.stored_indices)
-          clusters_.stored_indices->copy_range(first, indices, out);
-        else
-          std::copy_n(clusters_.indices.begin() + static_cast<std::ptrdiff_t>(first), indices, out);
+        clusters_.stored_indices->copy_range(first, indices, static_cast<std::uint32_t*>(storage));
       },
       "shadow hierarchy");
 }

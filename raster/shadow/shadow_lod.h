@@ -110,7 +110,8 @@ public:
 
   // Every triangle of the scene that is not in the hierarchy (Mask and Blend materials) has to be
   // drawn by the caller. Its `triangles` list is not kept (the cache's record, which no pass
-  // reads: 40 MiB at 10M triangles).
+  // reads: 40 MiB at 10M triangles), and its indices are all behind `stored_indices` (a build's
+  // moved there), never in `indices`.
   const MeshClusters& clusters() const { return clusters_; }
   // The bytes of the slabs made so far.
   std::size_t gpu_bytes() const;
@@ -134,7 +135,7 @@ private:
 
   const GladGLContext* api_;
   const GpuScene* gpu_;
-  MeshClusters clusters_;       // its indices (or stored_indices): the source of the pages
+  MeshClusters clusters_;       // its indices all behind stored_indices: the source of the pages
   std::size_t index_count_ = 0; // of the hierarchy
   bool simplify_;
   std::size_t slab_pages_;

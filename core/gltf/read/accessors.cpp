@@ -357,8 +357,7 @@ void decode_floats(const Context& ctx, std::uint64_t accessor, const std::string
   const Elements e = elements(ctx, accessor, l);
   const std::size_t floats_per_t = sizeof(T) / sizeof(float);
   if (components) *components = l.components;
-  reserve_huge(out, e.count * l.components / floats_per_t);
-  out.resize(e.count * l.components / floats_per_t);
+  resize_huge(out, e.count * l.components / floats_per_t);
   auto* dst = reinterpret_cast<float*>(out.data());
   parallel_chunks(e.count, [&](std::size_t first, std::size_t end) {
     for (std::size_t i = first; i < end; ++i) {
@@ -444,8 +443,7 @@ std::vector<std::uint32_t> read_indices(const Context& ctx, std::uint64_t access
   }
   const Elements e = elements(ctx, accessor, l);
   std::vector<std::uint32_t> out;
-  reserve_huge(out, e.count);
-  out.resize(e.count);
+  resize_huge(out, e.count);
   parallel_chunks(e.count, [&](std::size_t first, std::size_t end) {
     for (std::size_t i = first; i < end; ++i) out[i] = read_uint(e.at(i), l.component_type);
   });

@@ -21,10 +21,9 @@ glm::dvec3 edge_cross(const Soup& s, const glm::uvec3& t) {
 // The bounds of the triangles' vertices, chunks on all cores merged in order.
 Bounds triangle_bounds(const std::vector<glm::vec3>& positions,
                        const std::vector<glm::uvec3>& triangles) {
-  constexpr std::size_t kChunk = std::size_t{1} << 16;
-  std::vector<Bounds> parts((triangles.size() + kChunk - 1) / kChunk);
+  std::vector<Bounds> parts((triangles.size() + kParallelChunk - 1) / kParallelChunk);
   parallel_chunks(triangles.size(), [&](std::size_t first, std::size_t end) {
-    Bounds& b = parts[first / kChunk];
+    Bounds& b = parts[first / kParallelChunk];
     for (std::size_t k = first; k < end; ++k) {
       const glm::uvec3& t = triangles[k];
       b.extend(positions[t.x]);

@@ -3,6 +3,7 @@
 #include "core/gltf/decode/codecs.h"
 #include "core/gltf/read/accessors.h"
 #include "core/gltf/read/skins.h"
+#include "core/mesh/stored_indices.h"
 #include "core/mesh/tangents.h"
 #include "core/util/freed_memory.h"
 #include "core/util/parallel_rows.h"
@@ -317,9 +318,7 @@ void check_index_range(const Context& ctx, const std::vector<std::uint32_t>& ind
                        const std::string& where) {
   std::atomic<bool> bad{false};
   parallel_chunks(indices.size(), [&](std::size_t first, std::size_t end) {
-    std::uint32_t largest = 0;
-    for (std::size_t k = first; k < end; ++k) largest = std::max(largest, indices[k]);
-    if (end > first && largest >= n) bad = true;
+    if (!below(indices.data() + first, end - first, n)) bad = true;
   });
   if (!bad) return;
   for (std::uint32_t i : indices) { // the first one out of range, for the message
@@ -338,8 +337,7 @@ std::vector<glm::uvec3> assemble(const Context& ctx, int mode,
     if (idx.size() % 3 != 0)
       ctx.warn(where + ": TRIANGLES index count is not a multiple of 3; the "
                        "last incomplete triangle is dropped");
-    reserve_huge(out, idx.size() / 3);
-    out.resize(idx.size() / 3);
+    resize_huge(out, idx.size() / 3);
     parallel_chunks(out.size(), [&](std::size_t first, std::size_t end) {
       for (std::size_t t = first; t < end; ++t)
         out[t] = glm::uvec3(idx[3 * t], idx[3 * t + 1], idx[3 * t + 2]);
@@ -394,34 +392,42 @@ glm::vec4 place_tangent(const Placement& pl, const glm::vec4& t) {
   return glm::vec4(glm::vec3(m / len), (t.w < 0.0f) != pl.flip ? -1.0f : 1.0f);
 }
 
+// Room for `n` more vertices in every array the soup keeps, the optional sets opened by the first
+// primitive that has them (the vertices before it given their defaults: uv (0, 0), colour 1,
+// tangent 0); returns the index of the first new vertex. Fails past 2^32 - 1 vertices.
+std::size_t open_vertices(const Context& ctx, const Attributes& a, std::size_t n, Soup& soup) {
+  const std::size_t base = soup.positions.size();
+  if (base + n > std::numeric_limits<std::uint32_t>::max()) {
+    ctx.fail("", "more than 2^32 - 1 vertices");
+  }
+  soup.positions.resize(base + n);
+  soup.normals.resize(base + n);
+  if (!a.uvs.empty() || !soup.uvs.empty()) soup.uvs.resize(base + n, glm::vec2(0.0f));
+  if (!a.uvs1.empty() || !soup.uvs1.empty()) soup.uvs1.resize(base + n, glm::vec2(0.0f));
+  if (!a.colors.empty() || !soup.colors.empty()) soup.colors.resize(base + n, glm::vec4(1.0f));
+  if (!a.tangents.empty() || !soup.tangents.empty())
+    soup.tangents.resize(base + n, glm::vec4(0.0f));
+  return base;
+}
+
+// Writes the primitive's vertex v, placed, into soup vertex `at` (opened by open_vertices): the
+// attributes it lacks keep their defaults (a normal 0: finish_geometry fills it).
+void place_vertex(const Attributes& a, std::size_t v, const Placement& pl, std::size_t at,
+                  Soup& soup) {
+  soup.positions[at] = place_point(pl, a.positions[v]);
+  soup.normals[at] = a.normals.empty() ? glm::vec3(0.0f) : place_normal(pl, a.normals[v]);
+  if (!a.uvs.empty()) soup.uvs[at] = a.uvs[v];
+  if (!a.uvs1.empty()) soup.uvs1[at] = a.uvs1[v];
+  if (!a.colors.empty()) soup.colors[at] = a.colors[v];
+  if (!a.tangents.empty()) soup.tangents[at] = place_tangent(pl, a.tangents[v]);
+}
+
 // Appends one vertex of the primitive; returns its index in the soup.
 std::uint32_t push_vertex(const Context& ctx, const Attributes& a, std::size_t v,
                           const Placement& pl, Soup& soup) {
-  if (soup.positions.size() >= std::numeric_limits<std::uint32_t>::max()) {
-    ctx.fail("", "more than 2^32 - 1 vertices");
-  }
-  soup.positions.push_back(place_point(pl, a.positions[v]));
-  soup.normals.push_back(a.normals.empty() ? glm::vec3(0.0f) : place_normal(pl, a.normals[v]));
-  // The optional sets only from the first primitive that has them (earlier vertices filled).
-  const std::size_t i = soup.positions.size() - 1;
-  if (!a.uvs.empty() || !soup.uvs.empty()) {
-    soup.uvs.resize(i, glm::vec2(0.0f));
-    soup.uvs.push_back(a.uvs.empty() ? glm::vec2(0.0f) : a.uvs[v]);
-  }
-  if (!a.uvs1.empty() || !soup.uvs1.empty()) {
-    soup.uvs1.resize(i, glm::vec2(0.0f));
-    soup.uvs1.push_back(a.uvs1.empty() ? glm::vec2(0.0f) : a.uvs1[v]);
-  }
-  if (!a.colors.empty() || !soup.colors.empty()) {
-    soup.colors.resize(i, glm::vec4(1.0f));
-    soup.colors.push_back(a.colors.empty() ? glm::vec4(1.0f) : a.colors[v]);
-  }
-  if (!a.tangents.empty() || !soup.tangents.empty()) {
-    soup.tangents.resize(i, glm::vec4(0.0f));
-    soup.tangents.push_back(a.tangents.empty() ? glm::vec4(0.0f)
-                                               : place_tangent(pl, a.tangents[v]));
-  }
-  return std::uint32_t(soup.positions.size() - 1);
+  const std::size_t at = open_vertices(ctx, a, 1, soup);
+  place_vertex(a, v, pl, at, soup);
+  return static_cast<std::uint32_t>(at);
 }
 
 // Triangles an index list of n entries gives in `mode` (TRIANGLES, TRIANGLE_STRIP or _FAN).
@@ -462,33 +468,20 @@ std::vector<glm::uvec3> drop_non_finite(std::vector<glm::uvec3> triangles, const
   return triangles;
 }
 
-// Appends every vertex of a primitive with normals, each placed as push_vertex places one, on
-// all cores; returns the soup index of its first.
+// Appends every vertex of the primitive, each placed as push_vertex places one, on all cores;
+// returns the soup index of its first.
 std::uint32_t push_vertices(const Context& ctx, const Attributes& a, const Placement& pl,
                             Soup& soup) {
-  const std::size_t base = soup.positions.size(), n = a.positions.size();
-  if (base + n > std::numeric_limits<std::uint32_t>::max()) {
-    ctx.fail("", "more than 2^32 - 1 vertices");
-  }
-  soup.positions.resize(base + n);
-  soup.normals.resize(base + n);
-  // The optional sets only from the first primitive that has them (earlier vertices filled).
-  if (!a.uvs.empty() || !soup.uvs.empty()) soup.uvs.resize(base + n, glm::vec2(0.0f));
-  if (!a.uvs1.empty() || !soup.uvs1.empty()) soup.uvs1.resize(base + n, glm::vec2(0.0f));
-  if (!a.colors.empty() || !soup.colors.empty()) soup.colors.resize(base + n, glm::vec4(1.0f));
-  if (!a.tangents.empty() || !soup.tangents.empty())
-    soup.tangents.resize(base + n, glm::vec4(0.0f));
-  parallel_chunks(n, [&](std::size_t first, std::size_t end) {
-    for (std::size_t v = first; v < end; ++v) {
-      soup.positions[base + v] = place_point(pl, a.positions[v]);
-      soup.normals[base + v] = place_normal(pl, a.normals[v]);
-      if (!a.uvs.empty()) soup.uvs[base + v] = a.uvs[v];
-      if (!a.uvs1.empty()) soup.uvs1[base + v] = a.uvs1[v];
-      if (!a.colors.empty()) soup.colors[base + v] = a.colors[v];
-      if (!a.tangents.empty()) soup.tangents[base + v] = place_tangent(pl, a.tangents[v]);
-    }
+  const std::size_t base = open_vertices(ctx, a, a.positions.size(), soup);
+  parallel_chunks(a.positions.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t v = first; v < end; ++v) place_vertex(a, v, pl, base + v, soup);
   });
   return static_cast<std::uint32_t>(base);
+}
+
+// t, its winding reversed where the placement mirrors.
+glm::uvec3 oriented(glm::uvec3 t, bool flip) {
+  return flip ? glm::uvec3(t.x, t.z, t.y) : t;
 }
 
 // Appends the triangles `local` (over vertices from `base`), on all cores.
@@ -499,14 +492,13 @@ void push_triangles(const std::vector<glm::uvec3>& local, std::uint32_t base, bo
   soup.triangle_material.resize(at + local.size(), material);
   parallel_chunks(local.size(), [&](std::size_t first, std::size_t end) {
     for (std::size_t k = first; k < end; ++k) {
-      const glm::uvec3 t = local[k] + base;
-      soup.triangles[at + k] = flip ? glm::uvec3(t.x, t.z, t.y) : t;
+      soup.triangles[at + k] = oriented(local[k] + base, flip);
     }
   });
 }
 
 void push_triangle(glm::uvec3 t, bool flip, std::uint32_t material, Soup& soup) {
-  soup.triangles.push_back(flip ? glm::uvec3(t.x, t.z, t.y) : t);
+  soup.triangles.push_back(oriented(t, flip));
   soup.triangle_material.push_back(material);
 }
 
