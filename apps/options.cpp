@@ -44,6 +44,12 @@ ShadowPlanes parse_shadow_planes(const std::string& name) {
   throw Error("", "--shadow-planes", "unknown mode '" + name + "' (auto, on, off)");
 }
 
+CameraLodMode parse_camera_lod(const std::string& name) {
+  if (name == "on") return CameraLodMode::On;
+  if (name == "off") return CameraLodMode::Off;
+  throw Error("", "--camera-lod", "unknown mode '" + name + "' (on, off)");
+}
+
 std::optional<std::uint64_t> parse_count_or_auto(const std::string& text, const char* option,
                                                  std::uint64_t min, std::uint64_t max) {
   if (text == "auto") return std::nullopt;

@@ -23,6 +23,8 @@ GlBackend parse_backend(const std::string& name);
 ShadowLodMode parse_shadow_lod(const std::string& name);
 // --shadow-planes: auto, on, off (RasterOptions::shadow_lod.planes).
 ShadowPlanes parse_shadow_planes(const std::string& name);
+// --camera-lod: on, off (RasterOptions::camera_lod).
+CameraLodMode parse_camera_lod(const std::string& name);
 // "auto" (nullopt) or a whole number in [min, max] (`irad render --paths`, `--clusters`); throws
 // irad::Error naming `option` for anything else.
 std::optional<std::uint64_t> parse_count_or_auto(const std::string& text, const char* option,

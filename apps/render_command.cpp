@@ -65,6 +65,7 @@ struct RenderArgs {
   std::string hierarchy_cache = "on";
   std::string shadow_helpers = "auto";
   std::string shadow_planes = "auto";
+  std::string camera_lod = "off";
   std::string jitter = "off";
   std::string interleave_edges = "auto";
   int gl_device = -1;
@@ -190,6 +191,9 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
       {"shadow_occlusion", args.shadow_occlusion == "on"},
       {"shadow_helpers", r.shadow_helpers}, // as drawn: auto resolved, 0 when none were made
       {"hierarchy_cache", {{"outcome", r.hierarchy_cache}, {"reason", r.hierarchy_cache_reason}}},
+      {"camera_hierarchy_cache",
+       {{"outcome", r.camera_hierarchy_cache}, {"reason", r.camera_hierarchy_cache_reason}}},
+      {"camera_triangles", r.camera_triangles},
       {"wall_cache", {{"outcome", r.wall_cache}, {"reason", r.wall_cache_reason}}},
       {"shadow_planes", r.shadow_planes}, // as drawn: auto resolved
       {"thinnest_wall", r.thinnest_wall},
@@ -309,6 +313,7 @@ int run_render(const RenderArgs& args) {
   if (args.shadow_helpers != "auto")
     request.render.raster.shadow_helpers = std::stoi(args.shadow_helpers);
   request.render.raster.shadow_lod.planes = parse_shadow_planes(args.shadow_planes);
+  request.render.raster.camera_lod = parse_camera_lod(args.camera_lod);
   request.render.raster.jitter = args.jitter == "on";
   set_edge_pixels(args.interleave_edges, request.render); // checked by CLI11
   request.render.pt.pixel_footprint =
@@ -521,6 +526,14 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "its thinnest-wall scan (shadow-planes auto) between runs in "
                   "$XDG_CACHE_HOME/irad/hierarchy (else ~/.cache/irad/hierarchy); off: build and "
                   "scan every time")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--camera-lod", args->camera_lod,
+                  "Raster, batched or interleaved: the G-buffer and the emitters through the "
+                  "camera's cluster hierarchy (the image's frustum culled, each cluster at the "
+                  "coarsest mesh whose edges and distance from the surface stay within 2 "
+                  "pixels), built beside the render and kept between runs with the shadow "
+                  "hierarchy (--hierarchy-cache); off: every triangle")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
   cmd->add_option("--shadow-planes", args->shadow_planes,

@@ -60,8 +60,9 @@ struct Stages {
   RenderResult& r;
   std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
   double planes_scan = 0.0;               // its thinnest-wall scan (seconds)
-  // The raster's shadow hierarchy, building since render() began (early_hierarchy).
-  std::shared_ptr<BackgroundClusters> hierarchy = nullptr;
+  // The raster's shadow hierarchy, building since render() began (early_hierarchy), and the
+  // camera's after it (early_camera_hierarchy).
+  std::shared_ptr<BackgroundClusters> hierarchy = nullptr, camera_hierarchy = nullptr;
 
   bool cancelled() {
     r.cancelled = r.cancelled || stop.poll();
@@ -167,6 +168,7 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
   options.hierarchy_build = s.hierarchy;
+  options.camera_build = s.camera_hierarchy;
   s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options
   s.planes_scan = scan;
   log_planes(s.log, planes, options.shadow_resolution, scan);
@@ -206,6 +208,11 @@ void run_raster(Stages& s, const RayScene& rays) {
   s.r.seconds.hierarchy_beside = raster.hierarchy_beside_times().stages();
   s.r.hierarchy_cache = outcome_name(raster.hierarchy_cache().outcome);
   s.r.hierarchy_cache_reason = raster.hierarchy_cache().reason;
+  const StageTimes camera_beside = raster.camera_hierarchy_beside_times();
+  for (const auto& stage : camera_beside.stages()) s.r.seconds.hierarchy_beside.push_back(stage);
+  s.r.camera_hierarchy_cache = outcome_name(raster.camera_hierarchy_cache().outcome);
+  s.r.camera_hierarchy_cache_reason = raster.camera_hierarchy_cache().reason;
+  s.r.camera_triangles = timings.camera_triangles;
   const StageTimes setup = raster.setup_times();
   for (const auto& stage : setup.stages()) s.r.seconds.raster_setup.push_back(stage);
   s.r.passes = timings.passes;
@@ -524,6 +531,17 @@ std::shared_ptr<BackgroundClusters> early_hierarchy(const Scene& scene, const Re
   return std::make_shared<BackgroundClusters>(scene, options, raster.hierarchy_cache);
 }
 
+// The camera's hierarchy, where the raster will draw its G-buffer through it
+// (camera_lod_wanted), started on its own thread once the shadow hierarchy's build (`after`) has
+// ended, so that it takes no core from that one. nullptr elsewhere.
+std::shared_ptr<BackgroundClusters> early_camera_hierarchy(const Scene& scene,
+                                                           const RenderOptions& o,
+                                                           const BackgroundClusters* after) {
+  if (o.estimator != Estimator::Raster || !camera_lod_wanted(scene, o.raster)) return nullptr;
+  return std::make_shared<BackgroundClusters>(scene, camera_cluster_options(),
+                                              o.raster.hierarchy_cache, after);
+}
+
 RenderOptions with_light_budget(RenderOptions o) {
   o.auto_paths = o.auto_clusters = o.auto_edges = true;
   o.raster.interleave = 0;
@@ -559,6 +577,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
     check_raster_options(raster);
   }
   s.hierarchy = early_hierarchy(scene, options);
+  s.camera_hierarchy = early_camera_hierarchy(scene, options, s.hierarchy.get());
   const RayScene rays(scene, bvh_quality(scene, options));
   release_freed_memory(); // the BVH builder's
   r.seconds.load = since(t0);

@@ -186,9 +186,11 @@ void RasterRenderer::Impl::begin_image(const View& view) {
   api.ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   api.ClearDepth(1.0);
   api.DepthMask(GL_TRUE);
+  image_lod = nullptr;
   if (gbuffer) {
     // The full-resolution G-buffer; its depth is the target's.
-    camera.gbuffer(*gbuffer, vp, gl::eye_uniform(view), gpu);
+    if (camera_lod_wanted(scene, options)) image_lod = camera_lod.prepared(view);
+    camera.gbuffer(*gbuffer, vp, gl::eye_uniform(view), gpu, image_lod);
     if (jitter) jitter->average_albedo(camera, view, gpu);
     if (interleaved) interleaved->find_edges();
     if (interleaved && batched) interleaved->mark_receivers(); // the deferred passes read it
@@ -226,7 +228,7 @@ Image RasterRenderer::Impl::finish_image(const View& view, Clock::time_point t0,
   if (jitter) {
     jitter->emitters(camera, view, scene, gpu, background.get());
   } else {
-    camera.emitters(view.projection * view.view, scene, gpu);
+    camera.emitters(view.projection * view.view, scene, gpu, 1.0f, image_lod);
     if (background) background->draw(view, view.projection * view.view);
   }
   context->check("raster passes");
@@ -287,7 +289,26 @@ StageTimes RasterRenderer::hierarchy_beside_times() const {
 StageTimes RasterRenderer::setup_times() const {
   StageTimes times = impl_->setup_times;
   times.add("", impl_->lod.setup_times());
+  times.add("", impl_->camera_lod.setup_times());
   return times;
+}
+
+StageTimes RasterRenderer::camera_hierarchy_beside_times() const {
+  return impl_->camera_lod.source().beside_times();
+}
+
+CacheResult RasterRenderer::camera_hierarchy_cache() const {
+  return impl_->camera_lod.source().cache_result();
+}
+
+bool camera_lod_wanted(const Scene& scene, const RasterOptions& options) {
+  return options.camera_lod == CameraLodMode::On && !options.jitter && !scene.animation;
+}
+
+ClusterOptions camera_cluster_options() {
+  ClusterOptions o;
+  o.camera = true;
+  return o;
 }
 
 // The GL objects are deleted in their own context.
@@ -355,6 +376,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
     im.batched->set_traced_roughness(0.0f);
   }
   Image image = im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
+  if (timings && im.image_lod) timings->camera_triangles = im.image_lod->triangles();
   if (timings && im.batched) {
     timings->shadow_triangles = im.batched->shadow_triangles();
     timings->shadow_helpers = im.batched->helpers();

@@ -69,6 +69,17 @@ struct RasterOptions {
   // does, beside its ray-tracing structure and walk): taken when it builds what the batched
   // passes need, else ignored and the hierarchy built as without it.
   std::shared_ptr<BackgroundClusters> hierarchy_build = nullptr;
+  // The G-buffer and the emitters through the camera's cluster hierarchy
+  // (raster/passes/camera_lod.h: the image's frustum culled, each cluster at the coarsest mesh
+  // within CameraLod::kPixels): On for static scenes without jitter (camera_lod_wanted), Off:
+  // every triangle, every image. Off by default: on llvmpipe at 256x256 the G-buffer is a tenth
+  // of a 10M-triangle render and the hierarchy's build doubles its cold cost
+  // (docs/performance.md "The camera's hierarchy").
+  CameraLodMode camera_lod = CameraLodMode::Off;
+  // The camera hierarchy's build, where the caller started it (irad::render does, after the
+  // shadow hierarchy's), taken at the first image; without one, built there (through the
+  // cache).
+  std::shared_ptr<BackgroundClusters> camera_build = nullptr;
   // Glossy scenes: receivers whose roughness lies below this shade only their diffuse lobe from
   // the VPLs a ray can meet (core/lights/vpl.h ray_reachable); the caller adds their specular
   // lobe by rays (walk/glossy_pass.h, as lib/render.cpp does). 0: none. render() only.
@@ -93,6 +104,12 @@ bool lists_unsure_pixels(const RasterOptions& options);
 // image's larger side rounded up to a power of two, between 64 and 1024.
 int shadow_resolution_for(int requested, int width, int height);
 
+// Whether images of `scene` draw through the camera hierarchy (RasterOptions::camera_lod On):
+// never for an animated scene or with jitter (its passes draw at other offsets).
+bool camera_lod_wanted(const Scene& scene, const RasterOptions& options);
+// The options of the camera hierarchy's build (core/mesh/mesh_clusters.h).
+ClusterOptions camera_cluster_options();
+
 // Whether faces of `resolution` texels need the occluder planes in a scene whose thinnest wall
 // (walk/thin_walls.h) is `thinnest_wall` of the bounding diagonal. The planes change the test only
 // for a receiver at distance d from the VPL that lies behind an occluder's plane by less than the
@@ -115,6 +132,8 @@ struct RasterTimings {
   // render(): triangles the batched cube faces drew from the shadow hierarchy, all VPLs together
   // (0 when the faces draw the whole scene: shadow-lod off, --batch 1, animated scenes).
   std::size_t shadow_triangles = 0;
+  // The triangles the G-buffer drew from the camera hierarchy (0: it drew every triangle).
+  std::size_t camera_triangles = 0;
   // render(): the helper threads that drew shadow atlases (RasterOptions::shadow_helpers; 0 when
   // none were made).
   int shadow_helpers = 0;
@@ -168,6 +187,9 @@ public:
   StageTimes hierarchy_beside_times() const;
   // What the hierarchy cache did (CacheOutcome::Off until the hierarchy was needed).
   CacheResult hierarchy_cache() const;
+  // The same two for the camera hierarchy (RasterOptions::camera_lod, camera_build).
+  StageTimes camera_hierarchy_beside_times() const;
+  CacheResult camera_hierarchy_cache() const;
 
   // The last image's edge pixels (RasterOptions::edge_pixels; none when Off, without
   // interleaving, or before a render) as Image coordinates (y down), row by row; Listed: with

@@ -62,8 +62,9 @@ struct RasterRenderer::Impl {
   std::unique_ptr<gl::Context> context;
   const GladGLContext& api;
   gl::GpuScene gpu;
-  gl::LodProvider lod;    // the batched passes' shadow hierarchy, kept when they are re-made
-  StageTimes setup_times; // the GL context and the upload (RasterRenderer::setup_times)
+  gl::LodProvider lod; // the batched passes' shadow hierarchy, kept when they are re-made
+  gl::CameraLodProvider camera_lod; // the camera's, where camera_lod_wanted
+  StageTimes setup_times;           // the GL context and the upload (RasterRenderer::setup_times)
   std::unique_ptr<gl::ShadowCube> shadow; // the per-VPL passes' cube, made on first use
   int shadow_res = 0;                     // this image's cube resolution
   gl::CameraPasses camera;
@@ -74,6 +75,7 @@ struct RasterRenderer::Impl {
   InterleaveSets interleave_sets; // this image's paths dealt to the interleaved sets
   bool tile_depths = false;       // interleaved: each set's depth drawn in its tile for this image
   std::size_t single_passes = 0;  // this image's VPLs drawn by vpl_passes
+  const gl::CameraLod* image_lod = nullptr;         // what this image's G-buffer and emitters draw
   std::unique_ptr<gl::JitterPasses> jitter;         // with options.jitter
   std::unique_ptr<gl::DirectionalPass> directional; // only for scenes with directional lights
   std::unique_ptr<gl::BatchedPasses> batched;       // options.batch > 1
@@ -97,7 +99,7 @@ struct RasterRenderer::Impl {
   Impl(const Scene& s, const RasterOptions& o, std::unique_ptr<gl::Context> c)
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
         lod(api, gpu, o.shadow_lod, o.hierarchy_cache, o.hierarchy_build),
-        camera(api, gpu.features()),
+        camera_lod(api, gpu, o.hierarchy_cache, o.camera_build), camera(api, gpu.features()),
         vpl_shader(api, s, o.clamp, o.shadow_lod.planes != ShadowPlanes::Off),
         jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr),
         background(gl::Background::make(api, s)) {

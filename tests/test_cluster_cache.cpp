@@ -209,7 +209,7 @@ TEST_F(ClusterCache, AHitReadsItsIndicesFromTheFileItChecked) {
   {
     std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
     const std::uint32_t past = 0xffffffffu;
-    f.seekp(80 + 4 * 7);
+    f.seekp(88 + 4 * 7); // the 8th index, after the 88-byte header
     f.write(reinterpret_cast<const char*>(&past), sizeof past);
   }
   try {
@@ -244,26 +244,26 @@ TEST(ClusterCacheValidation, NamesWhatIsWrong) {
   const Scene s = two_spheres();
   const MeshClusters good = build_mesh_clusters(s, ClusterOptions{128, true});
   const std::size_t vertices = s.positions.size(), triangles = s.triangle_count();
-  EXPECT_EQ(validate_clusters(good, vertices, triangles), "");
+  EXPECT_EQ(validate_clusters(good, vertices, triangles, 1000), "");
   MeshClusters c = good;
   c.indices[5] = static_cast<std::uint32_t>(vertices);
-  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  EXPECT_NE(validate_clusters(c, vertices, triangles, 1000), "");
   c = good;
   c.nodes[0].children[1] = 0; // a cycle
-  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  EXPECT_NE(validate_clusters(c, vertices, triangles, 1000), "");
   c = good;
   c.nodes.back().levels_first = static_cast<std::uint32_t>(c.levels.size());
   c.nodes.back().levels_count = 1;
-  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  EXPECT_NE(validate_clusters(c, vertices, triangles, 1000), "");
   c = good;
   c.levels[0].count = static_cast<std::uint32_t>(c.indices.size()) + 3;
-  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  EXPECT_NE(validate_clusters(c, vertices, triangles, 1000), "");
   c = good;
   c.triangles.back() = static_cast<std::uint32_t>(triangles);
-  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  EXPECT_NE(validate_clusters(c, vertices, triangles, 1000), "");
   c = good;
   c.nodes[1].error = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_NE(validate_clusters(c, vertices, triangles), "");
+  EXPECT_NE(validate_clusters(c, vertices, triangles, 1000), "");
 }
 
 // The raster through the cache: the image from a hit is the image from the build, bit for bit.

@@ -17,15 +17,18 @@
 
 #include <filesystem>
 #include <future>
+#include <memory>
+#include <string>
 
 namespace irad {
 
 class BackgroundClusters {
 public:
-  // Starts cached_mesh_clusters(scene, options, cache) on its own thread. `scene` must outlive
-  // this object and stay unchanged until take() returns.
-  BackgroundClusters(const Scene& scene, const ClusterOptions& options,
-                     std::filesystem::path cache);
+  // Starts cached_mesh_clusters(scene, options, cache) on its own thread, once `after` (if
+  // given) has its hierarchy (so that a second build leaves the cores to the first). `scene`
+  // must outlive this object and stay unchanged until take() returns.
+  BackgroundClusters(const Scene& scene, const ClusterOptions& options, std::filesystem::path cache,
+                     const BackgroundClusters* after = nullptr);
   // Waits for the build and the cache write (a build that is never taken still runs to its end).
   ~BackgroundClusters();
   BackgroundClusters(const BackgroundClusters&) = delete;
@@ -50,7 +53,34 @@ private:
   CacheResult result_; // likewise
   std::promise<MeshClusters> hierarchy_;
   std::future<MeshClusters> future_; // the hierarchy
-  std::future<void> done_;           // the thread: the build, then the cache write
+  std::promise<void> built_;         // set when the hierarchy (or its exception) is
+  std::shared_future<void> built_future_;
+  std::future<void> done_; // the thread: the build, then the cache write
+};
+
+// Where a renderer gets one hierarchy: from a build started earlier, where it builds what is
+// wanted, else built here through the cache; with what that cost and what the cache did. Stages
+// are named `name` + the build's stage ("hierarchy tree", "camera hierarchy cache read").
+class ClusterSource {
+public:
+  // prebuilt: nullptr when none.
+  ClusterSource(std::string name, std::filesystem::path cache,
+                std::shared_ptr<BackgroundClusters> prebuilt);
+  // The hierarchy (once): taken, its wait added to `times` as name + "wait", or built, its
+  // stages added to `times`. The prebuilt build is not asked again either way.
+  MeshClusters get(const Scene& scene, const ClusterOptions& wanted, StageTimes& times);
+  // A taken hierarchy's own stages, which ran beside the caller's, its cache write included
+  // (this waits for it); empty otherwise.
+  StageTimes beside_times() const;
+  // What the cache did (for a taken hierarchy: once its file is written; this waits).
+  CacheResult cache_result() const;
+
+private:
+  std::string name_;
+  std::filesystem::path cache_;
+  std::shared_ptr<BackgroundClusters> prebuilt_;
+  std::shared_ptr<const BackgroundClusters> taken_; // its cache file may still be written
+  CacheResult cache_result_;                        // of a build here
 };
 
 } // namespace irad

@@ -24,10 +24,11 @@ namespace {
 
 constexpr char kMagic[8] = {'I', 'R', 'A', 'D', 'L', 'O', 'D', '\0'};
 // The file layout's version: raise it whenever the layout or the build's results change.
-constexpr std::uint32_t kFormat = 7;
-constexpr std::size_t kNodeWords = 15;  // a node as 32-bit words (write_node)
-constexpr std::size_t kLevelWords = 3;  // a level as 32-bit words
-constexpr std::size_t kCountFields = 6; // indices, nodes, roots, levels, triangles, original
+constexpr std::uint32_t kFormat = 8;
+constexpr std::size_t kNodeWords = 15; // a node as 32-bit words (write_node)
+constexpr std::size_t kLevelWords = 3; // a level as 32-bit words
+// indices, nodes, roots, levels, triangles, original, root materials
+constexpr std::size_t kCountFields = 7;
 
 template <class T>
 std::uint32_t word(T value) {
@@ -150,12 +151,12 @@ struct Header {
   std::uint64_t key_low, key_high;
   std::uint64_t counts[kCountFields];
 };
-static_assert(sizeof(Header) == 80, "the header has no padding");
+static_assert(sizeof(Header) == 88, "the header has no padding");
 
 // The file's size for a header's counts (whether it can hold them at all is the caller's).
 std::uintmax_t expected_size(const Header& h) {
   const auto& c = h.counts;
-  return sizeof(Header) + 4 * (c[0] + kNodeWords * c[1] + c[2] + kLevelWords * c[3] + c[4]) +
+  return sizeof(Header) + 4 * (c[0] + kNodeWords * c[1] + c[2] + kLevelWords * c[3] + c[4] + c[6]) +
          sizeof(std::uint64_t);
 }
 
@@ -173,9 +174,9 @@ Header header_of(const MeshClusters& c, const ClusterKey& key) {
   h.meshopt = MESHOPTIMIZER_VERSION;
   h.key_low = key.low;
   h.key_high = key.high;
-  const std::uint64_t counts[kCountFields] = {c.index_count(),    c.nodes.size(),
-                                              c.roots.size(),     c.levels.size(),
-                                              c.triangles.size(), c.original_indices};
+  const std::uint64_t counts[kCountFields] = {
+      c.index_count(),    c.nodes.size(),     c.roots.size(),         c.levels.size(),
+      c.triangles.size(), c.original_indices, c.root_materials.size()};
   std::memcpy(h.counts, counts, sizeof counts);
   return h;
 }
@@ -201,12 +202,14 @@ bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& k
   }
   w.values(words);
   w.values(c.triangles);
+  w.values(c.root_materials);
   return w.finish();
 }
 
 // The hierarchy in `path` for `key`, or "" in `why` and the hierarchy; else why not.
-MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t vertices,
-                       std::size_t triangles, std::string& why) {
+MeshClusters read_file(const fs::path& path, const ClusterKey& key, const Scene& scene,
+                       std::string& why) {
+  const std::size_t vertices = scene.positions.size();
   MeshClusters c;
   const auto file = std::make_shared<const OpenFile>(path);
   const std::uint64_t size = file->size();
@@ -247,7 +250,7 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t 
   for (std::size_t k = 0; ok && k < h.counts[3]; ++k)
     c.levels.push_back({from_word<float>(words[k * kLevelWords]), words[k * kLevelWords + 1],
                         words[k * kLevelWords + 2]});
-  ok = ok && r.values(c.triangles, h.counts[4]);
+  ok = ok && r.values(c.triangles, h.counts[4]) && r.values(c.root_materials, h.counts[6]);
   c.original_indices = h.counts[5];
   if (!ok || !r.checksum_matches()) {
     why = "checksum mismatch";
@@ -259,7 +262,7 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, std::size_t 
   }
   c.stored_indices = std::make_shared<const StoredIndices>(
       file, indices_at, static_cast<std::size_t>(h.counts[0]), vertices);
-  why = validate_clusters(c, vertices, triangles);
+  why = validate_clusters(c, vertices, scene.triangle_count(), scene.materials.size());
   if (!why.empty()) return {};
   return c;
 }
@@ -368,21 +371,38 @@ ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
   const std::uint32_t leaf = options.leaf_triangles != 0
                                  ? options.leaf_triangles
                                  : automatic_leaf_triangles(scene.triangle_count());
-  const std::array<std::uint32_t, 5> settings = {kFormat, MESHOPTIMIZER_VERSION, leaf,
+  const std::array<std::uint32_t, 6> settings = {kFormat,
+                                                 MESHOPTIMIZER_VERSION,
+                                                 leaf,
                                                  options.simplify ? 1u : 0u,
-                                                 static_cast<std::uint32_t>(options.max_levels)};
+                                                 static_cast<std::uint32_t>(options.max_levels),
+                                                 options.camera ? 1u : 0u};
   hasher.add(settings.data(), sizeof settings);
   const float diagonal = scene.bounds.diagonal();
   hasher.add(&diagonal, sizeof diagonal);
   const std::uint64_t vertices = scene.positions.size();
   hasher.add(&vertices, sizeof vertices);
   hasher.add(scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
-  // The opaque triangles as (index, a, b, c), in order.
+  if (options.camera) { // the weld reads every attribute, the trees the materials
+    const auto add = [&](const auto& values, const char* name) {
+      const std::uint64_t size = values.size();
+      hasher.add(name, std::strlen(name));
+      hasher.add(&size, sizeof size);
+      hasher.add(values.data(), values.size() * sizeof(values[0]));
+    };
+    add(scene.normals, "normals");
+    add(scene.uvs, "uvs");
+    add(scene.uvs1, "uvs1");
+    add(scene.colors, "colors");
+    add(scene.tangents, "tangents");
+  }
+  // The opaque triangles as (index, a, b, c), and the camera's their material, in order.
   std::vector<std::uint32_t> chunk;
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
     if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
     const glm::uvec3 v = scene.triangles[t];
     chunk.insert(chunk.end(), {static_cast<std::uint32_t>(t), v.x, v.y, v.z});
+    if (options.camera) chunk.push_back(scene.triangle_material[t]);
     if (chunk.size() >= 4096) {
       hasher.add(chunk.data(), chunk.size() * sizeof(std::uint32_t));
       chunk.clear();
@@ -429,7 +449,8 @@ const char* outcome_name(CacheOutcome outcome) {
   return "?";
 }
 
-std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles) {
+std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles,
+                              std::size_t materials) {
   if (c.original_indices > c.index_count() || c.original_indices % 3 != 0)
     return "the original part exceeds the indices";
   for (std::uint32_t i : c.indices)
@@ -445,6 +466,10 @@ std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::
     if (c.triangles[k] >= triangles || (k > 0 && c.triangles[k] <= c.triangles[k - 1]))
       return "triangles not ascending or past the scene's";
   if (c.nodes.empty() != c.roots.empty()) return "roots without nodes";
+  if (!c.root_materials.empty() && c.root_materials.size() != c.roots.size())
+    return "root materials not one per root";
+  for (std::uint32_t m : c.root_materials)
+    if (m >= materials) return "a root material past the scene's";
   return "";
 }
 
@@ -495,7 +520,7 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
   std::error_code ec;
   if (fs::exists(path, ec)) {
     std::string why;
-    MeshClusters c = read_file(path, key, scene.positions.size(), scene.triangle_count(), why);
+    MeshClusters c = read_file(path, key, scene, why);
     stages.lap("cache read", start);
     if (why.empty()) {
       out.outcome = CacheOutcome::Hit;

@@ -1,11 +1,12 @@
 #pragma once
-// The shadow hierarchy (core/mesh/mesh_clusters.h) kept on disk between runs: building it is the
-// one-time cost of a big scene (seconds per million triangles), reading it back a fraction of
-// that.
+// The cluster hierarchies (core/mesh/mesh_clusters.h: the shadow passes', the camera's) kept on
+// disk between runs: building it is the one-time cost of a big scene (seconds per million
+// triangles), reading it back a fraction of that.
 //
 // A file per hierarchy, FOLDER/<key>.lod, the key a 128-bit XXH3 hash of everything the build
 // reads: the positions, the opaque triangles (their indices and order), the scene's diagonal (the
-// planar reduction's tolerance), the resolved ClusterOptions (not the threads: the hierarchy is
+// planar reduction's tolerance), for a camera hierarchy every vertex attribute and the
+// triangles' materials, the resolved ClusterOptions (not the threads: the hierarchy is
 // the same on any number), this file format's version and meshoptimizer's. Written atomically
 // (a temporary file in the folder, renamed into place), so a reader sees a whole file or none.
 //
@@ -73,8 +74,10 @@ const char* outcome_name(CacheOutcome outcome); // "off", "hit", "written", "reb
 // (stored ones are checked as the cache read streams them, and again when copied), every node's
 // ranges inside `indices` and `levels`, children numbered after their parents, the leaves'
 // ranges tiling [0, original_indices), roots in range, the triangles ascending and below
-// `triangles`, errors and bounds finite. Returns what is wrong, or "" when nothing is.
-std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles);
+// `triangles`, a root material (if any) per root and below `materials`, errors and bounds
+// finite. Returns what is wrong, or "" when nothing is.
+std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::size_t triangles,
+                              std::size_t materials);
 
 // The cache file a build still has to write (cached_mesh_clusters with `later`), for a caller
 // that hands the hierarchy on first and writes while it is in use.

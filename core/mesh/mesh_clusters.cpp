@@ -6,6 +6,7 @@
 #include "core/util/parallel_rows.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <meshoptimizer.h>
 #include <numeric>
@@ -28,6 +29,36 @@ std::vector<std::uint32_t> weld_positions(const Scene& scene) {
   return welded;
 }
 
+// welded[v]: the first vertex equal to v in every attribute the camera passes read (position,
+// normal, the texture coordinates, COLOR_0, TANGENT): drawing it instead of v draws the same.
+std::vector<std::uint32_t> weld_vertices(const Scene& scene) {
+  const std::size_t n = scene.positions.size();
+  std::vector<meshopt_Stream> streams;
+  const auto add = [&](const auto& values) {
+    using V = typename std::decay_t<decltype(values)>::value_type;
+    if (values.size() == n) streams.push_back({values.data(), sizeof(V), sizeof(V)});
+  };
+  add(scene.positions);
+  add(scene.normals);
+  add(scene.uvs);
+  add(scene.uvs1);
+  add(scene.colors);
+  add(scene.tangents);
+  // (meshoptimizer takes a multiple of 3 vertices; the last one or two, ~0u there, stay alone.)
+  const std::size_t whole = n - n % 3;
+  std::vector<unsigned int> remap(n, ~0u);
+  const std::size_t unique = meshopt_generateVertexRemapMulti(remap.data(), nullptr, whole, whole,
+                                                              streams.data(), streams.size());
+  std::vector<std::uint32_t> first(unique, ~0u), welded(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    welded[v] = static_cast<std::uint32_t>(v);
+    if (remap[v] == ~0u) continue;
+    if (first[remap[v]] == ~0u) first[remap[v]] = static_cast<std::uint32_t>(v);
+    welded[v] = first[remap[v]];
+  }
+  return welded;
+}
+
 // The group of each triangle: its connected component (through shared welded vertices) where
 // that has at least `least` triangles, else kRestGroup (all the small components together).
 constexpr std::uint32_t kRestGroup = ~0u;
@@ -38,6 +69,21 @@ std::vector<std::uint32_t> component_groups(const std::vector<glm::uvec3>& trian
   for (std::uint32_t c : group) ++size[c];
   for (std::uint32_t& g : group) g = size[g] >= least ? g : kRestGroup;
   return group;
+}
+
+// The camera's groups: component_groups' split by material (`material[t]`: triangle t's),
+// numbered in the order of (material, group), so that a material's trees are neighbours.
+void split_by_material(std::vector<std::uint32_t>& group,
+                       const std::vector<std::uint32_t>& material) {
+  std::vector<std::uint64_t> keys(group.size());
+  for (std::size_t t = 0; t < group.size(); ++t)
+    keys[t] = (std::uint64_t{material[t]} << 32) | group[t];
+  std::vector<std::uint64_t> distinct = keys;
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  for (std::size_t t = 0; t < group.size(); ++t)
+    group[t] = static_cast<std::uint32_t>(
+        std::lower_bound(distinct.begin(), distinct.end(), keys[t]) - distinct.begin());
 }
 
 // What the tree is built over, shared by the Builders of its subtrees.
@@ -218,6 +264,26 @@ struct Builder {
   }
 };
 
+// The camera's bound on what a node's mesh changes: the larger of its distance from the surface
+// and its longest edge, across which it interpolates the vertices' normals and texture
+// coordinates (a mesh whose edges stay below a pixel shades within the pixel it covers).
+void bound_by_edges(const Scene& scene, MeshClusters& out) {
+  parallel_chunks(out.nodes.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t n = first; n < end; ++n) {
+      ClusterNode& node = out.nodes[n];
+      if (node.leaf()) continue;
+      float longest = 0.0f;
+      for (std::uint32_t k = node.mesh_first; k < node.mesh_first + node.mesh_count; k += 3)
+        for (int e = 0; e < 3; ++e) {
+          const glm::vec3 d =
+              scene.positions[out.indices[k + e]] - scene.positions[out.indices[k + (e + 1) % 3]];
+          longest = std::max(longest, glm::dot(d, d));
+        }
+      node.error = std::max(node.error, std::sqrt(longest));
+    }
+  });
+}
+
 // The planar reduction's plane thickness, relative to the scene's diagonal (the shadow passes'
 // error floor is 1e-5 of it, raster/shadow/shadow_atlas.cpp).
 constexpr float kPlanar = 1e-6f;
@@ -244,7 +310,8 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     options.leaf_triangles = automatic_leaf_triangles(scene.triangle_count());
   TreeInput in;
   Builder b{scene, options, in, {}};
-  const std::vector<std::uint32_t> welded = weld_positions(scene);
+  const std::vector<std::uint32_t> welded =
+      options.camera ? weld_vertices(scene) : weld_positions(scene);
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
     if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
     const glm::uvec3 v = scene.triangles[t];
@@ -252,7 +319,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     in.triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
   }
   start = stages.lap("weld", start);
-  if (options.simplify) {
+  if (options.simplify && !options.camera) {
     // Flat parts first reduced exactly (to 2 kPlanar of the surface): the regions' locked
     // borders then cost what their outlines need, not the tessellation's resolution.
     const float epsilon = kPlanar * scene.bounds.diagonal();
@@ -272,8 +339,15 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   });
   if (in.triangles.empty()) return std::move(b.out);
   // One tree per connected component of at least a leaf's triangles, one for all the others.
-  const std::vector<std::uint32_t> group =
+  std::vector<std::uint32_t> group =
       component_groups(in.triangles, scene.positions.size(), options.leaf_triangles);
+  std::vector<std::uint32_t> material; // the camera's: of each triangle of the tree
+  if (options.camera) {
+    material.resize(b.out.triangles.size());
+    for (std::size_t t = 0; t < material.size(); ++t)
+      material[t] = scene.triangle_material[b.out.triangles[t]];
+    split_by_material(group, material);
+  }
   in.order.resize(in.triangles.size());
   std::iota(in.order.begin(), in.order.end(), 0u);
   const auto by_group = [&](std::uint32_t x, std::uint32_t y) { return group[x] < group[y]; };
@@ -289,15 +363,17 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     while (end < in.order.size() && group[in.order[end]] == group[in.order[begin]]) ++end;
     const std::int32_t root = b.build_parallel(begin, end, depth);
     b.out.roots.push_back(root);
+    if (options.camera) b.out.root_materials.push_back(material[in.order[begin]]);
     whole.resize(b.out.nodes.size(), false);
     whole[static_cast<std::size_t>(root)] = group[in.order[begin]] != kRestGroup;
     begin = end;
   }
   b.out.original_indices = b.out.indices.size();
   start = stages.lap("tree", start);
-  simplify_inner_nodes(scene, b.out, options.simplify, options.threads);
+  simplify_inner_nodes(scene, b.out, options.simplify || options.camera, options.threads);
+  if (options.camera) bound_by_edges(scene, b.out);
   start = stages.lap("inner", start);
-  if (options.simplify)
+  if (options.simplify && !options.camera)
     add_coarser_levels(scene, b.out, options.max_levels, whole, options.threads);
   stages.lap("levels", start);
   return std::move(b.out);

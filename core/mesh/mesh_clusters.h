@@ -70,6 +70,9 @@ enum class ShadowLodMode {
   On,   // culled, and each face draws the coarsest nodes whose error is below its texel
 };
 enum class ShadowPlanes { Auto, On, Off };
+// Whether the raster's G-buffer and emitters draw through the camera's hierarchy
+// (RasterOptions::camera_lod).
+enum class CameraLodMode { Off, On };
 struct ShadowLodOptions {
   ShadowLodMode mode = ShadowLodMode::On;
   // On: the error a drawn level may have, in texels at the centre of a face at the cluster's
@@ -131,9 +134,13 @@ struct MeshClusters {
   std::size_t original_indices = 0;
   // The scene triangles in the hierarchy, ascending (those of Opaque materials).
   std::vector<std::uint32_t> triangles;
+  // A camera hierarchy's (ClusterOptions::camera): the material of roots[k]'s triangles, one per
+  // root; empty for the shadow passes' (their trees mix materials).
+  std::vector<std::uint32_t> root_materials;
   std::size_t bytes() const {
     return indices.size() * sizeof(std::uint32_t) + nodes.size() * sizeof(ClusterNode) +
-           levels.size() * sizeof(ClusterLevel) + triangles.size() * sizeof(std::uint32_t);
+           levels.size() * sizeof(ClusterLevel) +
+           (triangles.size() + root_materials.size()) * sizeof(std::uint32_t);
   }
 };
 
@@ -148,6 +155,16 @@ struct ClusterOptions {
   int max_levels = 8; // coarser levels per node at most
   // Threads of the build (0: all cores); the hierarchy is the same on any number.
   unsigned threads = 0;
+  // The camera passes' hierarchy (raster/passes/camera_lod.h), which draws every attribute, not
+  // only positions: vertices welded only where all their attributes are equal (a seam of
+  // normals or texture coordinates stays open, and meshoptimizer keeps it), one tree per
+  // material and connected component (a draw binds one material), no planar reduction and no
+  // coarser levels (their borders move: a cut of base meshes alone is crack-free, and a crack
+  // in the camera's image would show what lies behind). An inner node's error is the larger of
+  // its distance from the surface and its mesh's longest edge (meshoptimizer weighs positions
+  // alone, so the edge bounds how far the normals are interpolated). `simplify` and
+  // `max_levels` are not read.
+  bool camera = false;
 };
 
 // About 512 leaves, 128 to 1024 triangles each (a power of two). On zdm2 (58k triangles,

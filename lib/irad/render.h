@@ -142,6 +142,10 @@ struct RenderResult {
   std::string hierarchy_cache = "off", hierarchy_cache_reason;
   // The same of the thinnest-wall scan's cache (walk/wall_cache.h), "off" when nothing scanned.
   std::string wall_cache = "off", wall_cache_reason;
+  // The shadow hierarchy's for the camera's hierarchy (RasterOptions::camera_lod), and the
+  // triangles its cut drew in the last image (0 where it drew every triangle).
+  std::string camera_hierarchy_cache = "off", camera_hierarchy_cache_reason;
+  std::size_t camera_triangles = 0;
   StageSeconds seconds;   // load: the camera, view and ray-tracing structure (render_file: also
                           // the loading)
   bool cancelled = false; // stopped early by a cancellation

@@ -209,13 +209,20 @@ layout(location = 2) out vec4 o_albedo;
 #pragma irad_brdf_albedo
 layout(location = 3) out vec4 o_base;
 layout(location = 4) out vec4 o_specular;
+#else
+uniform vec4 u_eye; // as raster/glsl/brdf_glsl.h declares it
 #endif
+// 1 while the camera hierarchy's meshes are drawn (raster/passes/camera_lod.h): a triangle seen
+// from behind whose smooth normal faces the camera is then a simplified triangle tipped over at
+// a silhouette, not the surface's back, and keeps that normal.
+uniform int u_simplified;
 void main() {
 #ifdef IRAD_ALPHA
   if (material_absent(camera_alpha_key())) discard;
 #endif
   vec3 n = material_normal(normalize(v_normal));
-  if (!gl_FrontFacing) n = -n;
+  vec3 to_eye = u_eye.w > 0.0 ? u_eye.xyz - v_position : u_eye.xyz;
+  if (!gl_FrontFacing && !(u_simplified != 0 && dot(v_normal, to_eye) > 0.0)) n = -n;
   o_position = vec4(v_position, 1.0);
 #if defined(IRAD_GLOSSY) && defined(IRAD_LAMBERTIAN_MATERIALS)
   // What the lines below write for a Lambertian material (m = f0 = f90 = 0, r = 1), without them.

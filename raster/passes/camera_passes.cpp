@@ -25,7 +25,7 @@ CameraPasses::GBufferProgram::GBufferProgram(const GladGLContext& api,
     : program(api, "gbuffer", material_source(shaders::camera_vertex, features),
               gbuffer_source(features, lambertian)),
       material(program), view_projection(program.uniform("u_view_projection")),
-      eye(program.optional_uniform("u_eye")) {}
+      eye(program.uniform("u_eye")), simplified(program.uniform("u_simplified")) {}
 
 CameraPasses::CameraPasses(const GladGLContext& api, const MaterialFeatures& features)
     : api_(&api), depth_(api, "depth", material_source(shaders::camera_vertex, features),
@@ -54,7 +54,7 @@ void CameraPasses::depth(const glm::mat4& view_projection, const GpuScene& gpu) 
 }
 
 void CameraPasses::gbuffer(GBuffer& target, const glm::mat4& view_projection, const glm::vec4& eye,
-                           const GpuScene& gpu) const {
+                           const GpuScene& gpu, const CameraLod* lod) const {
   const GladGLContext& api = *api_;
   target.bind();
   target.set_eye(eye);
@@ -66,34 +66,34 @@ void CameraPasses::gbuffer(GBuffer& target, const glm::mat4& view_projection, co
   api.ClearDepth(1.0);
   api.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   if (!lambertian_gbuffer_) {
-    draw_gbuffer(gbuffer_, view_projection, eye, gpu, nullptr);
+    draw_gbuffer(gbuffer_, view_projection, eye, gpu, lod, [](const Material&) { return true; });
     return;
   }
-  draw_gbuffer(*lambertian_gbuffer_, view_projection, eye, gpu, MaterialUniforms::lambertian);
-  draw_gbuffer(gbuffer_, view_projection, eye, gpu,
+  draw_gbuffer(*lambertian_gbuffer_, view_projection, eye, gpu, lod, MaterialUniforms::lambertian);
+  draw_gbuffer(gbuffer_, view_projection, eye, gpu, lod,
                [](const Material& m) { return !MaterialUniforms::lambertian(m); });
 }
 
 void CameraPasses::draw_gbuffer(const GBufferProgram& p, const glm::mat4& view_projection,
-                                const glm::vec4& eye, const GpuScene& gpu,
+                                const glm::vec4& eye, const GpuScene& gpu, const CameraLod* lod,
                                 const std::function<bool(const Material&)>& select) const {
   const GladGLContext& api = *api_;
   p.program.use();
   api.UniformMatrix4fv(p.view_projection, 1, GL_FALSE, glm::value_ptr(view_projection));
   api.Uniform4fv(p.eye, 1, glm::value_ptr(eye));
+  api.Uniform1i(p.simplified, lod ? 1 : 0);
   const auto bind = [&](const Material& m) {
     const glm::vec3 rho = m.specular ? glm::vec3(0.0f) : m.base_color; // mirrors: no diffuse
     p.material.bind_base(api, gpu, m, rho);
   };
-  if (select) {
+  if (lod)
+    lod->draw_if(select, bind);
+  else
     gpu.draw_if(select, bind);
-  } else {
-    gpu.draw(bind);
-  }
 }
 
 void CameraPasses::emitters(const glm::mat4& view_projection, const Scene& scene,
-                            const GpuScene& gpu, float weight) const {
+                            const GpuScene& gpu, float weight, const CameraLod* lod) const {
   if (!scene.has_emitters()) return;
   const GladGLContext& api = *api_;
   set_additive_state(api);
@@ -103,11 +103,15 @@ void CameraPasses::emitters(const glm::mat4& view_projection, const Scene& scene
   }
   emission_.use();
   api.UniformMatrix4fv(emission_vp_, 1, GL_FALSE, glm::value_ptr(view_projection));
-  gpu.draw_if([](const Material& m) { return m.emissive(); },
-              [&](const Material& m) {
-                api.Uniform1i(emission_double_sided_, m.double_sided ? 1 : 0);
-                emission_material_.bind_emission(api, gpu, m);
-              });
+  const auto emissive = [](const Material& m) { return m.emissive(); };
+  const auto bind = [&](const Material& m) {
+    api.Uniform1i(emission_double_sided_, m.double_sided ? 1 : 0);
+    emission_material_.bind_emission(api, gpu, m);
+  };
+  if (lod)
+    lod->draw_if(emissive, bind);
+  else
+    gpu.draw_if(emissive, bind);
 }
 
 } // namespace irad::gl

@@ -5,6 +5,7 @@
 #include "core/scene/scene.h"
 #include "raster/context/shader_program.h"
 #include "raster/image/gbuffer.h"
+#include "raster/passes/camera_lod.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/scene/material_glsl.h"
 
@@ -28,12 +29,15 @@ public:
   void depth(const glm::mat4& view_projection, const GpuScene& gpu) const;
   // Binds `target`, clears and writes its colour attachments (raster/image/gbuffer.h) and depth,
   // and records `eye` (eye_uniform: the glossy albedo and shading look toward it) in it.
+  // lod: the camera's hierarchy prepared for this view (raster/passes/camera_lod.h), drawn
+  // instead of every triangle; nullptr: every triangle.
   void gbuffer(GBuffer& target, const glm::mat4& view_projection, const glm::vec4& eye,
-               const GpuScene& gpu) const;
+               const GpuScene& gpu, const CameraLod* lod = nullptr) const;
   // Adds weight * L_e of the visible emitters (front faces unless double-sided) over the bound
-  // depth (weight < 1: one of several jittered passes, raster/image/jitter_passes.h).
+  // depth (weight < 1: one of several jittered passes, raster/image/jitter_passes.h). lod: as
+  // for gbuffer, the one the depth was drawn with (the same triangles pass the depth test).
   void emitters(const glm::mat4& view_projection, const Scene& scene, const GpuScene& gpu,
-                float weight = 1.0f) const;
+                float weight = 1.0f, const CameraLod* lod = nullptr) const;
 
 private:
   // A G-buffer program and its uniforms.
@@ -41,11 +45,12 @@ private:
     GBufferProgram(const GladGLContext& api, const MaterialFeatures& features, bool lambertian);
     ShaderProgram program;
     MaterialUniforms material;
-    GLint view_projection, eye;
+    GLint view_projection, eye, simplified;
   };
   // Draws the materials `select` picks with p.
   void draw_gbuffer(const GBufferProgram& p, const glm::mat4& view_projection, const glm::vec4& eye,
-                    const GpuScene& gpu, const std::function<bool(const Material&)>& select) const;
+                    const GpuScene& gpu, const CameraLod* lod,
+                    const std::function<bool(const Material&)>& select) const;
 
   const GladGLContext* api_;
   ShaderProgram depth_, emission_;

@@ -36,18 +36,15 @@ public:
   const StageTimes& setup_times() const { return times_; }
   // A prebuilt hierarchy's own stages (as setup_times names them), which ran beside this
   // thread's, its cache write included (this waits for it); empty otherwise.
-  StageTimes beside_times() const;
+  StageTimes beside_times() const { return source_.beside_times(); }
   // What the cache did (for a prebuilt hierarchy: once its file is written; this waits).
-  CacheResult cache_result() const;
+  CacheResult cache_result() const { return source_.cache_result(); }
 
 private:
   const GladGLContext* api_;
   const GpuScene* gpu_;
   ShadowLodOptions options_;
-  std::filesystem::path cache_;
-  CacheResult cache_result_;
-  std::shared_ptr<BackgroundClusters> prebuilt_;
-  std::shared_ptr<const BackgroundClusters> taken_; // the prebuilt hierarchy get() took
+  ClusterSource source_;
   std::unique_ptr<ShadowLod> lod_;
   StageTimes times_;
 };

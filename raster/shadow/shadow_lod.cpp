@@ -202,12 +202,12 @@ void ShadowLod::emit_plan(std::int32_t id, const Plans& plans,
   emit_plan(node.children[1], plans, out);
 }
 
-void ShadowLod::pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
-                     float error_per_distance, float error_floor, Plans& plans,
-                     std::vector<ClusterPick>& out) const {
+void ShadowLod::pick(std::span<const std::int32_t> roots, const std::array<glm::vec4, 4>& planes,
+                     const glm::vec3& origin, float error_per_distance, float error_floor,
+                     Plans& plans, std::vector<ClusterPick>& out) const {
   plans.resize(clusters_.nodes.size());
   const Query q{&planes, origin, error_per_distance, error_floor, &plans};
-  for (std::int32_t root : clusters_.roots) {
+  for (std::int32_t root : roots) {
     plan(root, q);
     emit_plan(root, plans, out);
   }

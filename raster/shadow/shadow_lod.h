@@ -25,6 +25,7 @@
 
 #include <glm/glm.hpp>
 #include <mutex>
+#include <span>
 #include <vector>
 
 namespace irad::gl {
@@ -99,6 +100,12 @@ public:
   // simplification, exact up to rounding, serves even a VPL inside a node's bounds.
   void pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
             float error_per_distance, float error_floor, Plans& plans,
+            std::vector<ClusterPick>& out) const {
+    pick(clusters_.roots, planes, origin, error_per_distance, error_floor, plans, out);
+  }
+  // The same over the trees of `roots` alone (some of clusters().roots).
+  void pick(std::span<const std::int32_t> roots, const std::array<glm::vec4, 4>& planes,
+            const glm::vec3& origin, float error_per_distance, float error_floor, Plans& plans,
             std::vector<ClusterPick>& out) const;
   // A vertex array of the current context over the scene's vertices and this hierarchy's
   // indices (vertex arrays are not shared between contexts): what draw() draws through.
