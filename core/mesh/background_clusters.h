@@ -4,7 +4,8 @@
 // that run on one core (the weld, the planar reduction, the tree's top splits, the cache file's
 // checksum) then overlap the ray-tracing structure, the walk, the clustering and the GL set-up,
 // instead of following them while the other cores wait. The raster takes the result where it
-// would have built it (raster/shadow/lod_provider.h) and waits only for what is left.
+// would have built it (raster/shadow/lod_provider.h; the camera's hierarchy,
+// raster/passes/camera_lod.h, through ClusterSource likewise) and waits only for what is left.
 //
 // The same hierarchy as a build in place, bit for bit (the build's result does not depend on its
 // threads). An exception of the build reaches the caller of take(); one never taken is dropped.
