@@ -95,12 +95,8 @@ public:
 
   // Adds what `instance` will append to the soup's size hints (gltf::add_size_hint).
   void hint(const gltf::NodeInstance& instance) {
-    const auto mesh = gltf::index_member(ctx_.array("nodes")[instance.node], "mesh");
-    if (!mesh || *mesh >= ctx_.count("meshes")) return;
-    const json* primitives = gltf::member(ctx_.array("meshes")[std::size_t(*mesh)], "primitives");
-    if (!primitives || !primitives->is_array()) return;
-    for (std::size_t p = 0; p < primitives->size(); ++p)
-      gltf::add_size_hint(ctx_, std::size_t(*mesh), p, soup_);
+    if (const auto mesh = gltf::index_member(ctx_.array("nodes")[instance.node], "mesh"))
+      gltf::add_size_hint(ctx_, *mesh, soup_);
   }
 
   void add(const gltf::NodeInstance& instance) {

@@ -15,18 +15,27 @@ namespace irad {
 
 namespace {
 
+// welded[v]: the first vertex of v's class in meshoptimizer's `remap` (`unique` classes; ~0u:
+// a vertex of no class, welded to itself).
+std::vector<std::uint32_t> first_of_class(const std::vector<unsigned int>& remap,
+                                          std::size_t unique) {
+  std::vector<std::uint32_t> first(unique, ~0u), welded(remap.size());
+  for (std::size_t v = 0; v < remap.size(); ++v) {
+    welded[v] = static_cast<std::uint32_t>(v);
+    if (remap[v] == ~0u) continue;
+    if (first[remap[v]] == ~0u) first[remap[v]] = static_cast<std::uint32_t>(v);
+    welded[v] = first[remap[v]];
+  }
+  return welded;
+}
+
 // welded[v]: the first vertex at v's position (bitwise equal floats).
 std::vector<std::uint32_t> weld_positions(const Scene& scene) {
   const std::size_t n = scene.positions.size();
   std::vector<unsigned int> remap(n);
   const std::size_t unique = meshopt_generateVertexRemap(
       remap.data(), nullptr, n, scene.positions.data(), n, sizeof(glm::vec3));
-  std::vector<std::uint32_t> first(unique, ~0u), welded(n);
-  for (std::size_t v = 0; v < n; ++v) {
-    if (first[remap[v]] == ~0u) first[remap[v]] = static_cast<std::uint32_t>(v);
-    welded[v] = first[remap[v]];
-  }
-  return welded;
+  return first_of_class(remap, unique);
 }
 
 // welded[v]: the first vertex equal to v in every attribute the camera passes read (position,
@@ -49,14 +58,7 @@ std::vector<std::uint32_t> weld_vertices(const Scene& scene) {
   std::vector<unsigned int> remap(n, ~0u);
   const std::size_t unique = meshopt_generateVertexRemapMulti(remap.data(), nullptr, whole, whole,
                                                               streams.data(), streams.size());
-  std::vector<std::uint32_t> first(unique, ~0u), welded(n);
-  for (std::size_t v = 0; v < n; ++v) {
-    welded[v] = static_cast<std::uint32_t>(v);
-    if (remap[v] == ~0u) continue;
-    if (first[remap[v]] == ~0u) first[remap[v]] = static_cast<std::uint32_t>(v);
-    welded[v] = first[remap[v]];
-  }
-  return welded;
+  return first_of_class(remap, unique);
 }
 
 // The group of each triangle: its connected component (through shared welded vertices) where
@@ -267,20 +269,19 @@ struct Builder {
 // The camera's bound on what a node's mesh changes: the larger of its distance from the surface
 // and its longest edge, across which it interpolates the vertices' normals and texture
 // coordinates (a mesh whose edges stay below a pixel shades within the pixel it covers).
-void bound_by_edges(const Scene& scene, MeshClusters& out) {
-  parallel_chunks(out.nodes.size(), [&](std::size_t first, std::size_t end) {
-    for (std::size_t n = first; n < end; ++n) {
-      ClusterNode& node = out.nodes[n];
-      if (node.leaf()) continue;
-      float longest = 0.0f;
-      for (std::uint32_t k = node.mesh_first; k < node.mesh_first + node.mesh_count; k += 3)
-        for (int e = 0; e < 3; ++e) {
-          const glm::vec3 d =
-              scene.positions[out.indices[k + e]] - scene.positions[out.indices[k + (e + 1) % 3]];
-          longest = std::max(longest, glm::dot(d, d));
-        }
-      node.error = std::max(node.error, std::sqrt(longest));
-    }
+// Node by node on all cores.
+void bound_by_edges(const Scene& scene, MeshClusters& out, unsigned threads) {
+  parallel_rows(static_cast<int>(out.nodes.size()), threads, [&](int n) {
+    ClusterNode& node = out.nodes[static_cast<std::size_t>(n)];
+    if (node.leaf()) return;
+    float longest = 0.0f;
+    for (std::uint32_t k = node.mesh_first; k < node.mesh_first + node.mesh_count; k += 3)
+      for (int e = 0; e < 3; ++e) {
+        const glm::vec3 d =
+            scene.positions[out.indices[k + e]] - scene.positions[out.indices[k + (e + 1) % 3]];
+        longest = std::max(longest, glm::dot(d, d));
+      }
+    node.error = std::max(node.error, std::sqrt(longest));
   });
 }
 
@@ -371,7 +372,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   b.out.original_indices = b.out.indices.size();
   start = stages.lap("tree", start);
   simplify_inner_nodes(scene, b.out, options.simplify || options.camera, options.threads);
-  if (options.camera) bound_by_edges(scene, b.out);
+  if (options.camera) bound_by_edges(scene, b.out, options.threads);
   start = stages.lap("inner", start);
   if (options.simplify && !options.camera)
     add_coarser_levels(scene, b.out, options.max_levels, whole, options.threads);

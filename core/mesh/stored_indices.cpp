@@ -44,7 +44,7 @@ bool below(const std::uint32_t* words, std::size_t count, std::size_t vertices) 
 
 void StoredIndices::copy_range(std::size_t first, std::size_t count, std::uint32_t* out) const {
   if (first > count_ || count > count_ - first)
-    throw Error(file_ ? file_->path().string() : std::string(), "shadow hierarchy",
+    throw Error(file_ ? file_->path().string() : std::string(), "cluster hierarchy",
                 "indices read past their end");
   if (memory_) {
     std::copy_n(memory_->begin() + static_cast<std::ptrdiff_t>(first), count, out);
@@ -53,7 +53,7 @@ void StoredIndices::copy_range(std::size_t first, std::size_t count, std::uint32
   if (!file_->read_at(out, count * sizeof(std::uint32_t),
                       offset_ + first * sizeof(std::uint32_t)) ||
       !below(out, count, vertices_))
-    throw Error(file_->path().string(), "shadow hierarchy",
+    throw Error(file_->path().string(), "cluster hierarchy",
                 "the cache file changed while in use; remove it and render again");
 }
 

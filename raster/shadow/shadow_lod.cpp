@@ -83,7 +83,7 @@ void ShadowLod::copy_pages(std::size_t page, std::size_t slot, std::size_t count
       [&](void* storage) {
         clusters_.stored_indices->copy_range(first, indices, static_cast<std::uint32_t*>(storage));
       },
-      "shadow hierarchy");
+      "cluster hierarchy");
 }
 
 void ShadowLod::make_resident(const std::vector<std::vector<ClusterPick>>& picks) const {

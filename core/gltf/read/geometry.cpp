@@ -596,7 +596,7 @@ std::vector<glm::uvec3> read_triangles(const Context& ctx, const json& p, int mo
 
 } // namespace
 
-void add_size_hint(const Context& ctx, std::size_t mesh, std::size_t primitive, Soup& soup) {
+void add_size_hint(const Context& ctx, std::uint64_t mesh, Soup& soup) {
   const json& accessors = ctx.array("accessors");
   const auto count = [&](std::optional<std::uint64_t> a) -> std::optional<std::uint64_t> {
     if (!a || *a >= accessors.size()) return std::nullopt;
@@ -604,21 +604,23 @@ void add_size_hint(const Context& ctx, std::size_t mesh, std::size_t primitive, 
   };
   const json& meshes = ctx.array("meshes");
   if (mesh >= meshes.size()) return;
-  const json* primitives = member(meshes[mesh], "primitives");
-  if (!primitives || !primitives->is_array() || primitive >= primitives->size()) return;
-  const json& p = (*primitives)[primitive];
-  const json* attrs = member(p, "attributes");
-  const auto mode = static_cast<int>(number_member(p, "mode", kTriangles));
-  if (!attrs || !attrs->is_object() || mode < kTriangles || mode > 6) return;
-  const auto vertices = count(attribute(*attrs, "POSITION"));
-  if (!vertices) return;
-  const std::uint64_t indices = count(index_member(p, "indices")).value_or(*vertices);
-  const std::uint64_t triangles = std::min(triangle_count(mode, indices), ctx.limits.max_triangles);
-  const std::uint64_t placed = attribute(*attrs, "NORMAL") ? *vertices : 3 * triangles;
-  const std::uint64_t most = 3 * ctx.limits.max_triangles; // the vertex limit
-  soup.vertex_hint = std::size_t(std::min(soup.vertex_hint + std::min(placed, most), most));
-  soup.triangle_hint =
-      std::size_t(std::min(soup.triangle_hint + triangles, ctx.limits.max_triangles));
+  const json* primitives = member(meshes[std::size_t(mesh)], "primitives");
+  if (!primitives || !primitives->is_array()) return;
+  for (const json& p : *primitives) {
+    const json* attrs = member(p, "attributes");
+    const auto mode = static_cast<int>(number_member(p, "mode", kTriangles));
+    if (!attrs || !attrs->is_object() || mode < kTriangles || mode > 6) continue;
+    const auto vertices = count(attribute(*attrs, "POSITION"));
+    if (!vertices) continue;
+    const std::uint64_t indices = count(index_member(p, "indices")).value_or(*vertices);
+    const std::uint64_t triangles =
+        std::min(triangle_count(mode, indices), ctx.limits.max_triangles);
+    const std::uint64_t placed = attribute(*attrs, "NORMAL") ? *vertices : 3 * triangles;
+    const std::uint64_t most = 3 * ctx.limits.max_triangles; // the vertex limit
+    soup.vertex_hint = std::size_t(std::min(soup.vertex_hint + std::min(placed, most), most));
+    soup.triangle_hint =
+        std::size_t(std::min(soup.triangle_hint + triangles, ctx.limits.max_triangles));
+  }
 }
 
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,

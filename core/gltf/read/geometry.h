@@ -91,10 +91,10 @@ struct PrimitivePose {
 void append_primitive(const Context& ctx, std::size_t mesh, std::size_t primitive,
                       const PrimitivePose& pose, std::uint32_t material, UvSets uv, Soup& soup);
 
-// Adds meshes[mesh].primitives[primitive]'s vertices and triangles to soup's hints, as its
-// accessors' counts give them (the JSON alone: nothing is read or checked; append_primitive
-// checks the real counts), capped by ctx.limits.
-void add_size_hint(const Context& ctx, std::size_t mesh, std::size_t primitive, Soup& soup);
+// Adds the vertices and triangles of meshes[mesh]'s primitives to soup's hints, as their
+// accessors' counts give them (the JSON alone: nothing is read or checked, an index out of range
+// adds nothing; append_primitive checks the real counts), capped by ctx.limits.
+void add_size_hint(const Context& ctx, std::uint64_t mesh, Soup& soup);
 
 // Moves the soup into scene (and soup.vertex_node, compacted like the vertices, into
 // *vertex_node when given) (positions, normals, uvs, tangents, triangles, triangle_material,
