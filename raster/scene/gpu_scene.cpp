@@ -3,6 +3,10 @@
 #include "core/animation/animation.h"
 #include "core/material/albedo_table.h"
 #include "core/util/error.h"
+#include "raster/scene/index_chunks.h"
+
+#include <cstddef>
+#include <span>
 
 namespace irad::gl {
 
@@ -65,6 +69,46 @@ void attach_packed(const GladGLContext& api, const Buffer& buffer, GLuint locati
   api.BindBuffer(GL_ARRAY_BUFFER, buffer.get());
   api.EnableVertexAttribArray(location);
   api.VertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, 0, nullptr);
+}
+
+// One material's triangles: the runs of consecutive triangles of the scene that it holds, in
+// the file's order.
+struct MaterialRuns {
+  std::uint32_t material;
+  std::vector<std::span<const glm::uvec3>> runs;
+};
+
+// The materials that hold triangles, ascending, each with its runs.
+std::vector<MaterialRuns> material_runs(const Scene& scene) {
+  std::vector<std::vector<std::span<const glm::uvec3>>> by_material;
+  const std::span<const glm::uvec3> all(scene.triangles);
+  for (std::size_t t = 0; t < scene.triangle_count();) {
+    const std::uint32_t m = scene.triangle_material[t];
+    std::size_t end = t + 1;
+    while (end < scene.triangle_count() && scene.triangle_material[end] == m) ++end;
+    if (m >= by_material.size()) by_material.resize(m + 1);
+    by_material[m].push_back(all.subspan(t, end - t));
+    t = end;
+  }
+  std::vector<MaterialRuns> out;
+  for (std::size_t m = 0; m < by_material.size(); ++m)
+    if (!by_material[m].empty())
+      out.push_back({static_cast<std::uint32_t>(m), std::move(by_material[m])});
+  return out;
+}
+
+// Chunk c's indices at `out` (2 bytes an index, less its base, when narrow; else 4).
+void write_chunk(std::span<const std::span<const glm::uvec3>> runs, const IndexChunk& c,
+                 std::byte* out) {
+  if (c.narrow) {
+    auto* to = reinterpret_cast<std::uint16_t*>(out);
+    for_each_triangle(runs, c.first, c.count, [&](const glm::uvec3& v) {
+      for (int i = 0; i < 3; ++i) *to++ = static_cast<std::uint16_t>(v[i] - c.base);
+    });
+  } else {
+    auto* to = reinterpret_cast<glm::uvec3*>(out);
+    for_each_triangle(runs, c.first, c.count, [&](const glm::uvec3& v) { *to++ = v; });
+  }
 }
 
 } // namespace
@@ -135,28 +179,26 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
 }
 
 void GpuScene::upload_grouped_indices(const Scene& scene) {
-  // Triangles grouped by material, in the file's order within a material (a counting sort).
-  std::vector<std::size_t> first;
-  for (std::uint32_t m : scene.triangle_material) {
-    if (m >= first.size()) first.resize(m + 1, 0);
-    ++first[m];
+  const std::vector<MaterialRuns> materials = material_runs(scene);
+  std::vector<std::vector<IndexChunk>> chunks(materials.size());
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    chunks[i] = index_chunks(materials[i].runs);
+    ranges_.push_back({materials[i].material, chunks_.size(), chunks[i].size()});
+    for (const IndexChunk& c : chunks[i]) {
+      chunks_.push_back({c.narrow ? GLenum(GL_UNSIGNED_SHORT) : GLenum(GL_UNSIGNED_INT), bytes,
+                         static_cast<GLsizei>(3 * c.count), static_cast<GLint>(c.base)});
+      bytes += chunk_bytes(c);
+    }
   }
-  std::size_t at = 0;
-  for (std::size_t m = 0; m < first.size(); ++m) {
-    const std::size_t triangles = first[m];
-    first[m] = at;
-    if (triangles > 0)
-      ranges_.push_back(
-          {static_cast<std::uint32_t>(m), 3 * at, static_cast<GLsizei>(3 * triangles)});
-    at += triangles;
-  }
-  index_count_ = static_cast<GLsizei>(3 * at);
   fill_buffer(
-      *api_, GL_ELEMENT_ARRAY_BUFFER, 3 * at * sizeof(std::uint32_t), GL_STATIC_DRAW,
+      *api_, GL_ELEMENT_ARRAY_BUFFER, bytes, GL_STATIC_DRAW,
       [&](void* storage) {
-        auto* out = static_cast<glm::uvec3*>(storage);
-        for (std::size_t t = 0; t < scene.triangle_count(); ++t)
-          out[first[scene.triangle_material[t]]++] = scene.triangles[t];
+        auto* out = static_cast<std::byte*>(storage);
+        std::size_t k = 0;
+        for (std::size_t i = 0; i < materials.size(); ++i)
+          for (const IndexChunk& c : chunks[i])
+            write_chunk(materials[i].runs, c, out + chunks_[k++].offset);
       },
       "gpu scene");
 }
@@ -201,20 +243,23 @@ void GpuScene::draw_covered(GLsizei instances,
   draw_if([](const Material&) { return true; }, bind_alpha, instances, vao);
 }
 
-void GpuScene::draw_range(const Range& r, GLsizei instances) const {
-  const auto* first = reinterpret_cast<const void*>(r.first * sizeof(std::uint32_t));
+void GpuScene::draw_chunk(const Chunk& c, GLsizei instances) const {
+  const auto* first = reinterpret_cast<const void*>(c.offset);
   if (instances == 1)
-    api_->DrawElements(GL_TRIANGLES, r.count, GL_UNSIGNED_INT, first);
+    api_->DrawElementsBaseVertex(GL_TRIANGLES, c.count, c.type, first, c.base_vertex);
   else
-    api_->DrawElementsInstanced(GL_TRIANGLES, r.count, GL_UNSIGNED_INT, first, instances);
+    api_->DrawElementsInstancedBaseVertex(GL_TRIANGLES, c.count, c.type, first, instances,
+                                          c.base_vertex);
+}
+
+void GpuScene::draw_range(const Range& r, GLsizei instances) const {
+  for (std::size_t k = r.first_chunk; k < r.first_chunk + r.chunk_count; ++k)
+    draw_chunk(chunks_[k], instances);
 }
 
 void GpuScene::draw_everything(GLsizei instances, const VertexArray* vao) const {
   bind_vertex_array(vao);
-  if (instances == 1)
-    api_->DrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-  else
-    api_->DrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, instances);
+  for (const Chunk& c : chunks_) draw_chunk(c, instances);
 }
 
 void GpuScene::draw(const std::function<void(const Material&)>& bind) const {

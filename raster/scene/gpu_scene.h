@@ -3,9 +3,10 @@
 // and uv where the scene has texture coordinates: without, attribute 2 is off and reads GL's
 // default (0, 0)), TEXCOORD_1, COLOR_0 and TANGENT in buffers of their own only when the scene has
 // them (attributes kUv1Attribute, kColorAttribute and kTangentAttribute,
-// raster/scene/material_glsl.h), one index buffer with the triangles grouped by material, and the
-// textures as linear RGBA32F with bilinear filtering (what the walk samples). Textures are uploaded
-// only when the scene has them.
+// raster/scene/material_glsl.h), one index buffer with the triangles grouped by material (each
+// material's in chunks of 16-bit indices where its vertices allow: raster/scene/index_chunks.h),
+// and the textures as linear RGBA32F with bilinear filtering (what the walk samples). Textures are
+// uploaded only when the scene has them.
 #include "core/scene/scene.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/material_features.h"
@@ -63,14 +64,22 @@ public:
   GLuint texture(int index) const { return textures_[static_cast<std::size_t>(index)].get(); }
 
 private:
+  // One glDrawElementsBaseVertex: `count` indices of `type` from byte `offset`.
+  struct Chunk {
+    GLenum type;
+    std::size_t offset;
+    GLsizei count;
+    GLint base_vertex;
+  };
+  // A material's triangles: chunks_[first_chunk, first_chunk + chunk_count).
   struct Range {
     std::uint32_t material;
-    std::size_t first; // first index (not triangle)
-    GLsizei count;     // indices
+    std::size_t first_chunk, chunk_count;
   };
-  // ranges_, index_count_ and the bound element buffer's indices: the triangles grouped by
-  // material.
+  // ranges_, chunks_ and the bound element buffer's indices: the triangles grouped by material,
+  // in the file's order within a material.
   void upload_grouped_indices(const Scene& scene);
+  void draw_chunk(const Chunk& c, GLsizei instances) const;
   void draw_range(const Range& r, GLsizei instances = 1) const;
   // Every index, `instances` times, through `vao` (nullptr: the own one).
   void draw_everything(GLsizei instances, const VertexArray* vao) const;
@@ -90,9 +99,9 @@ private:
   Buffer tangents_; // only with normal maps (Scene::tangents)
   MaterialFeatures features_;
   std::vector<Range> ranges_;
+  std::vector<Chunk> chunks_;
   std::vector<Texture> textures_;
   Texture albedo_table_;
-  GLsizei index_count_ = 0;
 };
 
 } // namespace irad::gl
