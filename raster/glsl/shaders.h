@@ -6,15 +6,23 @@ namespace irad::gl::shaders {
 // passes produce bit-identical depths, so GL_LEQUAL selects exactly the visible surface.
 inline constexpr const char* camera_vertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
-layout(location = 1) in vec3 a_normal;
+layout(location = 1) in ivec2 a_normal; // octahedral (raster/scene/octahedral.h)
 #pragma irad_material_vertex
 uniform mat4 u_view_projection;
 out vec3 v_position;
 out vec3 v_normal;
 invariant gl_Position;
+// octahedral_decode of raster/scene/octahedral.cpp.
+vec3 octahedral_decode(ivec2 e) {
+  vec2 p = max(vec2(e) / 32767.0, vec2(-1.0));
+  vec3 n = vec3(p, 1.0 - abs(p.x) - abs(p.y));
+  if (n.z < 0.0)
+    n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(n);
+}
 void main() {
   v_position = a_position;
-  v_normal = a_normal;
+  v_normal = octahedral_decode(a_normal);
   copy_material_attributes();
   gl_Position = u_view_projection * vec4(a_position, 1.0);
 }

@@ -3,9 +3,12 @@
 #include "core/animation/animation.h"
 #include "core/material/albedo_table.h"
 #include "core/util/error.h"
+#include "core/util/parallel_rows.h"
 #include "raster/scene/index_chunks.h"
+#include "raster/scene/octahedral.h"
 
 #include <cstddef>
+#include <cstring>
 #include <span>
 
 namespace irad::gl {
@@ -37,19 +40,20 @@ Texture upload_texture(const GladGLContext& api, const irad::Texture& t) {
   return tex;
 }
 
-// The interleaved vertex: position, normal, and the uv where the scene has texture coordinates
-// (else attribute 2 stays off and reads GL's default (0, 0)): 24 instead of 32 bytes a vertex.
-std::size_t vertex_floats(const Scene& scene) {
-  return scene.uvs.empty() ? 6 : 8;
+// The interleaved vertex: position (3 floats), normal (octahedral, 2 x int16:
+// raster/scene/octahedral.h), and the uv (2 floats) where the scene has texture coordinates (else
+// attribute 2 stays off and reads GL's default (0, 0)): 16 or 24 bytes a vertex.
+constexpr std::size_t kNormalOffset = 12, kUvOffset = 16;
+std::size_t vertex_bytes(const Scene& scene) {
+  return scene.uvs.empty() ? kUvOffset : kUvOffset + 8;
 }
 
-// Writes vertex i of the scene at `out` (vertex_floats(scene) floats).
-void write_vertex(const Scene& scene, std::size_t i, float* out) {
-  const glm::vec3& p = scene.positions[i];
-  const glm::vec3& n = scene.normals[i];
-  out[0] = p.x, out[1] = p.y, out[2] = p.z;
-  out[3] = n.x, out[4] = n.y, out[5] = n.z;
-  if (!scene.uvs.empty()) out[6] = scene.uvs[i].x, out[7] = scene.uvs[i].y;
+// Writes vertex i of the scene at `out` (vertex_bytes(scene) bytes).
+void write_vertex(const Scene& scene, std::size_t i, std::byte* out) {
+  std::memcpy(out, &scene.positions[i], 12);
+  const glm::i16vec2 normal = octahedral_encode(scene.normals[i]);
+  std::memcpy(out + kNormalOffset, &normal, 4);
+  if (!scene.uvs.empty()) std::memcpy(out + kUvOffset, &scene.uvs[i], 8);
 }
 
 // A tightly packed float attribute array (vec2 or vec4 per vertex).
@@ -127,8 +131,8 @@ Texture albedo_table_texture(const GladGLContext& api) {
 void GpuScene::update_vertices() {
   if (!scene_->animation) return;
   api_->BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
-  const std::size_t floats = vertex_floats(*scene_);
-  std::vector<float> run;
+  const std::size_t bytes = vertex_bytes(*scene_);
+  std::vector<std::byte> run;
   // The moving vertices (ascending) form contiguous runs of the scene's arrays: one upload per
   // run.
   const std::vector<std::uint32_t> moving = scene_->animation->moving_vertices();
@@ -137,11 +141,11 @@ void GpuScene::update_vertices() {
     std::size_t count = 0;
     run.clear();
     while (k < moving.size() && moving[k] == first + count) {
-      run.resize((count + 1) * floats);
-      write_vertex(*scene_, moving[k++], &run[count++ * floats]);
+      run.resize((count + 1) * bytes);
+      write_vertex(*scene_, moving[k++], &run[count++ * bytes]);
     }
-    api_->BufferSubData(GL_ARRAY_BUFFER, GLintptr(first * floats * sizeof(float)),
-                        GLsizeiptr(run.size() * sizeof(float)), run.data());
+    api_->BufferSubData(GL_ARRAY_BUFFER, GLintptr(first * bytes), GLsizeiptr(run.size()),
+                        run.data());
   }
 }
 
@@ -149,14 +153,15 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
     : api_(&api), scene_(&scene), vao_(make_vertex_array(api)), vertices_(make_buffer(api)),
       indices_(make_buffer(api)), features_(MaterialFeatures::of(scene)) {
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
-  const std::size_t floats = vertex_floats(scene);
+  const std::size_t bytes = vertex_bytes(scene);
   fill_buffer(
-      api, GL_ARRAY_BUFFER, scene.positions.size() * floats * sizeof(float),
+      api, GL_ARRAY_BUFFER, scene.positions.size() * bytes,
       scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW,
       [&](void* storage) {
-        auto* out = static_cast<float*>(storage);
-        for (std::size_t i = 0; i < scene.positions.size(); ++i)
-          write_vertex(scene, i, out + i * floats);
+        auto* out = static_cast<std::byte*>(storage);
+        parallel_chunks(scene.positions.size(), [&](std::size_t first, std::size_t end) {
+          for (std::size_t i = first; i < end; ++i) write_vertex(scene, i, out + i * bytes);
+        });
       },
       "gpu scene");
   // The optional arrays run parallel to the positions (core/scene/scene.h): GL must never read past
@@ -206,18 +211,18 @@ void GpuScene::upload_grouped_indices(const Scene& scene) {
 void GpuScene::attach_attributes() const {
   const GladGLContext& api = *api_;
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
-  const std::size_t floats = vertex_floats(*scene_);
-  const auto stride = static_cast<GLsizei>(floats * sizeof(float));
-  const auto at = [](std::size_t first_float) {
-    return reinterpret_cast<const void*>(first_float * sizeof(float));
-  };
+  const std::size_t bytes = vertex_bytes(*scene_);
+  const auto stride = static_cast<GLsizei>(bytes);
+  const auto at = [](std::size_t offset) { return reinterpret_cast<const void*>(offset); };
   api.EnableVertexAttribArray(0);
   api.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, at(0));
+  // Integers, not GL's normalized shorts (whose conversion GL 3.3 defines otherwise than 4.2):
+  // the shader divides by kOctahedralScale.
   api.EnableVertexAttribArray(1);
-  api.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, at(3));
-  if (floats == 8) {
+  api.VertexAttribIPointer(1, 2, GL_SHORT, stride, at(kNormalOffset));
+  if (bytes > kUvOffset) {
     api.EnableVertexAttribArray(2);
-    api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, at(6));
+    api.VertexAttribPointer(2, 2, GL_FLOAT, GL_FALSE, stride, at(kUvOffset));
   }
   if (uv1_) attach_packed(api, uv1_, kUv1Attribute, 2);
   if (colors_) attach_packed(api, colors_, kColorAttribute, 4);

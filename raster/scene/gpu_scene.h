@@ -1,12 +1,12 @@
 #pragma once
-// The scene's triangles and textures on the GPU: one interleaved vertex buffer (position, normal,
-// and uv where the scene has texture coordinates: without, attribute 2 is off and reads GL's
-// default (0, 0)), TEXCOORD_1, COLOR_0 and TANGENT in buffers of their own only when the scene has
-// them (attributes kUv1Attribute, kColorAttribute and kTangentAttribute,
-// raster/scene/material_glsl.h), one index buffer with the triangles grouped by material (each
-// material's in chunks of 16-bit indices where its vertices allow: raster/scene/index_chunks.h),
-// and the textures as linear RGBA32F with bilinear filtering (what the walk samples). Textures are
-// uploaded only when the scene has them.
+// The scene's triangles and textures on the GPU: one interleaved vertex buffer (position, normal
+// in 4 bytes (raster/scene/octahedral.h), and uv where the scene has texture coordinates: without,
+// attribute 2 is off and reads GL's default (0, 0)), TEXCOORD_1, COLOR_0 and TANGENT in buffers of
+// their own only when the scene has them (attributes kUv1Attribute, kColorAttribute and
+// kTangentAttribute, raster/scene/material_glsl.h), one index buffer with the triangles grouped by
+// material (each material's in chunks of 16-bit indices where its vertices allow:
+// raster/scene/index_chunks.h), and the textures as linear RGBA32F with bilinear filtering (what
+// the walk samples). Textures are uploaded only when the scene has them.
 #include "core/scene/scene.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/material_features.h"
