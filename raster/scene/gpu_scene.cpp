@@ -82,7 +82,9 @@ struct MaterialRuns {
   std::vector<std::span<const glm::uvec3>> runs;
 };
 
-// The materials that hold triangles, ascending, each with its runs.
+// The materials that hold triangles, ascending, each with its runs (a run per primitive in a
+// file's usual order; one per triangle, 16 bytes each, where materials alternate triangle by
+// triangle).
 std::vector<MaterialRuns> material_runs(const Scene& scene) {
   std::vector<std::vector<std::span<const glm::uvec3>>> by_material;
   const std::span<const glm::uvec3> all(scene.triangles);

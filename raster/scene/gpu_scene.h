@@ -31,12 +31,11 @@ public:
   // Draws every triangle, calling `bind(material)` before each material's range.
   void draw(const std::function<void(const Material&)>& bind) const;
   // A pass that needs no material but its coverage (depth, shadow, irradiance-only), every range
-  // drawn `instances` times (gl_InstanceID 0..instances-1): all indices in one draw when the
-  // scene has no Mask or Blend material, else range by range with `bind_alpha` per material
-  // (every camera pass then draws range by range, so gl_PrimitiveID, which the Blend hash reads,
-  // is the same in all of them).
-  // vao: vertex_array() of the current context when that is not the one this GpuScene was made
-  // in (nullptr: its own).
+  // drawn `instances` times (gl_InstanceID 0..instances-1): every chunk in turn, binding nothing,
+  // when the scene has no Mask or Blend material, else range by range with `bind_alpha` per
+  // material (every camera pass then draws range by range, so gl_PrimitiveID, which the Blend hash
+  // reads, is the same in all of them). vao: vertex_array() of the current context when that is not
+  // the one this GpuScene was made in (nullptr: its own).
   void draw_covered(GLsizei instances, const std::function<void(const Material&)>& bind_alpha,
                     const VertexArray* vao = nullptr) const;
   // Draws only the ranges whose material satisfies `select` (`instances` times each); vao as
@@ -81,7 +80,7 @@ private:
   void upload_grouped_indices(const Scene& scene);
   void draw_chunk(const Chunk& c, GLsizei instances) const;
   void draw_range(const Range& r, GLsizei instances = 1) const;
-  // Every index, `instances` times, through `vao` (nullptr: the own one).
+  // Every chunk, `instances` times, through `vao` (nullptr: the own one).
   void draw_everything(GLsizei instances, const VertexArray* vao) const;
   void bind_vertex_array(const VertexArray* vao) const {
     api_->BindVertexArray(vao ? vao->get() : vao_.get());
