@@ -194,6 +194,10 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
       {"camera_hierarchy_cache",
        {{"outcome", r.camera_hierarchy_cache}, {"reason", r.camera_hierarchy_cache_reason}}},
       {"camera_triangles", r.camera_triangles},
+      {"gpu_bytes",
+       {{"scene", r.gpu_bytes.scene},
+        {"shadow_pages", r.gpu_bytes.shadow_pages},
+        {"camera_pages", r.gpu_bytes.camera_pages}}},
       {"wall_cache", {{"outcome", r.wall_cache}, {"reason", r.wall_cache_reason}}},
       {"shadow_planes", r.shadow_planes}, // as drawn: auto resolved
       {"thinnest_wall", r.thinnest_wall},

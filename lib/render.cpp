@@ -213,6 +213,8 @@ void run_raster(Stages& s, const RayScene& rays) {
   s.r.camera_hierarchy_cache = outcome_name(raster.camera_hierarchy_cache().outcome);
   s.r.camera_hierarchy_cache_reason = raster.camera_hierarchy_cache().reason;
   s.r.camera_triangles = timings.camera_triangles;
+  s.r.gpu_bytes = {timings.gpu_scene_bytes, timings.gpu_shadow_pages_bytes,
+                   timings.gpu_camera_pages_bytes};
   const StageTimes setup = raster.setup_times();
   for (const auto& stage : setup.stages()) s.r.seconds.raster_setup.push_back(stage);
   s.r.passes = timings.passes;
@@ -506,6 +508,9 @@ void run_rounds(Stages& s, const RayScene& rays) {
     s.r.passes += rm.passes;
     s.r.shadow_triangles += rm.shadow_triangles;
     s.r.shadow_helpers = std::max(s.r.shadow_helpers, rm.shadow_helpers);
+    s.r.gpu_bytes.scene = std::max(s.r.gpu_bytes.scene, rm.gpu_bytes.scene);
+    s.r.gpu_bytes.shadow_pages = std::max(s.r.gpu_bytes.shadow_pages, rm.gpu_bytes.shadow_pages);
+    s.r.gpu_bytes.camera_pages = std::max(s.r.gpu_bytes.camera_pages, rm.gpu_bytes.camera_pages);
     s.r.single_passes += rm.single_passes;
     s.r.edge_pixels = std::max(s.r.edge_pixels, rm.edge_pixels);
     s.r.unsure_pixels = std::max(s.r.unsure_pixels, rm.unsure_pixels);

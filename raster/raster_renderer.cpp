@@ -377,6 +377,11 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   }
   Image image = im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
   if (timings && im.image_lod) timings->camera_triangles = im.image_lod->triangles();
+  if (timings) {
+    timings->gpu_scene_bytes = im.gpu.bytes();
+    timings->gpu_shadow_pages_bytes = im.lod.gpu_bytes();
+    timings->gpu_camera_pages_bytes = im.camera_lod.gpu_bytes();
+  }
   if (timings && im.batched) {
     timings->shadow_triangles = im.batched->shadow_triangles();
     timings->shadow_helpers = im.batched->helpers();

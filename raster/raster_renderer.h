@@ -134,6 +134,10 @@ struct RasterTimings {
   std::size_t shadow_triangles = 0;
   // The triangles the G-buffer drew from the camera hierarchy (0: it drew every triangle).
   std::size_t camera_triangles = 0;
+  // render(): the bytes on the GPU of the scene (raster/scene/gpu_scene.h: vertices, indices,
+  // textures) and of the pages of the shadow and camera hierarchies drawn so far
+  // (raster/shadow/shadow_lod.h), what llvmpipe holds in memory of them.
+  std::size_t gpu_scene_bytes = 0, gpu_shadow_pages_bytes = 0, gpu_camera_pages_bytes = 0;
   // render(): the helper threads that drew shadow atlases (RasterOptions::shadow_helpers; 0 when
   // none were made).
   int shadow_helpers = 0;

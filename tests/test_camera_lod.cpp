@@ -186,6 +186,9 @@ TEST(CameraLod, TheImageStaysCloseToEveryTriangles) {
     RasterTimings timings;
     images[k] = RasterRenderer(s, o).render(view, vpls, &timings);
     EXPECT_EQ(timings.camera_triangles > 0, k == 1);
+    EXPECT_EQ(timings.gpu_camera_pages_bytes > 0, k == 1);
+    EXPECT_GT(timings.gpu_shadow_pages_bytes, 0u);
+    EXPECT_GT(timings.gpu_scene_bytes, 0u);
   }
   const double error = compare_images(images[1], images[0]).relmse;
   std::printf("relMSE of the hierarchy's image against every triangle's: %.3g\n", error);

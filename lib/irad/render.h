@@ -146,6 +146,11 @@ struct RenderResult {
   // triangles its cut drew in the last image (0 where it drew every triangle).
   std::string camera_hierarchy_cache = "off", camera_hierarchy_cache_reason;
   std::size_t camera_triangles = 0;
+  // The raster's bytes on the GPU (RasterTimings): the scene, the shadow and the camera
+  // hierarchies' pages drawn (the largest of the rounds).
+  struct GpuBytes {
+    std::size_t scene = 0, shadow_pages = 0, camera_pages = 0;
+  } gpu_bytes;
   StageSeconds seconds;   // load: the camera, view and ray-tracing structure (render_file: also
                           // the loading)
   bool cancelled = false; // stopped early by a cancellation

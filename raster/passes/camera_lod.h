@@ -81,6 +81,8 @@ public:
   const StageTimes& setup_times() const { return times_; }
   // Where it came from: the stages of a build beside, and what the cache did.
   const ClusterSource& source() const { return source_; }
+  // The bytes of its pages on the GPU (0 before prepared()).
+  std::size_t gpu_bytes() const { return lod_ ? lod_->gpu_bytes() : 0; }
 
 private:
   const GladGLContext* api_;

@@ -156,6 +156,7 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
       indices_(make_buffer(api)), features_(MaterialFeatures::of(scene)) {
   api.BindBuffer(GL_ARRAY_BUFFER, vertices_.get());
   const std::size_t bytes = vertex_bytes(scene);
+  bytes_ = scene.positions.size() * bytes;
   fill_buffer(
       api, GL_ARRAY_BUFFER, scene.positions.size() * bytes,
       scene.animation ? GL_DYNAMIC_DRAW : GL_STATIC_DRAW,
@@ -175,14 +176,22 @@ GpuScene::GpuScene(const GladGLContext& api, const Scene& scene)
   if (features_.uv1) uv1_ = upload_attribute(api, scene.uvs1);
   if (features_.colors) colors_ = upload_attribute(api, scene.colors);
   if (features_.normal_maps) tangents_ = upload_attribute(api, scene.tangents);
+  bytes_ += scene.positions.size() * ((features_.uv1 ? 8 : 0) + (features_.colors ? 16 : 0) +
+                                      (features_.normal_maps ? 16 : 0));
 
   api.BindVertexArray(vao_.get());
   api.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
   upload_grouped_indices(scene);
   attach_attributes();
 
-  for (const irad::Texture& t : scene.textures) textures_.push_back(upload_texture(api, t));
-  if (features_.glossy) albedo_table_ = albedo_table_texture(api);
+  for (const irad::Texture& t : scene.textures) {
+    textures_.push_back(upload_texture(api, t));
+    bytes_ += std::size_t(t.width) * std::size_t(t.height) * 16; // RGBA32F
+  }
+  if (features_.glossy) {
+    albedo_table_ = albedo_table_texture(api);
+    bytes_ += std::size_t(AlbedoTable::kRough) * AlbedoTable::kMu * sizeof(AlbedoTable::Terms);
+  }
 }
 
 void GpuScene::upload_grouped_indices(const Scene& scene) {
@@ -198,6 +207,7 @@ void GpuScene::upload_grouped_indices(const Scene& scene) {
       bytes += chunk_bytes(c);
     }
   }
+  bytes_ += bytes;
   fill_buffer(
       *api_, GL_ELEMENT_ARRAY_BUFFER, bytes, GL_STATIC_DRAW,
       [&](void* storage) {

@@ -52,6 +52,8 @@ public:
   VertexArray vertex_array_with(const Buffer& indices) const;
 
   const Scene& scene() const { return *scene_; }
+  // The bytes of its buffers and textures on the GPU.
+  std::size_t bytes() const { return bytes_; }
 
   const MaterialFeatures& features() const { return features_; }
 
@@ -101,6 +103,7 @@ private:
   std::vector<Chunk> chunks_;
   std::vector<Texture> textures_;
   Texture albedo_table_;
+  std::size_t bytes_ = 0;
 };
 
 } // namespace irad::gl

@@ -39,6 +39,8 @@ public:
   StageTimes beside_times() const { return source_.beside_times(); }
   // What the cache did (for a prebuilt hierarchy: once its file is written; this waits).
   CacheResult cache_result() const { return source_.cache_result(); }
+  // The bytes of its pages on the GPU (ShadowLod::gpu_bytes; 0 before get()).
+  std::size_t gpu_bytes() const { return lod_ ? lod_->gpu_bytes() : 0; }
 
 private:
   const GladGLContext* api_;
