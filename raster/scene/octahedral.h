@@ -5,9 +5,9 @@
 // edges onto the corners of [-1, 1]^2; (u, v) is stored as two 16-bit integers u * 32767.
 //
 // Encoding rounds (u, v) to the nearest integers: 6.4e-5 radians off at most over a million random
-// directions (tests/test_octahedral.cpp), so a cosine changes by at most that much (of the four
-// roundings the closest gains little: 4.3e-5, for four times the encoding's time). The
-// GPU decodes as octahedral_decode does (the camera passes' vertex shader, raster/glsl/shaders.h
+// directions (tests/test_octahedral.cpp), so a cosine changes by at most that much (the closest
+// of the four roundings gains little, 4.3e-5, for six times the encoding's time). The GPU decodes
+// as octahedral_decode does (the camera passes' vertex shader, raster/glsl/shaders.h
 // camera_vertex); normals along the axes come back exactly.
 #include <glm/glm.hpp>
 #include <glm/gtc/type_precision.hpp>
