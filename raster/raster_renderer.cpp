@@ -376,8 +376,8 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
     im.batched->set_traced_roughness(0.0f);
   }
   Image image = im.finish_image(view, t0, passes, timer ? &*timer : nullptr, timings);
-  if (timings && im.image_lod) timings->camera_triangles = im.image_lod->triangles();
   if (timings) {
+    if (im.image_lod) timings->camera_triangles = im.image_lod->triangles();
     timings->gpu_scene_bytes = im.gpu.bytes();
     timings->gpu_shadow_pages_bytes = im.lod.gpu_bytes();
     timings->gpu_camera_pages_bytes = im.camera_lod.gpu_bytes();
