@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,8 +19,14 @@ namespace irad::gltf {
 // The bytes of one buffer, or none (a buffer without data: the validator has said why).
 // placeholder: a buffer without uri outside a GLB (valid glTF: its data come from elsewhere,
 // e.g. an extension); irad reads its bytes as zeros, with a warning, where they are used.
+// The bytes are storage[start, end): a GLB's BIN chunk stays where the file put it, after the
+// header and JSON, instead of being moved to the front.
 struct BufferData {
-  std::vector<unsigned char> bytes;
+  std::vector<unsigned char> storage;
+  std::size_t start = 0;
+  std::span<const unsigned char> bytes() const {
+    return std::span<const unsigned char>(storage).subspan(start);
+  }
   bool present = false;
   bool placeholder = false;
   std::uint64_t byte_length = 0;

@@ -315,11 +315,10 @@ std::vector<BufferData> resolve_buffers(SceneFile& f, const fs::path& folder,
     const json* uri = member(b, "uri");
     if (!uri) {
       if (f.binary && i == 0 && f.bin_length > 0) {
-        // The file's bytes become the buffer's: no second copy of the BIN chunk.
-        std::vector<unsigned char> bytes = std::move(f.bytes);
-        bytes.erase(bytes.begin(), bytes.begin() + std::ptrdiff_t(f.bin_offset));
-        bytes.resize(f.bin_length);
-        out[i].bytes = std::move(bytes);
+        // The file's bytes become the buffer's, the BIN chunk where it lies (no copy, no move).
+        out[i].storage = std::move(f.bytes);
+        out[i].storage.resize(f.bin_offset + f.bin_length);
+        out[i].start = f.bin_offset;
         out[i].present = true;
       } else if (!(f.binary && i == 0)) { // (a GLB without BIN: the validator's error)
         out[i].placeholder = true;
@@ -329,14 +328,14 @@ std::vector<BufferData> resolve_buffers(SceneFile& f, const fs::path& folder,
     }
     if (!uri->is_string()) continue; // the validator's TYPE_MISMATCH
     try {
-      out[i].bytes = uri_bytes(uri->get<std::string>(),
-                               {"application/octet-stream", "application/gltf-buffer"}, folder,
-                               limits, std::string(), pointer);
+      out[i].storage = uri_bytes(uri->get<std::string>(),
+                                 {"application/octet-stream", "application/gltf-buffer"}, folder,
+                                 limits, std::string(), pointer);
       out[i].present = true;
       const std::uint64_t length = index_member(b, "byteLength").value_or(0);
-      if (out[i].bytes.size() != length) {
+      if (out[i].storage.size() != length) {
         issues.add({pointer, "BUFFER_BYTE_LENGTH_MISMATCH",
-                    fmt::format("its data hold {} bytes, byteLength says {}", out[i].bytes.size(),
+                    fmt::format("its data hold {} bytes, byteLength says {}", out[i].storage.size(),
                                 length)});
       }
     } catch (const Error& e) {

@@ -64,7 +64,7 @@ std::vector<gltf::BufferBytes> buffer_views(const gltf::SceneFile& f,
                                             const std::vector<gltf::BufferData>& buffers) {
   std::vector<gltf::BufferBytes> out;
   for (const gltf::BufferData& b : buffers)
-    out.push_back({b.bytes.data(), b.bytes.size(), b.present, false});
+    out.push_back({b.bytes().data(), b.bytes().size(), b.present, false});
   if (!out.empty() && f.binary && f.bin_length == 0) out[0].glb_without_bin = true;
   return out;
 }

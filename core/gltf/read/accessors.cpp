@@ -40,12 +40,12 @@ const std::vector<unsigned char>& meshopt_view(const Context& ctx, std::size_t v
   const std::uint64_t length = index_member(ext, "byteLength").value_or(0);
   const std::uint64_t stride = index_member(ext, "byteStride").value_or(0);
   const std::uint64_t count = index_member(ext, "count").value_or(0);
-  if (length > buffer.bytes.size() || offset > buffer.bytes.size() - length)
+  if (length > buffer.bytes().size() || offset > buffer.bytes().size() - length)
     ctx.fail(where, "byteOffset + byteLength exceed the buffer");
   if (stride == 0 || count == 0 || count > 3 * ctx.limits.max_triangles * 4 || stride > 256)
     ctx.fail(where, "count and byteStride must be positive (byteStride at most 256)");
   try {
-    auto decoded = decode_meshopt(buffer.bytes.data() + offset, length, count, stride,
+    auto decoded = decode_meshopt(buffer.bytes().data() + offset, length, count, stride,
                                   string_member(ext, "mode"), string_member(ext, "filter", "NONE"));
     return ctx.decoded_views[v] = std::move(decoded);
   } catch (const CodecError& e) {
@@ -91,12 +91,12 @@ ViewBytes view_bytes(const Context& ctx, std::uint64_t view, const std::string& 
   const std::uint64_t length = index_member(bv, "byteLength").value_or(0);
   if (buffer.placeholder) return placeholder_view(ctx, v, b, offset, length, stride);
   if (!buffer.present) ctx.fail(element("buffers", b), "has no data");
-  const std::size_t size = buffer.bytes.size();
+  const std::size_t size = buffer.bytes().size();
   if (length > size || offset > size - length) {
     ctx.fail(name, fmt::format("byteOffset {} + byteLength {} exceeds the buffer's {} bytes",
                                offset, length, size));
   }
-  return {buffer.bytes.data() + offset, std::size_t(length), stride};
+  return {buffer.bytes().data() + offset, std::size_t(length), stride};
 }
 
 namespace {
@@ -429,8 +429,12 @@ std::vector<glm::vec4> read_animation_values(const Context& ctx, std::uint64_t a
   return out;
 }
 
-std::vector<std::uint32_t> read_indices(const Context& ctx, std::uint64_t accessor,
-                                        const std::string& use) {
+namespace {
+
+// The index accessor's elements, after checking that it is a SCALAR of unsigned bytes, shorts or
+// ints; `component_type` receives which.
+Elements index_elements(const Context& ctx, std::uint64_t accessor, const std::string& use,
+                        int& component_type) {
   const json& a = accessor_json(ctx, accessor, use);
   const std::string name = element("accessors", std::size_t(accessor));
   const Layout l = layout_of(ctx, a, name);
@@ -441,12 +445,37 @@ std::vector<std::uint32_t> read_indices(const Context& ctx, std::uint64_t access
                        ", must be a SCALAR accessor of unsigned bytes, shorts or "
                        "ints");
   }
-  const Elements e = elements(ctx, accessor, l);
+  component_type = l.component_type;
+  return elements(ctx, accessor, l);
+}
+
+// The first `count` index values of `e` into `out`, on all cores.
+void copy_indices(const Elements& e, int component_type, std::size_t count, std::uint32_t* out) {
+  parallel_chunks(count, [&](std::size_t first, std::size_t end) {
+    for (std::size_t i = first; i < end; ++i) out[i] = read_uint(e.at(i), component_type);
+  });
+}
+
+} // namespace
+
+std::vector<std::uint32_t> read_indices(const Context& ctx, std::uint64_t accessor,
+                                        const std::string& use) {
+  int type = 0;
+  const Elements e = index_elements(ctx, accessor, use, type);
   std::vector<std::uint32_t> out;
   resize_huge(out, e.count);
-  parallel_chunks(e.count, [&](std::size_t first, std::size_t end) {
-    for (std::size_t i = first; i < end; ++i) out[i] = read_uint(e.at(i), l.component_type);
-  });
+  copy_indices(e, type, e.count, out.data());
+  return out;
+}
+
+std::vector<glm::uvec3> read_index_triples(const Context& ctx, std::uint64_t accessor,
+                                           const std::string& use) {
+  static_assert(sizeof(glm::uvec3) == 3 * sizeof(std::uint32_t));
+  int type = 0;
+  const Elements e = index_elements(ctx, accessor, use, type);
+  std::vector<glm::uvec3> out;
+  resize_huge(out, e.count / 3);
+  copy_indices(e, type, 3 * out.size(), reinterpret_cast<std::uint32_t*>(out.data()));
   return out;
 }
 

@@ -70,6 +70,10 @@ std::vector<glm::vec4> read_animation_values(const Context& ctx, std::uint64_t a
 // SCALAR accessor of unsigned bytes, shorts or ints (indices, joints' indices).
 std::vector<std::uint32_t> read_indices(const Context& ctx, std::uint64_t accessor,
                                         const std::string& use);
+// The same values as triples (3k, 3k + 1, 3k + 2) without the list in between: a TRIANGLES
+// primitive's triangles (a count not a multiple of 3 drops the last one or two).
+std::vector<glm::uvec3> read_index_triples(const Context& ctx, std::uint64_t accessor,
+                                           const std::string& use);
 // The accessor's count and type without reading data (after use()).
 std::size_t accessor_count(const Context& ctx, std::uint64_t accessor, const std::string& use);
 

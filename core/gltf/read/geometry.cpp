@@ -15,6 +15,7 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <span>
 
 namespace irad::gltf {
 
@@ -314,7 +315,7 @@ std::vector<std::uint32_t> read_vertex_indices(const Context& ctx, const json& p
   return read_indices(ctx, *accessor, where + ".indices");
 }
 
-void check_index_range(const Context& ctx, const std::vector<std::uint32_t>& indices, std::size_t n,
+void check_index_range(const Context& ctx, std::span<const std::uint32_t> indices, std::size_t n,
                        const std::string& where) {
   std::atomic<bool> bad{false};
   parallel_chunks(indices.size(), [&](std::size_t first, std::size_t end) {
@@ -518,7 +519,9 @@ void grow(std::vector<T>& v, std::size_t n, std::size_t hint) {
 // Room for `vertices` more vertices and `triangles` more triangles.
 void reserve(Soup& soup, std::size_t vertices, std::size_t triangles, const Attributes& a) {
   const std::size_t n = soup.positions.size() + vertices, h = soup.vertex_hint;
-  grow(soup.positions, n, h);
+  // One position more than the hint: room for the ray tracer's read past the last one
+  // (finish_geometry), so that the positions are not copied to make it.
+  grow(soup.positions, n, h + 1);
   grow(soup.normals, n, h);
   if (!a.uvs.empty() || !soup.uvs.empty()) grow(soup.uvs, n, h);
   if (!a.uvs1.empty() || !soup.uvs1.empty()) grow(soup.uvs1, n, h);
@@ -587,6 +590,19 @@ void use_parts(const Context& ctx, const std::string& pp, const json& attrs, UvS
 std::vector<glm::uvec3> read_triangles(const Context& ctx, const json& p, int mode,
                                        std::optional<std::vector<std::uint32_t>> draco,
                                        std::size_t n, const Soup& soup, const std::string& where) {
+  const auto accessor = index_member(p, "indices");
+  if (!draco && accessor && mode == kTriangles) {
+    // A list of whole triangles is read as triangles: no index list in between.
+    const std::string use = where + ".indices";
+    const std::size_t count = accessor_count(ctx, *accessor, use);
+    if (count % 3 == 0) {
+      check_triangle_limit(ctx, count / 3, soup, where);
+      std::vector<glm::uvec3> triangles = read_index_triples(ctx, *accessor, use);
+      check_index_range(ctx, {reinterpret_cast<const std::uint32_t*>(triangles.data()), count}, n,
+                        use);
+      return triangles;
+    }
+  }
   const std::vector<std::uint32_t> indices =
       draco ? std::move(*draco) : read_vertex_indices(ctx, p, n, where);
   check_index_range(ctx, indices, n, where + ".indices");
