@@ -1,8 +1,10 @@
 // The exact reduction of flat parts (core/mesh/planar_reduction.h): how far it gets on flat,
 // folded, closed and holed grids, and that it changes no surface: areas, the integral of the
 // normal, watertightness, and heights along vertical rays on a height field with flat, sloped
-// and bumpy parts against the original triangles.
+// and bumpy parts against the original triangles. The same of the reduction in spatial chunks
+// (core/mesh/planar_chunks.h), and that its result does not depend on the threads.
 #include "core/mesh/flat_components.h"
+#include "core/mesh/planar_chunks.h"
 #include "core/mesh/planar_reduction.h"
 
 #include <algorithm>
@@ -236,9 +238,8 @@ std::optional<double> height_at(const Mesh& m, const std::vector<glm::uvec3>& tr
 // A height field over [0,1]^2 on a 48^2 grid: flat ground, a plateau with planar ramps (folds
 // at every height), a bumpy hill. Every vertical ray meets the reduced surface where it met the
 // original, at the same height within 2 epsilon.
-TEST(PlanarReduction, HeightFieldKeepsEveryHeight) {
+Mesh height_field(int n) {
   Mesh m;
-  const int n = 48;
   const auto h = [](float x, float y) {
     const float plateau =
         std::clamp(0.3f - 2.0f * std::max(std::abs(x - 0.3f), std::abs(y - 0.3f)), 0.0f, 0.15f);
@@ -256,21 +257,84 @@ TEST(PlanarReduction, HeightFieldKeepsEveryHeight) {
       m.triangles.push_back({a, b, c});
       m.triangles.push_back({a, c, d});
     }
+  return m;
+}
+
+// Every vertical ray over the height field meets `reduced` where it met the original, at the
+// same height within 2 epsilon.
+void expect_same_heights(const Mesh& m, const std::vector<glm::uvec3>& reduced, float epsilon) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.001, 0.999);
+  for (int k = 0; k < 2000; ++k) {
+    const double x = unit(rng), y = unit(rng);
+    const std::optional<double> before = height_at(m, m.triangles, x, y);
+    const std::optional<double> after = height_at(m, reduced, x, y);
+    ASSERT_TRUE(before && after) << x << ", " << y;
+    EXPECT_NEAR(*after, *before, 2.0 * epsilon) << x << ", " << y;
+  }
+}
+
+TEST(PlanarReduction, HeightFieldKeepsEveryHeight) {
+  const Mesh m = height_field(48);
   const float epsilon = 1e-6f;
   const PlanarReduction r = reduce_planar(m.positions, m.triangles, epsilon);
   std::printf("height field: %zu -> %zu triangles, %zu patches\n", m.triangles.size(),
               r.triangles.size(), r.patches);
   EXPECT_LT(r.triangles.size(), m.triangles.size() / 4);
   expect_same_surface(m, r.triangles);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> unit(0.001, 0.999);
-  for (int k = 0; k < 2000; ++k) {
-    const double x = unit(rng), y = unit(rng);
-    const std::optional<double> before = height_at(m, m.triangles, x, y);
-    const std::optional<double> after = height_at(m, r.triangles, x, y);
-    ASSERT_TRUE(before && after) << x << ", " << y;
-    EXPECT_NEAR(*after, *before, 2.0 * epsilon) << x << ", " << y;
+  expect_same_heights(m, r.triangles, epsilon);
+}
+
+TEST(PlanarChunks, CoverEveryTriangleOnceInSmallAscendingChunks) {
+  const Mesh m = height_field(48); // 4608 triangles
+  const auto chunks = spatial_chunks(m.positions, m.triangles, 500, 3);
+  EXPECT_EQ(chunks.size(), 16u); // 4608 halved four times: 288 each
+  std::vector<int> seen(m.triangles.size(), 0);
+  for (const auto& c : chunks) {
+    EXPECT_LE(c.size(), 500u);
+    EXPECT_TRUE(std::is_sorted(c.begin(), c.end()));
+    for (std::uint32_t t : c) ++seen[t];
   }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(seen.size()));
+  EXPECT_EQ(spatial_chunks(m.positions, m.triangles, 500, 1), chunks);
+  EXPECT_EQ(spatial_chunks(m.positions, m.triangles, 5000).size(), 1u);
+}
+
+// In chunks: the same surface and heights, no more than a few triangles more than in one piece
+// along the chunks' borders, the same triangles on one thread as on four; a mesh within one
+// chunk is reduce_planar's.
+TEST(PlanarChunks, HeightFieldKeepsEveryHeight) {
+  const Mesh m = height_field(48);
+  const float epsilon = 1e-6f;
+  const PlanarReduction whole = reduce_planar(m.positions, m.triangles, epsilon);
+  const PlanarReduction r = reduce_planar_chunked(m.positions, m.triangles, epsilon, 500, 4);
+  std::printf("height field in 16 chunks: %zu -> %zu triangles (%zu in one piece)\n",
+              m.triangles.size(), r.triangles.size(), whole.triangles.size());
+  EXPECT_LT(r.triangles.size(), m.triangles.size() / 3);
+  expect_same_surface(m, r.triangles);
+  expect_same_heights(m, r.triangles, epsilon);
+  const PlanarReduction one = reduce_planar_chunked(m.positions, m.triangles, epsilon, 500, 1);
+  EXPECT_EQ(one.triangles, r.triangles);
+  EXPECT_EQ(one.collapses, r.collapses);
+  const PlanarReduction single = reduce_planar_chunked(m.positions, m.triangles, epsilon);
+  EXPECT_EQ(single.triangles, whole.triangles);
+}
+
+TEST(PlanarChunks, ClosedBoxStaysClosed) {
+  Mesh m;
+  const int n = 40; // 19200 triangles
+  m.grid({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, n);
+  m.grid({0, 0, 1}, {1, 0, 0}, {0, 1, 0}, n);
+  m.grid({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, n);
+  m.grid({0, 1, 0}, {0, 0, 1}, {1, 0, 0}, n);
+  m.grid({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, n);
+  m.grid({1, 0, 0}, {0, 1, 0}, {0, 0, 1}, n);
+  ASSERT_TRUE(watertight(m.triangles));
+  const PlanarReduction r = reduce_planar_chunked(m.positions, m.triangles, 1e-6f, 1000, 2);
+  std::printf("box in chunks: %zu -> %zu triangles\n", m.triangles.size(), r.triangles.size());
+  EXPECT_TRUE(watertight(r.triangles));
+  expect_same_surface(m, r.triangles);
+  EXPECT_LT(r.triangles.size(), m.triangles.size() / 5); // 2240 (12 in one piece)
 }
 
 } // namespace IRAD_UNITY_ID

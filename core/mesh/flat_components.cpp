@@ -1,5 +1,6 @@
 #include "core/mesh/flat_components.h"
 
+#include "core/mesh/planar_chunks.h"
 #include "core/mesh/vertex_fans.h"
 
 #include <algorithm>
@@ -102,8 +103,8 @@ PlanarReduction reduce_flat_components(const std::vector<glm::vec3>& positions,
   std::vector<glm::uvec3> reducible, kept;
   for (std::size_t k = 0; k < triangles.size(); ++k)
     (flat[component[k]] ? reducible : kept).push_back(triangles[k]);
-  if (kept.empty()) return reduce_planar(positions, triangles, epsilon);
-  PlanarReduction out = reduce_planar(positions, reducible, epsilon);
+  if (kept.empty()) return reduce_planar_chunked(positions, triangles, epsilon);
+  PlanarReduction out = reduce_planar_chunked(positions, reducible, epsilon);
   out.triangles.insert(out.triangles.end(), kept.begin(), kept.end());
   return out;
 }

@@ -27,9 +27,11 @@ inline constexpr std::uint32_t kFlatShare = 4;
 std::vector<std::uint32_t> triangle_components(const std::vector<glm::uvec3>& triangles,
                                                std::size_t vertices);
 
-// reduce_planar over the components that sampling finds flat parts in; their reduced triangles
-// first, then the other components' triangles unchanged, in their order. patches and collapses
-// are the reduction's. Every component flat: reduce_planar(positions, triangles, epsilon).
+// reduce_planar over the components that sampling finds flat parts in (on all cores, in spatial
+// chunks where they hold more than kPlanarChunkTriangles: core/mesh/planar_chunks.h); their
+// reduced triangles first, then the other components' triangles unchanged, in their order.
+// patches and collapses are the reduction's. Every component flat:
+// reduce_planar_chunked(positions, triangles, epsilon).
 PlanarReduction reduce_flat_components(const std::vector<glm::vec3>& positions,
                                        const std::vector<glm::uvec3>& triangles, float epsilon);
 

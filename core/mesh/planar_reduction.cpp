@@ -150,7 +150,7 @@ struct Reducer {
   }
 
   void grow_patches();
-  void classify();
+  void classify(const std::vector<bool>& locked);
   void straighten_chains();
   bool can_collapse(std::uint32_t v, std::uint32_t u);
   void collapse(std::uint32_t v, std::uint32_t u);
@@ -206,13 +206,13 @@ void Reducer::grow_patches() {
   }
 }
 
-void Reducer::classify() {
+void Reducer::classify(const std::vector<bool>& locked) {
   role.assign(positions.size(), Role::Locked);
   chain.assign(positions.size(), {kNone, kNone});
   std::vector<FanEdge> edges;
   std::vector<std::uint32_t> features;
   for (std::uint32_t v = 0; v < positions.size(); ++v) {
-    if (fan[v].empty()) continue;
+    if (fan[v].empty() || (!locked.empty() && locked[v])) continue;
     fan_edges(v, edges);
     features.clear();
     bool sound = true;
@@ -387,7 +387,8 @@ std::size_t Reducer::run() {
 } // namespace
 
 PlanarReduction reduce_planar(const std::vector<glm::vec3>& positions,
-                              const std::vector<glm::uvec3>& triangles, float epsilon) {
+                              const std::vector<glm::uvec3>& triangles, float epsilon,
+                              const std::vector<bool>& locked) {
   std::vector<bool> alive(triangles.size(), true);
   for (std::uint32_t t = 0; t < triangles.size(); ++t) {
     const glm::uvec3& tri = triangles[t];
@@ -398,7 +399,7 @@ PlanarReduction reduce_planar(const std::vector<glm::vec3>& positions,
   Fans fans(triangles, alive, positions.size());
   Reducer r(positions, epsilon, triangles, std::move(alive), std::move(fans));
   r.grow_patches();
-  r.classify();
+  r.classify(locked);
   r.straighten_chains();
   r.stamp.assign(positions.size(), 0);
   PlanarReduction out;

@@ -32,8 +32,11 @@ struct PlanarReduction {
 };
 
 // `triangles` index `positions` and share vertices where they meet (weld first). Triangles of
-// exactly zero area cover nothing and are dropped. Deterministic.
+// exactly zero area cover nothing and are dropped. Deterministic. The vertices `locked` marks
+// (empty: none) are never removed, so the edges between two of them stay as they are: a part
+// of a mesh reduced with the vertices it shares with the rest locked still fits the rest.
 PlanarReduction reduce_planar(const std::vector<glm::vec3>& positions,
-                              const std::vector<glm::uvec3>& triangles, float epsilon);
+                              const std::vector<glm::uvec3>& triangles, float epsilon,
+                              const std::vector<bool>& locked = {});
 
 } // namespace irad

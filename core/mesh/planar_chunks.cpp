@@ -1,0 +1,157 @@
+#include "core/mesh/planar_chunks.h"
+
+#include "core/util/parallel_rows.h"
+
+#include <algorithm>
+#include <glm/glm.hpp>
+#include <limits>
+#include <numeric>
+
+namespace irad {
+
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+constexpr std::uint32_t kShared = kNone - 1;
+
+struct Range {
+  std::size_t first = 0, end = 0;
+  std::size_t size() const { return end - first; }
+};
+
+// Splits order[r] at its middle: the half with the smaller centroids along the longest axis of
+// their bounds first (ties by index, so the split is the same on every run).
+std::array<Range, 2> split(const std::vector<glm::vec3>& centroids,
+                           std::vector<std::uint32_t>& order, Range r) {
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (std::size_t k = r.first; k < r.end; ++k) {
+    lo = glm::min(lo, centroids[order[k]]);
+    hi = glm::max(hi, centroids[order[k]]);
+  }
+  const glm::vec3 extent = hi - lo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+  const std::size_t middle = r.first + r.size() / 2;
+  const auto begin = order.begin();
+  std::nth_element(begin + std::ptrdiff_t(r.first), begin + std::ptrdiff_t(middle),
+                   begin + std::ptrdiff_t(r.end), [&](std::uint32_t a, std::uint32_t b) {
+                     const float ka = centroids[a][axis], kb = centroids[b][axis];
+                     return ka != kb ? ka < kb : a < b;
+                   });
+  return {Range{r.first, middle}, Range{middle, r.end}};
+}
+
+// Per vertex: the one chunk whose triangles use it, kShared where two or more do, kNone where
+// none does.
+std::vector<std::uint32_t> vertex_owners(const std::vector<glm::uvec3>& triangles,
+                                         const std::vector<std::vector<std::uint32_t>>& chunks,
+                                         std::size_t vertices) {
+  std::vector<std::uint32_t> owner(vertices, kNone);
+  for (std::uint32_t c = 0; c < chunks.size(); ++c)
+    for (std::uint32_t t : chunks[c])
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t& o = owner[triangles[t][k]];
+        o = o == kNone || o == c ? c : kShared;
+      }
+  return owner;
+}
+
+// One chunk reduced over its own vertices (`local`: a worker's map from the mesh's vertices,
+// kNone everywhere, and so again on return), its shared vertices locked; the result in the
+// mesh's vertices.
+PlanarReduction reduce_chunk(const std::vector<glm::vec3>& positions,
+                             const std::vector<glm::uvec3>& triangles,
+                             const std::vector<std::uint32_t>& chunk,
+                             const std::vector<std::uint32_t>& owner, float epsilon,
+                             std::vector<std::uint32_t>& local) {
+  std::vector<std::uint32_t> global;
+  std::vector<glm::vec3> own_positions;
+  std::vector<glm::uvec3> own_triangles;
+  std::vector<bool> locked;
+  own_triangles.reserve(chunk.size());
+  for (std::uint32_t t : chunk) {
+    glm::uvec3 tri;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = triangles[t][k];
+      if (local[v] == kNone) {
+        local[v] = static_cast<std::uint32_t>(global.size());
+        global.push_back(v);
+        own_positions.push_back(positions[v]);
+        locked.push_back(owner[v] == kShared);
+      }
+      tri[k] = local[v];
+    }
+    own_triangles.push_back(tri);
+  }
+  for (std::uint32_t v : global) local[v] = kNone;
+  PlanarReduction r = reduce_planar(own_positions, own_triangles, epsilon, locked);
+  for (glm::uvec3& t : r.triangles) t = {global[t.x], global[t.y], global[t.z]};
+  return r;
+}
+
+} // namespace
+
+std::vector<std::vector<std::uint32_t>> spatial_chunks(const std::vector<glm::vec3>& positions,
+                                                       const std::vector<glm::uvec3>& triangles,
+                                                       std::size_t chunk, unsigned threads) {
+  std::vector<glm::vec3> centroids(triangles.size());
+  parallel_chunks(triangles.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t t = first; t < end; ++t) {
+      const glm::uvec3& v = triangles[t];
+      centroids[t] = (positions[v.x] + positions[v.y] + positions[v.z]) / 3.0f;
+    }
+  });
+  std::vector<std::uint32_t> order(triangles.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::vector<Range> level, done;
+  (triangles.size() > chunk ? level : done).push_back({0, triangles.size()});
+  while (!level.empty()) {
+    std::vector<std::array<Range, 2>> halves(level.size());
+    parallel_tasks(static_cast<int>(level.size()), threads, [&](int k, unsigned) {
+      halves[std::size_t(k)] = split(centroids, order, level[std::size_t(k)]);
+    });
+    level.clear();
+    for (const auto& pair : halves)
+      for (const Range& r : pair) (r.size() > chunk ? level : done).push_back(r);
+  }
+  std::sort(done.begin(), done.end(),
+            [](const Range& a, const Range& b) { return a.first < b.first; });
+  std::vector<std::vector<std::uint32_t>> out(done.size());
+  parallel_tasks(static_cast<int>(done.size()), threads, [&](int k, unsigned) {
+    const Range r = done[std::size_t(k)];
+    std::vector<std::uint32_t>& c = out[std::size_t(k)];
+    c.assign(order.begin() + std::ptrdiff_t(r.first), order.begin() + std::ptrdiff_t(r.end));
+    std::sort(c.begin(), c.end());
+  });
+  return out;
+}
+
+PlanarReduction reduce_planar_chunked(const std::vector<glm::vec3>& positions,
+                                      const std::vector<glm::uvec3>& triangles, float epsilon,
+                                      std::size_t chunk, unsigned threads) {
+  if (triangles.size() <= chunk) return reduce_planar(positions, triangles, epsilon);
+  const std::vector<std::vector<std::uint32_t>> chunks =
+      spatial_chunks(positions, triangles, chunk, threads);
+  const std::vector<std::uint32_t> owner = vertex_owners(triangles, chunks, positions.size());
+  const unsigned workers = worker_count(threads, static_cast<int>(chunks.size()));
+  std::vector<std::vector<std::uint32_t>> local(workers);
+  std::vector<PlanarReduction> parts(chunks.size());
+  parallel_tasks(static_cast<int>(chunks.size()), threads, [&](int k, unsigned worker) {
+    std::vector<std::uint32_t>& map = local[worker];
+    if (map.empty()) map.assign(positions.size(), kNone);
+    parts[std::size_t(k)] =
+        reduce_chunk(positions, triangles, chunks[std::size_t(k)], owner, epsilon, map);
+  });
+  PlanarReduction out;
+  std::size_t total = 0;
+  for (const PlanarReduction& p : parts) total += p.triangles.size();
+  out.triangles.reserve(total);
+  for (PlanarReduction& p : parts) {
+    out.triangles.insert(out.triangles.end(), p.triangles.begin(), p.triangles.end());
+    out.patches += p.patches;
+    out.collapses += p.collapses;
+    p = {};
+  }
+  return out;
+}
+
+} // namespace irad
