@@ -97,5 +97,47 @@ TEST(RayQueries, PacketsOfSegmentsAnswerAsOneAtATime) {
   EXPECT_LT(hit, 1000);
 }
 
+// intersect_leaving: a segment leaving out the triangle it hit finds what lies beyond it (the
+// hit of the same segment restarted past that point), and leaving out a triangle it does not hit
+// changes nothing.
+TEST(RayQueries, LeavingATriangleOutFindsWhatLiesBeyondIt) {
+  const Scene s = room_with_sphere();
+  const RayScene rays(s);
+  Pcg32 rng(12, 3);
+  std::vector<RaySegment> segments;
+  std::vector<std::uint32_t> own, other;
+  std::vector<std::optional<RayHit>> first;
+  while (segments.size() < 1001) {
+    RaySegment g{random_point_in_room(rng), random_direction(rng), 0.0f, 4.0f};
+    const auto hit = rays.intersect(g.origin, g.direction, g.tmin, g.tmax);
+    if (!hit) continue;
+    segments.push_back(g);
+    own.push_back(hit->triangle);
+    other.push_back((hit->triangle + 1) % std::uint32_t(s.triangle_count()));
+    first.push_back(hit);
+  }
+  std::vector<std::optional<RayHit>> beyond(segments.size()), same(segments.size());
+  rays.intersect_leaving(segments.data(), own.data(), segments.size(), beyond.data());
+  rays.intersect_leaving(segments.data(), other.data(), segments.size(), same.data());
+  int compared = 0;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const RaySegment& g = segments[i];
+    if (other[i] != first[i]->triangle && same[i]) { // (a tie may give the other triangle)
+      EXPECT_EQ(same[i]->triangle, first[i]->triangle) << i;
+      EXPECT_EQ(same[i]->t, first[i]->t) << i;
+    }
+    const auto restarted = rays.intersect(g.origin, g.direction, first[i]->t + 1e-4f, g.tmax);
+    if (beyond[i]) {
+      EXPECT_NE(beyond[i]->triangle, own[i]) << i;
+      EXPECT_GE(beyond[i]->t, first[i]->t) << i;
+      if (beyond[i]->t < first[i]->t + 1e-3f) continue; // a neighbour at the same point
+    }
+    ASSERT_EQ(restarted.has_value(), beyond[i].has_value()) << i; // past a wall: nothing
+    if (restarted) EXPECT_EQ(restarted->triangle, beyond[i]->triangle) << i;
+    ++compared;
+  }
+  EXPECT_GT(compared, 900);
+}
+
 } // namespace IRAD_UNITY_ID
 } // namespace irad

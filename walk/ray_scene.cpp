@@ -53,6 +53,27 @@ struct SaltedContext {
   explicit SaltedContext(std::uint64_t s) : salt(s) { rtcInitIntersectContext(&base); }
 };
 
+// The context of intersect_leaving: per lane of the packet, the scene triangle its ray passes
+// through (salted first, so the alpha filter reads its salt as from a SaltedContext).
+struct LeavingContext {
+  SaltedContext salted;
+  const GeometryPart* parts[2] = {nullptr, nullptr};
+  const std::uint32_t* leave = nullptr; // of the packet's first lane
+  explicit LeavingContext(std::uint64_t salt) : salted(salt) {}
+};
+
+// Context filter of intersect_leaving: refuses a lane's hit on its own triangle.
+void leaving_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* context = reinterpret_cast<const LeavingContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned geom = RTCHitN_geomID(args->hit, args->N, i);
+    const GeometryPart* part = context->parts[context->parts[1] && context->parts[1]->id == geom];
+    if (part->scene_triangle(RTCHitN_primID(args->hit, args->N, i)) == context->leave[i])
+      args->valid[i] = 0;
+  }
+}
+
 // Uniform in [0, 1) from the ray (origin and direction bits), the salt and the scene triangle.
 double hit_random(std::uint64_t salt, const float (&ray)[6], std::uint32_t triangle) {
   std::uint64_t h = mix64(salt);
@@ -214,7 +235,8 @@ RayScene::RayScene(const Scene& scene, BvhQuality quality) : impl_(std::make_uni
   // box escaped through its corners (27 of 4000 in HardCases). Fast also keeps the triangles as
   // indices into the vertices (Embree's compact layout) instead of copies: 630 against 718 MiB
   // peak on the sphere box's warm raster.
-  int flags = RTC_SCENE_FLAG_ROBUST;
+  // Context filters: intersect_leaving's (a query without one pays nothing for them).
+  int flags = RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION;
   if (animated) flags |= RTC_SCENE_FLAG_DYNAMIC;
   if (quality == BvhQuality::Fast) flags |= RTC_SCENE_FLAG_COMPACT;
   rtcSetSceneFlags(impl_->scene, static_cast<RTCSceneFlags>(flags));
@@ -271,9 +293,20 @@ std::optional<RayHit> RayScene::intersect(const glm::vec3& origin, const glm::ve
 
 void RayScene::intersect(const RaySegment* segments, std::size_t n, std::optional<RayHit>* hits,
                          std::uint64_t salt) const {
+  intersect_leaving(segments, nullptr, n, hits, salt);
+}
+
+void RayScene::intersect_leaving(const RaySegment* segments, const std::uint32_t* leave,
+                                 std::size_t n, std::optional<RayHit>* hits,
+                                 std::uint64_t salt) const {
   constexpr std::size_t kLanes = 8;
-  SaltedContext context(salt);
+  LeavingContext leaving(salt);
+  leaving.parts[0] = &impl_->fixed;
+  if (impl_->moving.geometry != nullptr) leaving.parts[1] = &impl_->moving;
+  if (leave != nullptr) leaving.salted.base.filter = leaving_filter;
+  RTCIntersectContext& context = leaving.salted.base;
   for (std::size_t first = 0; first < n; first += kLanes) {
+    if (leave != nullptr) leaving.leave = leave + first;
     const std::size_t lanes = std::min(kLanes, n - first);
     RTCRayHit8 packet{};
     alignas(32) int valid[kLanes] = {};
@@ -283,7 +316,7 @@ void RayScene::intersect(const RaySegment* segments, std::size_t n, std::optiona
       packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
       valid[i] = -1;
     }
-    rtcIntersect8(valid, impl_->scene, &context.base, &packet);
+    rtcIntersect8(valid, impl_->scene, &context, &packet);
     for (std::size_t i = 0; i < lanes; ++i) {
       std::optional<RayHit>& hit = hits[first + i];
       hit.reset();

@@ -66,6 +66,10 @@ public:
   // a mesh, in the mesh's order).
   void intersect(const RaySegment* segments, std::size_t n, std::optional<RayHit>* hits,
                  std::uint64_t salt = 0) const;
+  // The same, each segment passing through scene triangle leave[i] as if it were not there (a
+  // ray from a point on a triangle that must not find that triangle itself).
+  void intersect_leaving(const RaySegment* segments, const std::uint32_t* leave, std::size_t n,
+                         std::optional<RayHit>* hits, std::uint64_t salt = 0) const;
   // Whether anything blocks the open segment origin + t * direction, t in (tmin, tmax).
   bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax,
                 std::uint64_t salt = 0) const;

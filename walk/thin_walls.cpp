@@ -29,17 +29,30 @@ bool back_towards(const Scene& scene, const RayHit& hit, const glm::vec3& direct
   return glm::dot(front_normal(scene, hit.triangle), direction) > 0.0f;
 }
 
+// The gap behind triangle t by two rays from its centroid c along -n (h = 2 ray epsilons): from
+// c + h n over [0, 2h], whose first hit is t itself or a face coincident with it (opposite
+// winding: gap 0; Embree returns either at the tie, and the pair's other triangle asks too); then
+// from c over (epsilon, reach] for the faces behind. `reach` when there is none within it.
+float gap_by_two_rays(const Scene& scene, const RayScene& rays, std::uint32_t t, const glm::vec3& c,
+                      const glm::vec3& n, float reach) {
+  const float h = 2.0f * rays.epsilon();
+  const std::optional<RayHit> near = rays.intersect(c + h * n, -n, 0.0f, 2.0f * h);
+  if (near && near->triangle != t && back_towards(scene, *near, -n)) return 0.0f;
+  const std::optional<RayHit> behind = rays.intersect(c, -n, rays.epsilon(), reach);
+  return behind && back_towards(scene, *behind, -n) ? behind->t : reach;
+}
+
 // The least gap behind the triangles [begin, end) to the first back-turned surface, in scene
-// units; `reach` when there is none within it. Two rays from each centroid c along -n: from
-// c + h n (h = 2 ray epsilons) over [0, 2h], whose first hit is t itself or a face coincident
-// with it (opposite winding: gap 0; Embree returns either at the tie, and the pair's other
-// triangle asks too); then from c over (epsilon, reach] for the faces behind. The first ray stops
-// at 2h because only a hit within h of t's plane counts: a short segment visits only the BVH
-// nodes around c. Neighbouring triangles' rays run close and alike, so they go as packets.
+// units; `reach` when there is none within it. One ray from each centroid c along -n, from
+// c + h n over [0, h + reach], passing through the triangle itself: its first hit at distance d
+// is what gap_by_two_rays's two rays find, a back-turned face giving gap 0 within 2h (on t's
+// plane) and d - h beyond; but for a front-turned face within epsilon behind t's plane or in
+// front of it, which the second of those rays would pass, so those triangles ask them.
+// Neighbouring triangles' rays run close and alike, so they go as packets.
 float least_gap_behind(const Scene& scene, const RayScene& rays, std::size_t begin, std::size_t end,
                        float reach) {
   const float h = 2.0f * rays.epsilon();
-  std::vector<RaySegment> near, behind;
+  std::vector<RaySegment> segments;
   std::vector<std::uint32_t> from;
   for (std::size_t t = begin; t < end; ++t) {
     if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
@@ -47,20 +60,24 @@ float least_gap_behind(const Scene& scene, const RayScene& rays, std::size_t beg
     if (n == glm::vec3(0.0f)) continue;
     const glm::uvec3 v = scene.triangles[t];
     const glm::vec3 c = (scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) / 3.0f;
-    near.push_back({c + h * n, -n, 0.0f, 2.0f * h});
-    behind.push_back({c, -n, rays.epsilon(), reach});
+    segments.push_back({c + h * n, -n, 0.0f, h + reach});
     from.push_back(static_cast<std::uint32_t>(t));
   }
-  std::vector<std::optional<RayHit>> hits(near.size());
-  rays.intersect(near.data(), near.size(), hits.data());
-  for (std::size_t i = 0; i < near.size(); ++i)
-    if (hits[i] && hits[i]->triangle != from[i] && back_towards(scene, *hits[i], near[i].direction))
-      return 0.0f;
-  rays.intersect(behind.data(), behind.size(), hits.data());
+  std::vector<std::optional<RayHit>> hits(segments.size());
+  rays.intersect_leaving(segments.data(), from.data(), segments.size(), hits.data());
   float least = reach;
-  for (std::size_t i = 0; i < behind.size(); ++i)
-    if (hits[i] && back_towards(scene, *hits[i], behind[i].direction))
-      least = std::min(least, hits[i]->t);
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const std::optional<RayHit>& hit = hits[i];
+    if (!hit) continue;
+    const RaySegment& s = segments[i];
+    if (back_towards(scene, *hit, s.direction)) {
+      least = std::min(least, hit->t <= 2.0f * h ? 0.0f : hit->t - h);
+    } else if (hit->t < h + rays.epsilon()) {
+      const glm::vec3 c = s.origin + h * s.direction;
+      least = std::min(least, gap_by_two_rays(scene, rays, from[i], c, -s.direction, reach));
+    }
+    if (least <= 0.0f) break;
+  }
   return least;
 }
 
