@@ -124,9 +124,12 @@ TEST(ShadowLod, BoundsHoldTheirMeshesAndErrorsGrowTowardTheRoot) {
 // room for that. On the Cornell box with a sphere, the largest distance of sample points (the
 // centroid and edge midpoints of every simplified triangle) from the node's original triangles
 // is up to 2.7 times the error on the smallest nodes, 0.8 times on the root.
-TEST(ShadowLod, ErrorBoundsTheDistanceFromTheSurface) {
+// Leaves of 256 triangles step a node's levels by halves, of kQuarteringLeaf by quarters (the
+// mean ratio of a level's triangles to the one before it: measured 0.40 and 0.17; the
+// component roots quarter either way).
+void expect_error_bounds_the_distance(std::uint32_t leaf, double ratio_lo, double ratio_hi) {
   const Scene s = sphere_scene(64);
-  const MeshClusters c = build_mesh_clusters(s, {256, true});
+  const MeshClusters c = build_mesh_clusters(s, {leaf, true});
   // The original tessellation's own sag (the LOD adds to it).
   double sag0 = 0.0, worst = 0.0;
   for (std::uint32_t k = 0; k < c.original_indices; k += 3) {
@@ -145,25 +148,37 @@ TEST(ShadowLod, ErrorBoundsTheDistanceFromTheSurface) {
     }
     return sag;
   };
-  double worst_level = 0.0;
-  std::size_t levels = 0;
+  double worst_level = 0.0, ratios = 0.0;
+  std::size_t levels = 0, steps = 0;
   for (const ClusterNode& n : c.nodes) {
     // The coarser levels, their region's border simplified too.
     for (std::uint32_t l = n.levels_first; l < n.levels_first + n.levels_count; ++l, ++levels) {
       const ClusterLevel& level = c.levels[l];
       worst_level = std::max(worst_level, (sag_of(level.first, level.count) - sag0) /
                                               std::max(double(level.error), 1e-9));
+      if (l > n.levels_first) {
+        ratios += double(level.count) / double(c.levels[l - 1].count);
+        ++steps;
+      }
     }
     if (n.leaf() || n.mesh_count == 0) continue;
     worst = std::max(worst,
                      (sag_of(n.mesh_first, n.mesh_count) - sag0) / std::max(double(n.error), 1e-9));
   }
-  std::printf("sphere 64 rings: original sag %.3g, worst (sag - original) / error %.3g, of %zu "
-              "coarser levels %.3g\n",
-              sag0, worst, levels, worst_level);
+  const double ratio = ratios / double(std::max<std::size_t>(steps, 1));
+  std::printf("sphere 64 rings, leaves of %u: original sag %.3g, worst (sag - original) / error "
+              "%.3g, of %zu coarser levels %.3g, level to level %.2f\n",
+              leaf, sag0, worst, levels, worst_level, ratio);
   EXPECT_LT(worst, 2.0);
   EXPECT_GT(levels, 10u);
   EXPECT_LT(worst_level, 2.0);
+  EXPECT_GT(ratio, ratio_lo);
+  EXPECT_LT(ratio, ratio_hi);
+}
+
+TEST(ShadowLod, ErrorBoundsTheDistanceFromTheSurface) {
+  expect_error_bounds_the_distance(256, 0.3, 0.6);
+  expect_error_bounds_the_distance(kQuarteringLeaf, 0.08, 0.28);
 }
 
 // Any cut through the tree (here mixed levels) closes the sphere: every edge used as often in one

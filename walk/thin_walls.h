@@ -21,9 +21,10 @@ namespace irad {
 bool has_zero_wall(const Scene& scene);
 
 // The thinnest wall's thickness as a fraction of the bounding diagonal, looked for up to
-// `up_to` (a fraction too); `up_to` itself when there is none that thin. Two rays per opaque
-// one-sided triangle (from its centroid), on `threads` threads (0: all cores); 0 at once when
-// some opaque triangle is double-sided or a mirror.
+// `up_to` (a fraction too); `up_to` itself when there is none that thin. One ray per opaque
+// one-sided triangle (from just in front of its centroid, through the triangle itself; two where
+// a face lies on its plane), on `threads` threads (0: all cores); 0 at once when some opaque
+// triangle is double-sided or a mirror.
 float thinnest_wall(const Scene& scene, const RayScene& rays, float up_to, unsigned threads = 0);
 
 } // namespace irad

@@ -1,7 +1,7 @@
 #pragma once
 // The thinnest-wall scan (walk/thin_walls.h) kept on disk between runs, beside the shadow
-// hierarchy (core/mesh/cluster_cache.h, the same folder and switch): the scan traces two rays per
-// triangle (0.5 s on the 2.1M-triangle sphere box, 2 cores), reading its answer back a millisecond.
+// hierarchy (core/mesh/cluster_cache.h, the same folder and switch): the scan traces a ray per
+// triangle (0.4 s on the 2.1M-triangle sphere box, 2 cores), reading its answer back a millisecond.
 //
 // A file per scene, FOLDER/<key>.wall, the key a 128-bit XXH3 hash of what the scan reads: the
 // positions and triangles, the bounding diagonal and the ray epsilon, this format's version and

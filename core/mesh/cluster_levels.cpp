@@ -134,24 +134,23 @@ std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root
   return mesh;
 }
 
-// Its mesh halved again and again while that removes at least a tenth of the triangles, its
-// region's border simplified with it (the base meshes keep it exactly). A locked border would
-// keep the original tessellation in every level, so that no level of a node could drop below its
-// border's length in triangles: on a finely tessellated surface seen from near (a VPL on a
-// terrain) the cut would be the borders of the nodes it holds, growing with the tessellation
-// (the 2M-triangle terrain: 41,189 triangles per VPL locked, 13,263 free; docs/performance.md
-// "Shadow maps against scene size"). Free, neighbouring regions drawn at different levels may
-// leave a crack along their shared border, at most the two levels' errors wide, which the cut
-// keeps below half a texel each. Where the first step needs no error (coplanar triangles: flat
-// walls), that level goes on as far as collapses without error go. A first step with error
-// means meshoptimizer, which collapses the cheapest edges first, ran out of exact ones before
-// half: a pass for them alone would cost a simplification of the whole mesh for less (on the
-// 2.1M sphere box: 43 % of the levels' time, and below a tenth of the triangles on 62 % of the
-// nodes). A root of one connected component (`whole`) starts from the shallow cut of its tree
-// instead and quarters it, the component's own open edges locked: a closed surface simplifies as
-// far as its error allows.
+// Its mesh divided by `step` again and again while that removes at least a tenth of the
+// triangles, its region's border simplified with it (the base meshes keep it exactly). A locked
+// border would keep the original tessellation in every level, so that no level of a node could drop
+// below its border's length in triangles: on a finely tessellated surface seen from near (a VPL on
+// a terrain) the cut would be the borders of the nodes it holds, growing with the tessellation (the
+// 2M-triangle terrain: 41,189 triangles per VPL locked, 13,263 free; docs/performance.md "Shadow
+// maps against scene size"). Free, neighbouring regions drawn at different levels may leave a crack
+// along their shared border, at most the two levels' errors wide, which the cut keeps below half a
+// texel each. Where the first step needs no error (coplanar triangles: flat walls), that level goes
+// on as far as collapses without error go. A first step with error means meshoptimizer, which
+// collapses the cheapest edges first, ran out of exact ones before half: a pass for them alone
+// would cost a simplification of the whole mesh for less (on the 2.1M sphere box: 43 % of the
+// levels' time, and below a tenth of the triangles on 62 % of the nodes). A root of one connected
+// component (`whole`) starts from the shallow cut of its tree instead and quarters it, the
+// component's own open edges locked: a closed surface simplifies as far as its error allows.
 NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size_t n, bool whole,
-                          int max_levels, const std::vector<int>& height,
+                          int max_levels, int step, const std::vector<int>& height,
                           std::vector<std::uint32_t>& local_of) {
   const ClusterNode& node = out.nodes[n];
   float error = node.error;
@@ -162,7 +161,7 @@ NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size
   NodeLevels result;
   const Border border = whole ? Border::Locked : Border::Free;
   for (int steps = 0; steps < max_levels && !mesh.empty();) {
-    Simplified s = simplify_union(scene, mesh, local_of, whole ? 4 : 2, 1.0f, border);
+    Simplified s = simplify_union(scene, mesh, local_of, whole ? 4 : step, 1.0f, border);
     if (10 * s.indices.size() > 9 * mesh.size()) break;
     if (result.levels.empty() && s.exact) { // no error yet: as far as none takes it
       Simplified rest = simplify_union(scene, s.indices, local_of, 0, kExact, border);
@@ -238,7 +237,7 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
 
 // Every node's coarser levels, in parallel (the component roots first: the longest tasks), then
 // appended in node order: the same result on any number of threads.
-void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
+void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, int step,
                         const std::vector<bool>& whole, unsigned threads) {
   std::vector<std::size_t> order(out.nodes.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
@@ -248,7 +247,7 @@ void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
   LocalMaps local(scene.positions.size(), worker_count(threads, static_cast<int>(order.size())));
   parallel_tasks(static_cast<int>(order.size()), threads, [&](int k, unsigned worker) {
     const std::size_t n = order[static_cast<std::size_t>(k)];
-    levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, height, local.of(worker));
+    levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, step, height, local.of(worker));
   });
   std::size_t total = out.indices.size(), count = 0; // reserved at once, as above
   for (const NodeLevels& l : levels) {

@@ -14,10 +14,11 @@ namespace irad {
 // children's plus the step's. Appended to out.indices after the original part.
 void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, unsigned threads);
 
-// Every node's coarser levels (at most max_levels), each simplifying its region's border too;
-// whole[n]: node n is the root of one connected component, whose levels simplify the whole
-// component, its open edges locked.
-void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels,
+// Every node's coarser levels (at most max_levels), each simplifying its region's border too,
+// each a `step`-th of the one before (2 or 4); whole[n]: node n is the root of one connected
+// component, whose levels simplify the whole component, its open edges locked, a quarter at a
+// time.
+void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, int step,
                         const std::vector<bool>& whole, unsigned threads);
 
 } // namespace irad

@@ -295,6 +295,10 @@ float distance_to(const Bounds& b, const glm::vec3& p) {
   return glm::length(glm::max(glm::max(b.lo - p, p - b.hi), glm::vec3(0.0f)));
 }
 
+int level_step(std::uint32_t leaf_triangles) {
+  return leaf_triangles >= kQuarteringLeaf ? 4 : 2;
+}
+
 std::uint32_t automatic_leaf_triangles(std::size_t triangles) {
   std::uint32_t leaf = 128;
   while (leaf < 1024 && static_cast<std::size_t>(leaf) * 512 < triangles) leaf *= 2;
@@ -375,7 +379,8 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   if (options.camera) bound_by_edges(scene, b.out, options.threads);
   start = stages.lap("inner", start);
   if (options.simplify && !options.camera)
-    add_coarser_levels(scene, b.out, options.max_levels, whole, options.threads);
+    add_coarser_levels(scene, b.out, options.max_levels, level_step(options.leaf_triangles), whole,
+                       options.threads);
   stages.lap("levels", start);
   return std::move(b.out);
 }
