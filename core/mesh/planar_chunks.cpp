@@ -11,18 +11,19 @@ namespace irad {
 
 namespace {
 
-constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-constexpr std::uint32_t kShared = kNone - 1;
+constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max(); // local maps
+constexpr std::uint32_t kNoChunk = std::numeric_limits<std::uint32_t>::max();  // owners
+constexpr std::uint32_t kSharedVertex = kNoChunk - 1;
 
-struct Range {
+struct ChunkRange {
   std::size_t first = 0, end = 0;
   std::size_t size() const { return end - first; }
 };
 
 // Splits order[r] at its middle: the half with the smaller centroids along the longest axis of
 // their bounds first (ties by index, so the split is the same on every run).
-std::array<Range, 2> split(const std::vector<glm::vec3>& centroids,
-                           std::vector<std::uint32_t>& order, Range r) {
+std::array<ChunkRange, 2> split_at_median(const std::vector<glm::vec3>& centroids,
+                                          std::vector<std::uint32_t>& order, ChunkRange r) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (std::size_t k = r.first; k < r.end; ++k) {
     lo = glm::min(lo, centroids[order[k]]);
@@ -37,26 +38,26 @@ std::array<Range, 2> split(const std::vector<glm::vec3>& centroids,
                      const float ka = centroids[a][axis], kb = centroids[b][axis];
                      return ka != kb ? ka < kb : a < b;
                    });
-  return {Range{r.first, middle}, Range{middle, r.end}};
+  return {ChunkRange{r.first, middle}, ChunkRange{middle, r.end}};
 }
 
-// Per vertex: the one chunk whose triangles use it, kShared where two or more do, kNone where
-// none does.
+// Per vertex: the one chunk whose triangles use it, kSharedVertex where two or more do, kNoChunk
+// where none does.
 std::vector<std::uint32_t> vertex_owners(const std::vector<glm::uvec3>& triangles,
                                          const std::vector<std::vector<std::uint32_t>>& chunks,
                                          std::size_t vertices) {
-  std::vector<std::uint32_t> owner(vertices, kNone);
+  std::vector<std::uint32_t> owner(vertices, kNoChunk);
   for (std::uint32_t c = 0; c < chunks.size(); ++c)
     for (std::uint32_t t : chunks[c])
       for (int k = 0; k < 3; ++k) {
         std::uint32_t& o = owner[triangles[t][k]];
-        o = o == kNone || o == c ? c : kShared;
+        o = o == kNoChunk || o == c ? c : kSharedVertex;
       }
   return owner;
 }
 
 // One chunk reduced over its own vertices (`local`: a worker's map from the mesh's vertices,
-// kNone everywhere, and so again on return), its shared vertices locked; the result in the
+// kNoVertex everywhere, and so again on return), its shared vertices locked; the result in the
 // mesh's vertices.
 PlanarReduction reduce_chunk(const std::vector<glm::vec3>& positions,
                              const std::vector<glm::uvec3>& triangles,
@@ -72,17 +73,17 @@ PlanarReduction reduce_chunk(const std::vector<glm::vec3>& positions,
     glm::uvec3 tri;
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = triangles[t][k];
-      if (local[v] == kNone) {
+      if (local[v] == kNoVertex) {
         local[v] = static_cast<std::uint32_t>(global.size());
         global.push_back(v);
         own_positions.push_back(positions[v]);
-        locked.push_back(owner[v] == kShared);
+        locked.push_back(owner[v] == kSharedVertex);
       }
       tri[k] = local[v];
     }
     own_triangles.push_back(tri);
   }
-  for (std::uint32_t v : global) local[v] = kNone;
+  for (std::uint32_t v : global) local[v] = kNoVertex;
   PlanarReduction r = reduce_planar(own_positions, own_triangles, epsilon, locked);
   for (glm::uvec3& t : r.triangles) t = {global[t.x], global[t.y], global[t.z]};
   return r;
@@ -102,22 +103,22 @@ std::vector<std::vector<std::uint32_t>> spatial_chunks(const std::vector<glm::ve
   });
   std::vector<std::uint32_t> order(triangles.size());
   std::iota(order.begin(), order.end(), 0u);
-  std::vector<Range> level, done;
+  std::vector<ChunkRange> level, done;
   (triangles.size() > chunk ? level : done).push_back({0, triangles.size()});
   while (!level.empty()) {
-    std::vector<std::array<Range, 2>> halves(level.size());
+    std::vector<std::array<ChunkRange, 2>> halves(level.size());
     parallel_tasks(static_cast<int>(level.size()), threads, [&](int k, unsigned) {
-      halves[std::size_t(k)] = split(centroids, order, level[std::size_t(k)]);
+      halves[std::size_t(k)] = split_at_median(centroids, order, level[std::size_t(k)]);
     });
     level.clear();
     for (const auto& pair : halves)
-      for (const Range& r : pair) (r.size() > chunk ? level : done).push_back(r);
+      for (const ChunkRange& r : pair) (r.size() > chunk ? level : done).push_back(r);
   }
   std::sort(done.begin(), done.end(),
-            [](const Range& a, const Range& b) { return a.first < b.first; });
+            [](const ChunkRange& a, const ChunkRange& b) { return a.first < b.first; });
   std::vector<std::vector<std::uint32_t>> out(done.size());
   parallel_tasks(static_cast<int>(done.size()), threads, [&](int k, unsigned) {
-    const Range r = done[std::size_t(k)];
+    const ChunkRange r = done[std::size_t(k)];
     std::vector<std::uint32_t>& c = out[std::size_t(k)];
     c.assign(order.begin() + std::ptrdiff_t(r.first), order.begin() + std::ptrdiff_t(r.end));
     std::sort(c.begin(), c.end());
@@ -137,7 +138,7 @@ PlanarReduction reduce_planar_chunked(const std::vector<glm::vec3>& positions,
   std::vector<PlanarReduction> parts(chunks.size());
   parallel_tasks(static_cast<int>(chunks.size()), threads, [&](int k, unsigned worker) {
     std::vector<std::uint32_t>& map = local[worker];
-    if (map.empty()) map.assign(positions.size(), kNone);
+    if (map.empty()) map.assign(positions.size(), kNoVertex);
     parts[std::size_t(k)] =
         reduce_chunk(positions, triangles, chunks[std::size_t(k)], owner, epsilon, map);
   });
