@@ -508,9 +508,7 @@ void run_rounds(Stages& s, const RayScene& rays) {
     s.r.passes += rm.passes;
     s.r.shadow_triangles += rm.shadow_triangles;
     s.r.shadow_helpers = std::max(s.r.shadow_helpers, rm.shadow_helpers);
-    s.r.gpu_bytes.scene = std::max(s.r.gpu_bytes.scene, rm.gpu_bytes.scene);
-    s.r.gpu_bytes.shadow_pages = std::max(s.r.gpu_bytes.shadow_pages, rm.gpu_bytes.shadow_pages);
-    s.r.gpu_bytes.camera_pages = std::max(s.r.gpu_bytes.camera_pages, rm.gpu_bytes.camera_pages);
+    s.r.gpu_bytes = rm.gpu_bytes; // one renderer for all rounds: its pages only grow
     s.r.single_passes += rm.single_passes;
     s.r.edge_pixels = std::max(s.r.edge_pixels, rm.edge_pixels);
     s.r.unsure_pixels = std::max(s.r.unsure_pixels, rm.unsure_pixels);

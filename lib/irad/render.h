@@ -147,7 +147,7 @@ struct RenderResult {
   std::string camera_hierarchy_cache = "off", camera_hierarchy_cache_reason;
   std::size_t camera_triangles = 0;
   // The raster's bytes on the GPU (RasterTimings): the scene, the shadow and the camera
-  // hierarchies' pages drawn (the largest of the rounds).
+  // hierarchies' pages drawn (by the end of the last round).
   struct GpuBytes {
     std::size_t scene = 0, shadow_pages = 0, camera_pages = 0;
   } gpu_bytes;
