@@ -88,11 +88,16 @@ void split_by_material(std::vector<std::uint32_t>& group,
         std::lower_bound(distinct.begin(), distinct.end(), keys[t]) - distinct.begin());
 }
 
+// One triangle the tree is built over: its welded vertices and its centroid, side by side so
+// that a split streams through its range instead of gathering from scattered triangles.
+struct TreeTriangle {
+  glm::uvec3 vertices;
+  glm::vec3 centroid;
+};
+
 // What the tree is built over, shared by the Builders of its subtrees.
 struct TreeInput {
-  std::vector<glm::uvec3> triangles; // welded, in the order `order` permutes
-  std::vector<glm::vec3> centroids;
-  std::vector<std::uint32_t> order; // each Builder permutes its own range of it
+  std::vector<TreeTriangle> items; // each Builder permutes its own range of it
   float leaf_error = 0.0f; // of the planar reduction the leaves hold (0: the scene's triangles)
 };
 
@@ -102,7 +107,7 @@ struct Builder {
   TreeInput& in;
   MeshClusters out; // nodes and indices of its subtrees, numbered from 0
 
-  // Splits in.order[begin, end) in two (returns where the second part starts): the binned
+  // Splits in.items[begin, end) in two (returns where the second part starts): the binned
   // surface-area heuristic over the centroids (kBins bins per axis; cost = area(box) x count of
   // each side), so that a few large triangles (a room's walls) get regions of their own and do not
   // stretch the boxes of the small ones, which would keep these at full detail (the distance to
@@ -110,11 +115,11 @@ struct Builder {
   // centroids do not spread.
   std::size_t split(std::size_t begin, std::size_t end) {
     Bounds centre; // of the centroids
-    for (std::size_t k = begin; k < end; ++k) centre.extend(in.centroids[in.order[k]]);
+    for (std::size_t k = begin; k < end; ++k) centre.extend(in.items[k].centroid);
     constexpr int kBins = 16;
     const glm::vec3 extent = centre.hi - centre.lo;
-    const auto bin_of = [&](std::uint32_t t, int axis) {
-      const float u = (in.centroids[t][axis] - centre.lo[axis]) / extent[axis];
+    const auto bin_of = [&](const TreeTriangle& t, int axis) {
+      const float u = (t.centroid[axis] - centre.lo[axis]) / extent[axis];
       return std::clamp(static_cast<int>(u * kBins), 0, kBins - 1);
     };
     const auto area = [](const Bounds& b) {
@@ -126,9 +131,9 @@ struct Builder {
     Bounds bins[3][kBins];
     std::size_t bin_counts[3][kBins] = {};
     for (std::size_t k = begin; k < end; ++k) {
-      const std::uint32_t t = in.order[k];
+      const TreeTriangle& t = in.items[k];
       Bounds box;
-      for (int c = 0; c < 3; ++c) box.extend(scene.positions[in.triangles[t][c]]);
+      for (int c = 0; c < 3; ++c) box.extend(scene.positions[t.vertices[c]]);
       for (int axis = 0; axis < 3; ++axis) {
         if (!(extent[axis] > 0.0f)) continue;
         const int b = bin_of(t, axis);
@@ -171,25 +176,25 @@ struct Builder {
         }
       }
     }
-    const auto first = in.order.begin() + static_cast<std::ptrdiff_t>(begin);
-    const auto last = in.order.begin() + static_cast<std::ptrdiff_t>(end);
+    const auto first = in.items.begin() + static_cast<std::ptrdiff_t>(begin);
+    const auto last = in.items.begin() + static_cast<std::ptrdiff_t>(end);
     if (best_axis >= 0)
       return static_cast<std::size_t>(
           std::partition(first, last,
-                         [&](std::uint32_t t) { return bin_of(t, best_axis) <= best_bin; }) -
-          in.order.begin());
+                         [&](const TreeTriangle& t) { return bin_of(t, best_axis) <= best_bin; }) -
+          in.items.begin());
     const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
                      : extent.y >= extent.z                       ? 1
                                                                   : 2;
     const std::size_t mid = begin + (end - begin) / 2;
-    std::nth_element(first, in.order.begin() + static_cast<std::ptrdiff_t>(mid), last,
-                     [&](std::uint32_t a, std::uint32_t b) {
-                       return in.centroids[a][axis] < in.centroids[b][axis];
+    std::nth_element(first, in.items.begin() + static_cast<std::ptrdiff_t>(mid), last,
+                     [&](const TreeTriangle& a, const TreeTriangle& b) {
+                       return a.centroid[axis] < b.centroid[axis];
                      });
     return mid;
   }
 
-  // Node over in.order[begin, end): a leaf writes its triangles to the original part, in
+  // Node over in.items[begin, end): a leaf writes its triangles to the original part, in
   // depth-first order, so every subtree's leaves are contiguous there.
   std::int32_t build(std::size_t begin, std::size_t end) {
     const auto id = static_cast<std::int32_t>(out.nodes.size());
@@ -199,7 +204,7 @@ struct Builder {
       node.error = in.leaf_error;
       node.leaf_first = node.mesh_first = static_cast<std::uint32_t>(out.indices.size());
       for (std::size_t k = begin; k < end; ++k) {
-        const glm::uvec3& t = in.triangles[in.order[k]];
+        const glm::uvec3& t = in.items[k].vertices;
         for (int c = 0; c < 3; ++c) {
           out.indices.push_back(t[c]);
           node.bounds.extend(scene.positions[t[c]]);
@@ -266,6 +271,19 @@ struct Builder {
   }
 };
 
+// The tree's triangles in `order`, each with its centroid, on all cores.
+std::vector<TreeTriangle> tree_items(const Scene& scene, const std::vector<glm::uvec3>& triangles,
+                                     const std::vector<std::uint32_t>& order) {
+  std::vector<TreeTriangle> items(order.size());
+  parallel_chunks(order.size(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t k = first; k < end; ++k) {
+      const glm::uvec3& v = triangles[order[k]];
+      items[k] = {v, (scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) / 3.0f};
+    }
+  });
+  return items;
+}
+
 // The camera's bound on what a node's mesh changes: the larger of its distance from the surface
 // and its longest edge, across which it interpolates the vertices' normals and texture
 // coordinates (a mesh whose edges stay below a pixel shades within the pixel it covers).
@@ -315,37 +333,31 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     options.leaf_triangles = automatic_leaf_triangles(scene.triangle_count());
   TreeInput in;
   Builder b{scene, options, in, {}};
+  std::vector<glm::uvec3> triangles; // welded
   const std::vector<std::uint32_t> welded =
       options.camera ? weld_vertices(scene) : weld_positions(scene);
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
     if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
     const glm::uvec3 v = scene.triangles[t];
     b.out.triangles.push_back(static_cast<std::uint32_t>(t));
-    in.triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
+    triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
   }
   start = stages.lap("weld", start);
   if (options.simplify && !options.camera) {
     // Flat parts first reduced exactly (to 2 kPlanar of the surface): the regions' locked
     // borders then cost what their outlines need, not the tessellation's resolution.
     const float epsilon = kPlanar * scene.bounds.diagonal();
-    PlanarReduction reduced = reduce_flat_components(scene.positions, in.triangles, epsilon);
-    if (reduced.collapses > 0 || reduced.triangles.size() < in.triangles.size()) {
-      in.triangles = std::move(reduced.triangles);
+    PlanarReduction reduced = reduce_flat_components(scene.positions, triangles, epsilon);
+    if (reduced.collapses > 0 || reduced.triangles.size() < triangles.size()) {
+      triangles = std::move(reduced.triangles);
       in.leaf_error = 2.0f * epsilon;
     }
   }
   start = stages.lap("planar", start);
-  in.centroids.resize(in.triangles.size());
-  parallel_chunks(in.triangles.size(), [&](std::size_t first, std::size_t end) {
-    for (std::size_t t = first; t < end; ++t) {
-      const glm::uvec3& v = in.triangles[t];
-      in.centroids[t] = (scene.positions[v.x] + scene.positions[v.y] + scene.positions[v.z]) / 3.0f;
-    }
-  });
-  if (in.triangles.empty()) return std::move(b.out);
+  if (triangles.empty()) return std::move(b.out);
   // One tree per connected component of at least a leaf's triangles, one for all the others.
   std::vector<std::uint32_t> group =
-      component_groups(in.triangles, scene.positions.size(), options.leaf_triangles);
+      component_groups(triangles, scene.positions.size(), options.leaf_triangles);
   std::vector<std::uint32_t> material; // the camera's: of each triangle of the tree
   if (options.camera) {
     material.resize(b.out.triangles.size());
@@ -353,24 +365,26 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
       material[t] = scene.triangle_material[b.out.triangles[t]];
     split_by_material(group, material);
   }
-  in.order.resize(in.triangles.size());
-  std::iota(in.order.begin(), in.order.end(), 0u);
+  std::vector<std::uint32_t> order(triangles.size());
+  std::iota(order.begin(), order.end(), 0u);
   const auto by_group = [&](std::uint32_t x, std::uint32_t y) { return group[x] < group[y]; };
-  if (!std::is_sorted(in.order.begin(), in.order.end(), by_group)) // (one component: it is)
-    std::stable_sort(in.order.begin(), in.order.end(), by_group);
-  b.out.indices.reserve(3 * in.triangles.size());
+  if (!std::is_sorted(order.begin(), order.end(), by_group)) // (one component: it is)
+    std::stable_sort(order.begin(), order.end(), by_group);
+  in.items = tree_items(scene, triangles, order);
+  triangles = {};
+  b.out.indices.reserve(3 * in.items.size());
   std::vector<bool> whole;
   // The top levels split on one thread, the subtrees below them on as many as the build has.
   int depth = 0;
   while ((1u << depth) < worker_count(options.threads, 1 << 30)) ++depth;
-  for (std::size_t begin = 0; begin < in.order.size();) {
+  for (std::size_t begin = 0; begin < order.size();) {
     std::size_t end = begin + 1;
-    while (end < in.order.size() && group[in.order[end]] == group[in.order[begin]]) ++end;
+    while (end < order.size() && group[order[end]] == group[order[begin]]) ++end;
     const std::int32_t root = b.build_parallel(begin, end, depth);
     b.out.roots.push_back(root);
-    if (options.camera) b.out.root_materials.push_back(material[in.order[begin]]);
+    if (options.camera) b.out.root_materials.push_back(material[order[begin]]);
     whole.resize(b.out.nodes.size(), false);
-    whole[static_cast<std::size_t>(root)] = group[in.order[begin]] != kRestGroup;
+    whole[static_cast<std::size_t>(root)] = group[order[begin]] != kRestGroup;
     begin = end;
   }
   b.out.original_indices = b.out.indices.size();
