@@ -3,7 +3,7 @@
 // vertex order all narrow; scattered vertices in one wide chunk. On the GPU
 // (raster/scene/gpu_scene.h) the G-buffer of a height field is the same to the bit whichever way
 // its vertices are numbered (narrow chunks at other bases, wide chunks) and however its
-// materials split its triangles into runs.
+// materials split its triangles into runs, and a chunk drawn in pieces covers all of it.
 #include "raster/context/gl_context.h"
 #include "raster/scene/index_chunks.h"
 #include "tests/height_field.h"
@@ -179,6 +179,44 @@ TEST(IndexChunks, TheGBufferIsTheSameWhicheverChunksDrawIt) {
     for (std::size_t i = 0; i < got.position.size(); ++i)
       differ += got.position[i] != expected.position[i] || got.normal[i] != expected.normal[i];
     EXPECT_EQ(differ, 0u);
+  }
+}
+
+// A chunk of more than GpuScene::kPieceTriangles is drawn in pieces: every piece, from 2-byte
+// (vertices in grid order: two narrow chunks) and from 4-byte (90,601 vertices shuffled: one
+// wide chunk) indices, lands where it should. The terrain fills the whole frame seen from
+// above, so a piece left out or drawn from the wrong offset leaves pixels empty or on the wrong
+// height (2-byte offsets for the wide chunk: 1792 of 4096 pixels empty).
+TEST(IndexChunks, PiecesOfALargeChunkCoverItAll) {
+  Scene s;
+  add_terrain(s, 300, add_material(s, glm::vec3(0.6f))); // 180,000 triangles: 11 pieces
+  s.cameras.push_back(look_at({0.0f, 3.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0, 0, -1}, 0.45f));
+  finish(s);
+  ASSERT_GT(s.triangles.size(), 4u * gl::GpuScene::kPieceTriangles);
+  const View view = make_view(s.cameras[0], s.bounds, 64, 64);
+  std::vector<std::uint32_t> shuffled(s.positions.size());
+  std::iota(shuffled.begin(), shuffled.end(), 0u);
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(5));
+
+  const auto context = gl::create_osmesa_context();
+  const gl::CurrentScope current(*context);
+  const GladGLContext& api = context->api();
+  for (const Scene& v : {s, renumbered(s, shuffled)}) {
+    const gl::GpuScene gpu(api, v);
+    const GBufferPixels got = draw_gbuffer(api, gpu, view, nullptr);
+    std::size_t empty = 0, off = 0;
+    for (const glm::vec4& p : got.position) {
+      empty += p.w == 0.0f;
+      // The flat triangles lie within 1e-3 of the bumps (their largest sag across a quad of
+      // 2 / 300: 0.01 x (41 x 2 / 300)^2 / 8 = 9.3e-5, and the two coarser octaves' less).
+      float y = 0.0f;
+      for (const auto& o : {glm::vec3(2.1f, 1.7f, 0.12f), glm::vec3(5.3f, 6.1f, 0.04f),
+                            glm::vec3(41.0f, 37.0f, 0.01f)})
+        y += o.z * std::sin(o.x * p.x) * std::cos(o.y * p.z);
+      off += p.w != 0.0f && std::abs(p.y - y) > 1e-3f;
+    }
+    EXPECT_EQ(empty, 0u);
+    EXPECT_EQ(off, 0u);
   }
 }
 

@@ -261,12 +261,25 @@ void GpuScene::draw_covered(GLsizei instances,
 }
 
 void GpuScene::draw_chunk(const Chunk& c, GLsizei instances) const {
-  const auto* first = reinterpret_cast<const void*>(c.offset);
-  if (instances == 1)
-    api_->DrawElementsBaseVertex(GL_TRIANGLES, c.count, c.type, first, c.base_vertex);
-  else
-    api_->DrawElementsInstancedBaseVertex(GL_TRIANGLES, c.count, c.type, first, instances,
+  if (instances > 1) {
+    api_->DrawElementsInstancedBaseVertex(GL_TRIANGLES, c.count, c.type,
+                                          reinterpret_cast<const void*>(c.offset), instances,
                                           c.base_vertex);
+    return;
+  }
+  constexpr GLsizei kPieceIndices = 3 * kPieceTriangles;
+  if (c.count <= kPieceIndices) {
+    api_->DrawElementsBaseVertex(GL_TRIANGLES, c.count, c.type,
+                                 reinterpret_cast<const void*>(c.offset), c.base_vertex);
+    return;
+  }
+  const std::size_t index_bytes = c.type == GL_UNSIGNED_SHORT ? 2 : 4;
+  for (GLsizei k = 0; k < c.count; k += kPieceIndices) {
+    const auto offset = c.offset + index_bytes * static_cast<std::size_t>(k);
+    api_->DrawElementsBaseVertex(GL_TRIANGLES, std::min(kPieceIndices, c.count - k), c.type,
+                                 reinterpret_cast<const void*>(offset), c.base_vertex);
+    api_->Flush();
+  }
 }
 
 void GpuScene::draw_range(const Range& r, GLsizei instances) const {
