@@ -519,12 +519,12 @@ void run_rounds(Stages& s, const RayScene& rays) {
   s.r.rounds = done;
 }
 
-// The raster's shadow hierarchy started on its own thread (core/mesh/background_clusters.h),
-// where the batched passes will draw from it: raster, batches, no jitter, a shadow level of
-// detail, a static scene. On the 2.1M sphere box (256x256, cold cache) its one-core stages then
-// overlap the ray-tracing structure, the walk and the GL set-up (docs/performance.md "Big
-// scenes"). nullptr elsewhere: the raster builds it where it needs it, if it does. A render that
-// ends early (an error, a cancellation) waits for the build to end.
+// The raster's shadow hierarchy started on its own thread
+// (core/mesh/hierarchy/background_clusters.h), where the batched passes will draw from it: raster,
+// batches, no jitter, a shadow level of detail, a static scene. On the 2.1M sphere box (256x256,
+// cold cache) its one-core stages then overlap the ray-tracing structure, the walk and the GL
+// set-up (docs/performance.md "Big scenes"). nullptr elsewhere: the raster builds it where it needs
+// it, if it does. A render that ends early (an error, a cancellation) waits for the build to end.
 std::shared_ptr<BackgroundClusters> early_hierarchy(const Scene& scene, const RenderOptions& o) {
   const RasterOptions& raster = o.raster;
   if (o.estimator != Estimator::Raster || raster.batch <= 1 || raster.jitter ||

@@ -5,9 +5,9 @@
 #include "core/camera/view.h"
 #include "core/image/image.h"
 #include "core/lights/vpl.h"
-#include "core/mesh/background_clusters.h"
-#include "core/mesh/cluster_cache.h"
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/background_clusters.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/scene/scene.h"
 #include "core/util/stage_times.h"
 #include "raster/context/gl_backend.h"
@@ -51,10 +51,10 @@ struct RasterOptions {
   // one shading pass per VPL (the reference, the same image). 16 is the fastest of 8..64 at
   // 512x512 (docs/performance.md). Every kind of VPL and every mode takes them.
   int batch = 16;
-  // How the batched shadow atlas draws the opaque triangles (core/mesh/mesh_clusters.h): mode Off
-  // every triangle into every face, Cull only the clusters a face sees (the same image), On culled
-  // and simplified below `texels` (0.5) shadow texels at the VPL's distance (docs/performance.md).
-  // The per-VPL passes (batch 1) always draw everything.
+  // How the batched shadow atlas draws the opaque triangles (core/mesh/hierarchy/mesh_clusters.h):
+  // mode Off every triangle into every face, Cull only the clusters a face sees (the same image),
+  // On culled and simplified below `texels` (0.5) shadow texels at the VPL's distance
+  // (docs/performance.md). The per-VPL passes (batch 1) always draw everything.
   ShadowLodOptions shadow_lod{};
   // Threads that draw the batched passes' shadow atlases in GL contexts of their own while this
   // one shades (raster/shadow/shadow_helpers.h), once a batch draws at least 8000 triangles per
@@ -62,8 +62,8 @@ struct RasterOptions {
   // their vertex work) with 2 or more cores, else 0; 0: this context draws them. The image is the
   // same either way.
   int shadow_helpers = -1;
-  // Where the shadow hierarchy is kept between runs (core/mesh/cluster_cache.h): the user's cache
-  // folder by default; empty: built every time, never written.
+  // Where the shadow hierarchy is kept between runs (core/mesh/hierarchy/cluster_cache.h): the
+  // user's cache folder by default; empty: built every time, never written.
   std::filesystem::path hierarchy_cache = default_cache_folder();
   // The shadow hierarchy's build, where the caller started it before this renderer (irad::render
   // does, beside its ray-tracing structure and walk): taken when it builds what the batched
@@ -107,7 +107,7 @@ int shadow_resolution_for(int requested, int width, int height);
 // Whether images of `scene` draw through the camera hierarchy (RasterOptions::camera_lod On):
 // never for an animated scene or with jitter (its passes draw at other offsets).
 bool camera_lod_wanted(const Scene& scene, const RasterOptions& options);
-// The options of the camera hierarchy's build (core/mesh/mesh_clusters.h).
+// The options of the camera hierarchy's build (core/mesh/hierarchy/mesh_clusters.h).
 ClusterOptions camera_cluster_options();
 
 // Whether faces of `resolution` texels need the occluder planes in a scene whose thinnest wall

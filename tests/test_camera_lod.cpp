@@ -1,13 +1,13 @@
-// The camera's cluster hierarchy (core/mesh/mesh_clusters.h, ClusterOptions::camera) and the
-// G-buffer drawn through it (raster/passes/camera_lod.h): one material per tree, every opaque
+// The camera's cluster hierarchy (core/mesh/hierarchy/mesh_clusters.h, ClusterOptions::camera) and
+// the G-buffer drawn through it (raster/passes/camera_lod.h): one material per tree, every opaque
 // triangle once, seams of normals kept; on a finely tessellated height field seen at a grazing
 // angle, no pixel loses its surface or turns its normal away from the camera, the cut draws a
 // fraction of the triangles, and the rendered image stays close to the one drawn from every
 // triangle.
 #include "core/camera/view.h"
 #include "core/image/image_metrics.h"
-#include "core/mesh/cluster_cache.h"
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
 #include "raster/context/gl_context.h"

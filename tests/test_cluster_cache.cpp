@@ -1,12 +1,12 @@
-// The shadow hierarchy's cache (core/mesh/cluster_cache.h): a hit gives the hierarchy the build
-// gives; a file that is truncated, bit-flipped, of another scene or another version is never
+// The shadow hierarchy's cache (core/mesh/hierarchy/cluster_cache.h): a hit gives the hierarchy the
+// build gives; a file that is truncated, bit-flipped, of another scene or another version is never
 // used but rebuilt and written over; a folder that cannot be written costs only the write; the
 // renderer draws the same image from a hit as from a build, and from a build on a thread of its own
-// (core/mesh/background_clusters.h) as from one in place.
+// (core/mesh/hierarchy/background_clusters.h) as from one in place.
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
-#include "core/mesh/background_clusters.h"
-#include "core/mesh/cluster_cache.h"
+#include "core/mesh/hierarchy/background_clusters.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
 #include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
 #include "core/util/error.h"

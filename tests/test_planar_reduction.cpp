@@ -1,11 +1,11 @@
-// The exact reduction of flat parts (core/mesh/planar_reduction.h): how far it gets on flat,
+// The exact reduction of flat parts (core/mesh/planar/planar_reduction.h): how far it gets on flat,
 // folded, closed and holed grids, and that it changes no surface: areas, the integral of the
 // normal, watertightness, and heights along vertical rays on a height field with flat, sloped
 // and bumpy parts against the original triangles. The same of the reduction in spatial chunks
-// (core/mesh/planar_chunks.h), and that its result does not depend on the threads.
-#include "core/mesh/flat_components.h"
-#include "core/mesh/planar_chunks.h"
-#include "core/mesh/planar_reduction.h"
+// (core/mesh/planar/planar_chunks.h), and that its result does not depend on the threads.
+#include "core/mesh/planar/flat_components.h"
+#include "core/mesh/planar/planar_chunks.h"
+#include "core/mesh/planar/planar_reduction.h"
 
 #include <algorithm>
 #include <glm/glm.hpp>
@@ -171,7 +171,7 @@ TEST(PlanarReduction, CurvedSurfaceUnchanged) {
   EXPECT_EQ(r.triangles.size(), m.triangles.size());
 }
 
-// reduce_flat_components (core/mesh/flat_components.h): a flat grid, a curved one and a flat
+// reduce_flat_components (core/mesh/planar/flat_components.h): a flat grid, a curved one and a flat
 // grid with a curved cap (one component) side by side. The reduction runs on the flat grid and
 // on the capped one, which sampling finds flat, exactly as alone; the curved grid comes out
 // unchanged after them.

@@ -1,12 +1,12 @@
-// The shadow passes' cluster hierarchy (core/mesh/mesh_clusters.h) and its use by the batched
-// shadow atlas (raster/shadow/shadow_lod.h, RasterOptions::shadow_lod): the tree's invariants on
-// the CPU, culling that changes no pixel, and the level of detail against the full meshes. With
-// IRAD_TEST_IMAGES=DIR the GL tests write their images to DIR.
+// The shadow passes' cluster hierarchy (core/mesh/hierarchy/mesh_clusters.h) and its use by the
+// batched shadow atlas (raster/shadow/shadow_lod.h, RasterOptions::shadow_lod): the tree's
+// invariants on the CPU, culling that changes no pixel, and the level of detail against the full
+// meshes. With IRAD_TEST_IMAGES=DIR the GL tests write their images to DIR.
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "core/image/image_metrics.h"
-#include "core/mesh/cluster_cache.h"
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
 #include "raster/context/gl_context.h"

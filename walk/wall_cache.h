@@ -1,7 +1,8 @@
 #pragma once
 // The thinnest-wall scan (walk/thin_walls.h) kept on disk between runs, beside the shadow
-// hierarchy (core/mesh/cluster_cache.h, the same folder and switch): the scan traces a ray per
-// triangle (0.4 s on the 2.1M-triangle sphere box, 2 cores), reading its answer back a millisecond.
+// hierarchy (core/mesh/hierarchy/cluster_cache.h, the same folder and switch): the scan traces a
+// ray per triangle (0.4 s on the 2.1M-triangle sphere box, 2 cores), reading its answer back a
+// millisecond.
 //
 // A file per scene, FOLDER/<key>.wall, the key a 128-bit XXH3 hash of what the scan reads: the
 // positions and triangles, the bounding diagonal and the ray epsilon, this format's version and
@@ -12,7 +13,7 @@
 //
 // Scenes with Mask or Blend materials scan every run: their rays pass through textures' alpha,
 // which the key does not hold.
-#include "core/mesh/cluster_cache.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
 #include "walk/ray_scene.h"
 
 #include <filesystem>

@@ -5,9 +5,9 @@
 //   sphere: the Cornell box (32 triangles) with a UV sphere of about as many triangles floating
 //           in it: a curved surface that keeps its detail where a VPL is near.
 // Per row: the BVH and the walk, rt-vpl per VPL, the cluster hierarchy's set-up time and size
-// (core/mesh/mesh_clusters.h), and per RasterOptions::shadow_lod (off, cull, on) the raster per VPL
-// (wall clock, the median of `runs` renders after a warm-up) split into the shadow and the
-// shading passes' GPU time. 128x128, interleave 1, batch 16, N = 16.
+// (core/mesh/hierarchy/mesh_clusters.h), and per RasterOptions::shadow_lod (off, cull, on) the
+// raster per VPL (wall clock, the median of `runs` renders after a warm-up) split into the shadow
+// and the shading passes' GPU time. 128x128, interleave 1, batch 16, N = 16.
 //
 // run_shadow_lod_error: what the shadow level of detail costs in error on real scenes (zdm2,
 // godot): the same VPLs through the raster with shadow-lod off and on and through rt-vpl
@@ -19,7 +19,7 @@
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "core/image/image_metrics.h"
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
 #include "core/util/error.h"

@@ -10,7 +10,7 @@
 #include "core/image/image.h"
 #include "core/lights/light_budget.h"
 #include "core/lights/vpl.h"
-#include "core/mesh/cluster_cache.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
 #include "core/scene/scene.h"
 #include "core/util/log.h"
 #include "irad/scene_setup.h"
@@ -137,8 +137,8 @@ struct RenderResult {
   std::uint32_t rounds = 1; // rounds averaged (RenderOptions::rounds; fewer when cancelled)
   // When cancelled: what was accumulated (pt, rt-vpl: pixels not done are 0, alpha too).
   Image image;
-  // What the shadow hierarchy's cache did (core/mesh/cluster_cache.h outcome_name: off, hit,
-  // written, rebuilt, unwritable) and why a file was not used or written.
+  // What the shadow hierarchy's cache did (core/mesh/hierarchy/cluster_cache.h outcome_name: off,
+  // hit, written, rebuilt, unwritable) and why a file was not used or written.
   std::string hierarchy_cache = "off", hierarchy_cache_reason;
   // The same of the thinnest-wall scan's cache (walk/wall_cache.h), "off" when nothing scanned.
   std::string wall_cache = "off", wall_cache_reason;

@@ -1,14 +1,13 @@
 #pragma once
-// The camera's cluster hierarchy (core/mesh/mesh_clusters.h built with ClusterOptions::camera)
-// on the GPU, for the G-buffer and the emitters: per view, the clusters the image's frustum
-// meets, each drawn at the coarsest of its meshes whose error (the larger of its world-space
-// distance from the original surface and its longest edge) is below kPixels of a pixel where it
-// lies, so that what the camera draws stops growing with the triangles once they are finer than
-// the pixels. The cut is of
-// base meshes alone (no coarser levels), so neighbouring clusters meet along original edges:
-// no crack lets the background through. Each tree holds one material, whose uniforms bind once
-// before its ranges are drawn; the triangles of Mask and Blend materials, which the hierarchy
-// leaves out, are drawn from the scene's own index buffer (GpuScene).
+// The camera's cluster hierarchy (core/mesh/hierarchy/mesh_clusters.h built with
+// ClusterOptions::camera) on the GPU, for the G-buffer and the emitters: per view, the clusters the
+// image's frustum meets, each drawn at the coarsest of its meshes whose error (the larger of its
+// world-space distance from the original surface and its longest edge) is below kPixels of a pixel
+// where it lies, so that what the camera draws stops growing with the triangles once they are finer
+// than the pixels. The cut is of base meshes alone (no coarser levels), so neighbouring clusters
+// meet along original edges: no crack lets the background through. Each tree holds one material,
+// whose uniforms bind once before its ranges are drawn; the triangles of Mask and Blend materials,
+// which the hierarchy leaves out, are drawn from the scene's own index buffer (GpuScene).
 //
 // A pixel's footprint at Euclidean distance d from the eye is d s cos^2(theta) for a pixel of
 // angle s at the image's centre and theta off the axis: the allowed error per distance takes the
@@ -17,7 +16,7 @@
 // The pages of indices reach the GPU as views first draw them (the shadow passes' paging,
 // raster/shadow/shadow_lod.h).
 #include "core/camera/view.h"
-#include "core/mesh/background_clusters.h"
+#include "core/mesh/hierarchy/background_clusters.h"
 #include "raster/shadow/shadow_lod.h"
 
 #include <filesystem>
@@ -66,7 +65,8 @@ private:
 };
 
 // A renderer's camera hierarchy: taken from a build started earlier
-// (core/mesh/background_clusters.h) or built through the cache at the first image that asks.
+// (core/mesh/hierarchy/background_clusters.h) or built through the cache at the first image that
+// asks.
 class CameraLodProvider {
 public:
   // gpu must outlive this object. cache: as RasterOptions::hierarchy_cache; prebuilt: as

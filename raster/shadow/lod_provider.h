@@ -1,10 +1,11 @@
 #pragma once
-// A scene's shadow hierarchy (core/mesh/mesh_clusters.h on the GPU: raster/shadow/shadow_lod.h),
-// built on the first shadow face that needs it and kept for every atlas of one renderer: the
-// batched passes are re-made when the shadow resolution changes, the hierarchy is not.
-#include "core/mesh/background_clusters.h"
-#include "core/mesh/cluster_cache.h"
-#include "core/mesh/mesh_clusters.h"
+// A scene's shadow hierarchy (core/mesh/hierarchy/mesh_clusters.h on the GPU:
+// raster/shadow/shadow_lod.h), built on the first shadow face that needs it and kept for every
+// atlas of one renderer: the batched passes are re-made when the shadow resolution changes, the
+// hierarchy is not.
+#include "core/mesh/hierarchy/background_clusters.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/util/stage_times.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/shadow/shadow_lod.h"
@@ -17,8 +18,8 @@ namespace irad::gl {
 class LodProvider {
 public:
   // Nothing is built here. gpu must outlive this object. cache: the folder that keeps
-  // hierarchies between runs (core/mesh/cluster_cache.h; empty: none). prebuilt: a build
-  // started earlier (core/mesh/background_clusters.h), taken instead of building where it
+  // hierarchies between runs (core/mesh/hierarchy/cluster_cache.h; empty: none). prebuilt: a build
+  // started earlier (core/mesh/hierarchy/background_clusters.h), taken instead of building where it
   // builds what get() needs.
   LodProvider(const GladGLContext& api, const GpuScene& gpu, const ShadowLodOptions& options,
               std::filesystem::path cache = {},

@@ -13,13 +13,13 @@
 // -y one over the other. Any other VPL (two-sided, point, spot) takes two blocks of three whole
 // faces each. Texels no face covers keep the clear value 1 (far: never shadowed).
 //
-// With ShadowLodMode Cull or On (core/mesh/mesh_clusters.h) the opaque triangles are drawn face by
-// face from a cluster hierarchy (raster/shadow/shadow_lod.h): one glMultiDrawElements per face of
-// the clusters it sees (Cull: the same image), at the coarsest level whose error stays below
-// ShadowLodOptions::texels texels at the VPL's distance (On). The face comes from a uniform then
-// instead of gl_InstanceID; alpha-tested materials stay one instanced draw of all faces.
+// With ShadowLodMode Cull or On (core/mesh/hierarchy/mesh_clusters.h) the opaque triangles are
+// drawn face by face from a cluster hierarchy (raster/shadow/shadow_lod.h): one glMultiDrawElements
+// per face of the clusters it sees (Cull: the same image), at the coarsest level whose error stays
+// below ShadowLodOptions::texels texels at the VPL's distance (On). The face comes from a uniform
+// then instead of gl_InstanceID; alpha-tested materials stay one instanced draw of all faces.
 #include "core/lights/vpl.h"
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/scene/bounds.h"
 #include "raster/context/shader_program.h"
 #include "raster/scene/gpu_scene.h"

@@ -1,8 +1,8 @@
 #pragma once
-// The cluster hierarchy of core/mesh/mesh_clusters.h on the GPU, and the choice of what one shadow
-// face draws: the nodes whose bounds meet the face's pyramid (clipped to the rectangle the face
-// is ever looked up on), and of those the cut with the fewest triangles in which every mesh's
-// error is below
+// The cluster hierarchy of core/mesh/hierarchy/mesh_clusters.h on the GPU, and the choice of what
+// one shadow face draws: the nodes whose bounds meet the face's pyramid (clipped to the rectangle
+// the face is ever looked up on), and of those the cut with the fewest triangles in which every
+// mesh's error is below
 //     max(error_per_distance * distance(VPL, node bounds), error_floor)
 // (per node: the cheaper of its cheapest acceptable mesh and its children's plans; the original
 // triangles are always acceptable).
@@ -19,7 +19,7 @@
 // 470 MiB of indices, in pages of 69 MiB; on the sphere box 4.4 % of 85 MiB, in 10 MiB (a
 // buffer's store costs its whole size at creation: llvmpipe clears it). A face's ranges are
 // drawn with one glMultiDrawElements per slab (ranges that touch are merged).
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/gpu_scene.h"
 

@@ -1,6 +1,6 @@
 #include "raster/shadow/shadow_occlusion.h"
 
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #include "core/gltf/read/triangle_list.h"
 
 #include "core/gltf/read/accessors.h"
-#include "core/mesh/stored_indices.h"
+#include "core/mesh/hierarchy/stored_indices.h"
 #include "core/util/freed_memory.h"
 #include "core/util/parallel_rows.h"
 

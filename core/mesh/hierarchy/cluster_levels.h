@@ -1,9 +1,9 @@
 #pragma once
-// The meshes of the shadow hierarchy's nodes (core/mesh/mesh_clusters.h), after its tree: the
-// inner nodes' simplified meshes and every node's coarser levels, built on all cores (each
+// The meshes of the shadow hierarchy's nodes (core/mesh/hierarchy/mesh_clusters.h), after its tree:
+// the inner nodes' simplified meshes and every node's coarser levels, built on all cores (each
 // node's simplification on one thread, the results appended in node order, so the hierarchy is
 // the same on any number of threads). Internal to build_mesh_clusters.
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "core/mesh/cluster_levels.h"
+#include "core/mesh/hierarchy/cluster_levels.h"
 
 #include "core/util/parallel_rows.h"
 

@@ -1,4 +1,4 @@
-#include "core/mesh/cluster_cache.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
 
 #include <algorithm>
 #include <array>

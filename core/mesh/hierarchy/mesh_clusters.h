@@ -4,9 +4,9 @@
 // cut through it whose geometric error stays below the shadow map's texel at the VPL's distance.
 //
 // The base: with ClusterOptions::simplify, the triangles after the exact planar reduction
-// (core/mesh/planar_reduction.h: flat parts down to what their outlines need, within 2e-6 of the
-// scene's diagonal, which is the leaves' error) of the components that have flat parts
-// (core/mesh/flat_components.h); without, the scene's own triangles (error 0).
+// (core/mesh/planar/planar_reduction.h: flat parts down to what their outlines need, within 2e-6 of
+// the scene's diagonal, which is the leaves' error) of the components that have flat parts
+// (core/mesh/planar/flat_components.h); without, the scene's own triangles (error 0).
 // Without it, a region cut through a finely tessellated wall keeps its border at the full
 // resolution in every level above: thousands of triangles per face on the 2.1M-triangle flat
 // scale scene (docs/performance.md).
@@ -52,7 +52,7 @@
 // simplifier sees one connected surface where a file or subdivide() duplicated vertices at
 // seams); a welded index draws the same position, so without simplify the leaves draw the very
 // triangles the scene has.
-#include "core/mesh/stored_indices.h"
+#include "core/mesh/hierarchy/stored_indices.h"
 #include "core/scene/bounds.h"
 #include "core/scene/scene.h"
 #include "core/util/stage_times.h"
@@ -116,7 +116,7 @@ struct ClusterNode {
 struct MeshClusters {
   std::vector<std::uint32_t> indices; // into Scene::positions, 3 per triangle
   // Through the cache (a hit, or a write) `indices` is empty: they stay in its file, from which
-  // the shadow passes copy the pages they draw (core/mesh/stored_indices.h).
+  // the shadow passes copy the pages they draw (core/mesh/hierarchy/stored_indices.h).
   std::shared_ptr<const StoredIndices> stored_indices;
   std::size_t index_count() const {
     return stored_indices ? stored_indices->size() : indices.size();
@@ -172,14 +172,14 @@ struct ClusterOptions {
 // 2.1M-triangle scale scenes 1024 draw their shadows in half the time of 128 (the borders).
 std::uint32_t automatic_leaf_triangles(std::size_t triangles);
 
-// The step between a node's coarser levels (add_coarser_levels, core/mesh/cluster_levels.h): a
-// quarter from leaves of kQuarteringLeaf triangles (the automatic leaves of scenes over 512k
-// triangles), else a half. Cold renders at 256x256, quarters against halves (one run each, in
-// turn): the levels of the 2.1M sphere box 1.01 against 1.29 s (986 against 946 shadow
-// triangles per VPL), of the 2M terrain 1.25 against 1.53 s (12,509 against 13,263), of the 10M
-// terrain 5.83 against 7.77 s (14,355 against 14,386; its whole render 20.1 against 25.1 s);
-// images within 3.5e-8 relMSE of each other. On zdm2's leaves of 128 quarters drew 16,762
-// triangles per VPL against 16,037: small scenes keep halves.
+// The step between a node's coarser levels (add_coarser_levels,
+// core/mesh/hierarchy/cluster_levels.h): a quarter from leaves of kQuarteringLeaf triangles (the
+// automatic leaves of scenes over 512k triangles), else a half. Cold renders at 256x256, quarters
+// against halves (one run each, in turn): the levels of the 2.1M sphere box 1.01 against 1.29 s
+// (986 against 946 shadow triangles per VPL), of the 2M terrain 1.25 against 1.53 s (12,509 against
+// 13,263), of the 10M terrain 5.83 against 7.77 s (14,355 against 14,386; its whole render 20.1
+// against 25.1 s); images within 3.5e-8 relMSE of each other. On zdm2's leaves of 128 quarters drew
+// 16,762 triangles per VPL against 16,037: small scenes keep halves.
 inline constexpr std::uint32_t kQuarteringLeaf = 1024;
 int level_step(std::uint32_t leaf_triangles);
 

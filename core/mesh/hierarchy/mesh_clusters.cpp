@@ -1,8 +1,8 @@
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 
-#include "core/mesh/cluster_levels.h"
-#include "core/mesh/flat_components.h"
-#include "core/mesh/planar_reduction.h"
+#include "core/mesh/hierarchy/cluster_levels.h"
+#include "core/mesh/planar/flat_components.h"
+#include "core/mesh/planar/planar_reduction.h"
 #include "core/util/parallel_rows.h"
 
 #include <algorithm>

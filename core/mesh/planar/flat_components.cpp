@@ -1,7 +1,7 @@
-#include "core/mesh/flat_components.h"
+#include "core/mesh/planar/flat_components.h"
 
-#include "core/mesh/planar_chunks.h"
-#include "core/mesh/vertex_fans.h"
+#include "core/mesh/planar/planar_chunks.h"
+#include "core/mesh/planar/vertex_fans.h"
 
 #include <algorithm>
 #include <glm/glm.hpp>

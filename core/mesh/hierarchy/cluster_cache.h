@@ -1,6 +1,6 @@
 #pragma once
-// The cluster hierarchies (core/mesh/mesh_clusters.h: the shadow passes', the camera's) kept on
-// disk between runs: building it is the one-time cost of a big scene (seconds per million
+// The cluster hierarchies (core/mesh/hierarchy/mesh_clusters.h: the shadow passes', the camera's)
+// kept on disk between runs: building it is the one-time cost of a big scene (seconds per million
 // triangles), reading it back a fraction of that.
 //
 // A file per hierarchy, FOLDER/<key>.lod, the key a 128-bit XXH3 hash of everything the build
@@ -17,7 +17,7 @@
 // indices, the file's bulk, as they stream past and leaves them in the file
 // (MeshClusters::stored_indices) for the GPU upload to copy. The folder is kept below kCacheBytes
 // by removing the files least recently used.
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/util/stage_times.h"
 
 #include <cstdint>

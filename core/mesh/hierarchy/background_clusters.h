@@ -1,19 +1,20 @@
 #pragma once
-// The shadow hierarchy (core/mesh/mesh_clusters.h, through its cache: core/mesh/cluster_cache.h)
-// built on a thread of its own from the moment a render knows it will draw from it: its stages
-// that run on one core (the weld, the planar reduction, the tree's top splits, the cache file's
-// checksum) then overlap the ray-tracing structure, the walk, the clustering and the GL set-up,
-// instead of following them while the other cores wait. The raster takes the result where it
-// would have built it (raster/shadow/lod_provider.h; the camera's hierarchy,
-// raster/passes/camera_lod.h, through ClusterSource likewise) and waits only for what is left.
+// The shadow hierarchy (core/mesh/hierarchy/mesh_clusters.h, through its cache:
+// core/mesh/hierarchy/cluster_cache.h) built on a thread of its own from the moment a render knows
+// it will draw from it: its stages that run on one core (the weld, the planar reduction, the tree's
+// top splits, the cache file's checksum) then overlap the ray-tracing structure, the walk, the
+// clustering and the GL set-up, instead of following them while the other cores wait. The raster
+// takes the result where it would have built it (raster/shadow/lod_provider.h; the camera's
+// hierarchy, raster/passes/camera_lod.h, through ClusterSource likewise) and waits only for what is
+// left.
 //
 // The same hierarchy as a build in place, bit for bit (the build's result does not depend on its
 // threads). An exception of the build reaches the caller of take(); one never taken is dropped.
 // A build is handed on before its cache file is written: the thread writes it while the
 // hierarchy is in use (the indices shared, in memory), off the raster's critical path (0.2 s on
 // the 2.1M sphere box, 0.9 s on the 10M terrain).
-#include "core/mesh/cluster_cache.h"
-#include "core/mesh/mesh_clusters.h"
+#include "core/mesh/hierarchy/cluster_cache.h"
+#include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/util/stage_times.h"
 
 #include <filesystem>

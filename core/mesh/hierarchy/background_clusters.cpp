@@ -1,4 +1,4 @@
-#include "core/mesh/background_clusters.h"
+#include "core/mesh/hierarchy/background_clusters.h"
 
 namespace irad {
 

@@ -1,11 +1,11 @@
 #pragma once
 // The shadow hierarchy's indices where they lie: in memory shared with the cache's writer (a build
-// handed on before its file is written: core/mesh/background_clusters.h), or in its cache file
-// (core/mesh/cluster_cache.h): a
-// hit checks them as it streams the file (checksum, every index below the vertex count) but keeps
-// none of them; the one reader that needs them, the GPU buffer (raster/shadow/shadow_lod.h),
-// copies the parts the shadow faces draw from the file straight into its storage. After a hit
-// the process never holds them (docs/performance.md "Big scenes").
+// handed on before its file is written: core/mesh/hierarchy/background_clusters.h), or in its cache
+// file (core/mesh/hierarchy/cluster_cache.h): a hit checks them as it streams the file (checksum,
+// every index below the vertex count) but keeps none of them; the one reader that needs them, the
+// GPU buffer (raster/shadow/shadow_lod.h), copies the parts the shadow faces draw from the file
+// straight into its storage. After a hit the process never holds them (docs/performance.md "Big
+// scenes").
 //
 // The file stays open from the check to the last copy, so a writer that renames another file into
 // its place, or a trim that removes it, leaves this one readable as it was. Only a change of the

@@ -1,6 +1,6 @@
-#include "core/mesh/planar_reduction.h"
+#include "core/mesh/planar/planar_reduction.h"
 
-#include "core/mesh/vertex_fans.h"
+#include "core/mesh/planar/vertex_fans.h"
 
 #include <algorithm>
 #include <array>

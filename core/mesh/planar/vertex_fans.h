@@ -1,7 +1,8 @@
 #pragma once
 // The triangles around each vertex, in one array (no allocation per vertex): the fan of v is
 // list[first[v], first[v + 1]), its triangles in ascending order. Shared by the flat-component
-// sampling (core/mesh/flat_components.h) and the planar reduction (core/mesh/planar_reduction.h).
+// sampling (core/mesh/planar/flat_components.h) and the planar reduction
+// (core/mesh/planar/planar_reduction.h).
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <numeric>

@@ -1,7 +1,7 @@
 #pragma once
 // An exact reduction of the flat parts of a triangle mesh, for the shadow level of detail
-// (core/mesh/mesh_clusters.h): a wall tessellated into 10^5 triangles becomes the few triangles its
-// outline needs, before any error-driven simplification.
+// (core/mesh/hierarchy/mesh_clusters.h): a wall tessellated into 10^5 triangles becomes the few
+// triangles its outline needs, before any error-driven simplification.
 //
 // Patches: triangles grown across shared edges from a seed (the largest octave of area first)
 // while all three vertices lie within `epsilon` of the seed's plane and the triangle faces the

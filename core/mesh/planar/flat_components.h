@@ -1,5 +1,5 @@
 #pragma once
-// reduce_planar (core/mesh/planar_reduction.h) only where it can find something. Its patch
+// reduce_planar (core/mesh/planar/planar_reduction.h) only where it can find something. Its patch
 // growth visits every triangle in order of area, a random walk through memory that costs more
 // than the rest of the shadow hierarchy's build on a large curved mesh, where it finds little
 // (a 10M-triangle terrain: 5 % of its triangles in 23 s of the build's 54). So each connected
@@ -9,7 +9,7 @@
 // least 1/kFlatShare of the samples have one is reduced; the others come out unchanged. Sampling
 // can miss the rare flat spots of a curved component: they then keep their triangles, which costs
 // shadow faces triangles, never correctness.
-#include "core/mesh/planar_reduction.h"
+#include "core/mesh/planar/planar_reduction.h"
 
 #include <cstddef>
 
@@ -28,7 +28,7 @@ std::vector<std::uint32_t> triangle_components(const std::vector<glm::uvec3>& tr
                                                std::size_t vertices);
 
 // reduce_planar over the components that sampling finds flat parts in (on all cores, in spatial
-// chunks where they hold more than kPlanarChunkTriangles: core/mesh/planar_chunks.h); their
+// chunks where they hold more than kPlanarChunkTriangles: core/mesh/planar/planar_chunks.h); their
 // reduced triangles first, then the other components' triangles unchanged, in their order.
 // patches and collapses are the reduction's. Every component flat:
 // reduce_planar_chunked(positions, triangles, epsilon).

@@ -1,4 +1,4 @@
-#include "core/mesh/stored_indices.h"
+#include "core/mesh/hierarchy/stored_indices.h"
 
 #include "core/util/error.h"
 

@@ -1,6 +1,6 @@
 #pragma once
-// reduce_planar (core/mesh/planar_reduction.h) on all cores. Its patch growth and collapses are
-// serial walks through the mesh; on a finely tessellated curved surface, flat within epsilon
+// reduce_planar (core/mesh/planar/planar_reduction.h) on all cores. Its patch growth and collapses
+// are serial walks through the mesh; on a finely tessellated curved surface, flat within epsilon
 // over a few rings of triangles, they cost most of the shadow hierarchy's build (the 10M-triangle
 // sphere of scripts/make_sphere_box.py: 7.2 s of a 17.7 s cold render on one thread).
 //
@@ -12,7 +12,7 @@
 // was. A patch ends at a chunk's border, which costs the result a few triangles along the
 // borders. The chunks depend on the triangles alone (not on the threads): the same result on
 // any number of threads. A mesh of at most `chunk` triangles is reduce_planar's.
-#include "core/mesh/planar_reduction.h"
+#include "core/mesh/planar/planar_reduction.h"
 
 #include <cstddef>
 

@@ -1,4 +1,4 @@
-#include "core/mesh/planar_chunks.h"
+#include "core/mesh/planar/planar_chunks.h"
 
 #include "core/util/parallel_rows.h"
 
