@@ -109,24 +109,53 @@ struct NodeLevels {
 // height: their meshes, each about 2^-height of its region's triangles, are the whole
 // component's at a quarter of the cost of simplifying the original triangles that far.
 constexpr int kWholeCutHeight = 2;
+// ... or through higher nodes where that cut would hold more triangles than this: a component of
+// millions of triangles would otherwise quarter millions of triangles on one core (2.5M on the
+// 10M terrain, about 2 s), for whole-component meshes finer than any shadow face draws of it.
+// Measured (levels stage on 2 threads, two pairs in turn): the 10M terrain from height 4 (600k
+// triangles) 5.00-5.40 s against 5.61-6.77 s, 14,355 shadow triangles per VPL and the image the
+// same; zdm2, godot and both sphere boxes, whose cuts stay below it, keep their hierarchies. (A
+// lower bound costs smaller scenes triangles: godot's cut from height 4 draws 5,726 per VPL
+// against 4,990, the 2.1M sphere box's 1,019 against 986.)
+constexpr std::size_t kWholeCutTriangles = std::size_t{1} << 20;
 
-// The meshes of the cut below `root` through the nodes of height at most kWholeCutHeight, joined:
-// one seamless mesh of the component (neighbouring regions share their locked borders);
-// `error`: the largest of theirs.
-std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root,
-                                       const std::vector<int>& height, float& error) {
-  std::vector<std::uint32_t> mesh;
-  error = 0.0f;
-  std::vector<std::size_t> stack{root};
+// The nodes of the cut below `root` through the nodes of height at most `top`, depth first.
+std::vector<std::size_t> cut_nodes(const MeshClusters& out, std::size_t root,
+                                   const std::vector<int>& height, int top) {
+  std::vector<std::size_t> cut, stack{root};
   while (!stack.empty()) {
     const std::size_t n = stack.back();
     stack.pop_back();
     const ClusterNode& node = out.nodes[n];
-    if (height[n] > kWholeCutHeight) {
+    if (height[n] > top) {
       stack.push_back(static_cast<std::size_t>(node.children[1]));
       stack.push_back(static_cast<std::size_t>(node.children[0]));
-      continue;
+    } else {
+      cut.push_back(n);
     }
+  }
+  return cut;
+}
+
+// The meshes of the cut below `root` through the nodes of height at most kWholeCutHeight (or the
+// least height above it whose cut holds at most kWholeCutTriangles), joined: one seamless mesh of
+// the component (neighbouring regions share their locked borders); `error`: the largest of theirs.
+std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root,
+                                       const std::vector<int>& height, float& error) {
+  const auto indices = [&](const std::vector<std::size_t>& cut) {
+    std::size_t count = 0;
+    for (std::size_t n : cut) count += out.nodes[n].mesh_count;
+    return count;
+  };
+  int top = kWholeCutHeight;
+  std::vector<std::size_t> cut = cut_nodes(out, root, height, top);
+  while (top < height[root] && indices(cut) > 3 * kWholeCutTriangles)
+    cut = cut_nodes(out, root, height, ++top);
+  std::vector<std::uint32_t> mesh;
+  mesh.reserve(indices(cut));
+  error = 0.0f;
+  for (std::size_t n : cut) {
+    const ClusterNode& node = out.nodes[n];
     mesh.insert(mesh.end(), out.indices.begin() + node.mesh_first,
                 out.indices.begin() + node.mesh_first + node.mesh_count);
     error = std::max(error, node.error);
