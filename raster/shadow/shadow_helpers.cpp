@@ -16,6 +16,8 @@ void wait_and_delete(const GladGLContext& api, GLsync fence) {
 
 ShadowHelpers::ShadowHelpers(Context& context, int count, const AtlasShape& shape, LodProvider* lod)
     : api_(&context.api()) {
+  if (lod != nullptr)
+    if (const ShadowLod* hierarchy = lod->get()) hierarchy->share_with_contexts();
   threads_.resize(static_cast<std::size_t>(count));
   std::vector<std::future<void>> made;
   try {

@@ -113,6 +113,12 @@ void ShadowLod::make_resident(const std::vector<std::vector<ClusterPick>>& picks
     slots_used_ += j - i;
     i = j;
   }
+  if (shared_) api_->Finish();
+}
+
+void ShadowLod::share_with_contexts() const {
+  const std::lock_guard lock(pages_mutex_);
+  shared_ = true;
   api_->Finish();
 }
 

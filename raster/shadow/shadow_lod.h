@@ -79,10 +79,17 @@ public:
             std::size_t slab_pages = kSlabPages);
 
   // Copies the pages `picks` draw that no call copied before, from any thread whose context
-  // shares this one's objects (one call at a time); when it copied any, it returns after
-  // glFinish, so that a draw in another context, which binds the buffers again (draw()), sees
-  // them. Throws Error when the cache file changed since it was checked.
+  // shares this one's objects (one call at a time). Once other contexts draw from this hierarchy
+  // (share_with_contexts), a call that copied any returns after glFinish, so that a draw in
+  // another context, which binds the buffers again (draw()), sees them; before, the copies are
+  // ordered with the calling context's own draws and nothing waits (a glFinish drains
+  // llvmpipe's queue of binned passes, leaving its rasterizer threads idle while this thread
+  // bins the next ones). Throws Error when the cache file changed since it was checked.
   void make_resident(const std::vector<std::vector<ClusterPick>>& picks) const;
+  // From now on other contexts (raster/shadow/shadow_helpers.h) draw from this hierarchy: the
+  // pages copied so far are made visible to them (glFinish in the calling context, the one that
+  // copied them), and make_resident finishes after each copy.
+  void share_with_contexts() const;
   // The ranges of `picks` (made resident) in the slabs.
   void select(const std::vector<ClusterPick>& picks, ClusterSelection& out) const;
 
@@ -150,6 +157,7 @@ private:
   mutable std::vector<std::uint32_t> slot_of_page_; // its slot + 1; 0: not on the GPU
   mutable std::vector<Buffer> slabs_;
   mutable std::size_t slots_used_ = 0;
+  mutable bool shared_ = false; // share_with_contexts() was called
 };
 
 } // namespace irad::gl
