@@ -1,5 +1,7 @@
 #include "core/util/freed_memory.h"
 
+#include "core/util/parallel_rows.h"
+
 #include <cstdint>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -29,6 +31,16 @@ void advise_huge_pages(const void* data, std::size_t bytes) {
   (void)data;
   (void)bytes;
 #endif
+}
+
+void touch_pages(void* data, std::size_t bytes) {
+  constexpr std::size_t kPage = 4096;
+  if (bytes < (std::size_t{4} << 20)) return;
+  auto* first = static_cast<unsigned char*>(data);
+  const std::size_t pages = (bytes + kPage - 1) / kPage;
+  parallel_chunks(pages, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) first[p * kPage] = 0;
+  });
 }
 
 } // namespace irad

@@ -2,6 +2,7 @@
 // How the process's big arrays meet the kernel's pages: freed heap handed back, fresh arrays
 // backed by huge pages.
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 namespace irad {
@@ -18,12 +19,22 @@ void release_freed_memory();
 // Nothing for less than 4 MiB, off Linux, or where the kernel refuses.
 void advise_huge_pages(const void* data, std::size_t bytes);
 
-// v.reserve(n), its new storage advised as above.
+// Writes a byte of every page of [data, data + bytes) on all cores, so that the kernel gives
+// and clears the pages of fresh storage in parallel before a loop on one thread (a vector's
+// resize, a file's read) writes it: on this machine a fresh page costs more than writing it
+// (0.4 ms per MiB of 4 KiB pages, against 0.04 ms to write it again), and the first load of a
+// 2.1M-triangle GLB in a process took 0.51 s on one core against 0.13-0.21 s for a second one.
+// Nothing for less than 4 MiB. The bytes written are the caller's to overwrite.
+void touch_pages(void* data, std::size_t bytes);
+
+// v.reserve(n), its new storage advised as above and its pages touched (touch_pages).
 template <class T>
 void reserve_huge(std::vector<T>& v, std::size_t n) {
+  static_assert(std::is_trivially_copyable_v<T>, "touch_pages writes bytes into the new storage");
   if (n <= v.capacity()) return;
   v.reserve(n);
   advise_huge_pages(v.data(), v.capacity() * sizeof(T));
+  touch_pages(v.data() + v.size(), (v.capacity() - v.size()) * sizeof(T));
 }
 
 // v.resize(n), its new storage advised as above.
