@@ -21,10 +21,9 @@ void advise_huge_pages(const void* data, std::size_t bytes);
 
 // Writes a byte of every page of [data, data + bytes) on all cores, so that the kernel gives
 // and clears the pages of fresh storage in parallel before a loop on one thread (a vector's
-// resize, a file's read) writes it: on this machine a fresh page costs more than writing it
-// (0.4 ms per MiB of 4 KiB pages, against 0.04 ms to write it again), and the first load of a
-// 2.1M-triangle GLB in a process took 0.51 s on one core against 0.13-0.21 s for a second one.
-// Nothing for less than 4 MiB. The bytes written are the caller's to overwrite.
+// resize, a file's read) writes it: on this machine a fresh page costs ten times writing it
+// (0.4 ms per MiB of 4 KiB pages against 0.04 ms to write them again). Nothing for less than
+// 4 MiB. The bytes written are the caller's to overwrite.
 void touch_pages(void* data, std::size_t bytes);
 
 // v.reserve(n), its new storage advised as above and its pages touched (touch_pages).
