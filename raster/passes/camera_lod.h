@@ -64,9 +64,8 @@ private:
   ShadowLod::Plans plans_;
 };
 
-// A renderer's camera hierarchy: taken from a build started earlier
-// (core/mesh/hierarchy/background_clusters.h) or built through the cache at the first image that
-// asks.
+// A renderer's camera hierarchy: taken from a build started earlier or built through the cache
+// at the first image that asks (core/mesh/hierarchy/background_clusters.h).
 class CameraLodProvider {
 public:
   // gpu must outlive this object. cache: as RasterOptions::hierarchy_cache; prebuilt: as

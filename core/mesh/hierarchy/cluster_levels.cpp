@@ -1,5 +1,6 @@
 #include "core/mesh/hierarchy/cluster_levels.h"
 
+#include "core/mesh/local_vertices.h"
 #include "core/util/parallel_rows.h"
 
 #include <algorithm>
@@ -32,18 +33,10 @@ Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& 
                           std::vector<std::uint32_t>& local_of, std::size_t divisor = 2,
                           float target_error = 1.0f, Border border = Border::Locked) {
   // A compact vertex array of the vertices used (meshoptimizer scales by all it is given).
-  std::vector<std::uint32_t> global, local(input.size());
-  std::vector<glm::vec3> positions;
-  for (std::size_t k = 0; k < input.size(); ++k) {
-    std::uint32_t& l = local_of[input[k]];
-    if (l == ~0u) {
-      l = static_cast<std::uint32_t>(global.size());
-      global.push_back(input[k]);
-      positions.push_back(scene.positions[input[k]]);
-    }
-    local[k] = l;
-  }
-  for (std::uint32_t g : global) local_of[g] = ~0u;
+  const LocalVertices v = local_vertices(input, local_of);
+  const std::vector<std::uint32_t>& local = v.local;
+  std::vector<glm::vec3> positions(v.global.size());
+  for (std::size_t l = 0; l < positions.size(); ++l) positions[l] = scene.positions[v.global[l]];
   Simplified s;
   std::vector<std::uint32_t> dest(input.size());
   const std::size_t target = divisor == 0 ? 0 : input.size() / (3 * divisor) * 3;
@@ -55,25 +48,9 @@ Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& 
             (border == Border::Free ? kFreeBorderError : 1.0f);
   s.exact = relative <= kExact;
   s.indices.resize(count);
-  for (std::size_t k = 0; k < count; ++k) s.indices[k] = global[dest[k]];
+  for (std::size_t k = 0; k < count; ++k) s.indices[k] = v.global[dest[k]];
   return s;
 }
-
-// Per worker of parallel_tasks, simplify_union's map from scene vertex to compact index (all
-// ~0u between calls), made on the worker's first task.
-class LocalMaps {
-public:
-  LocalMaps(std::size_t vertices, unsigned workers) : vertices_(vertices), maps_(workers) {}
-  std::vector<std::uint32_t>& of(unsigned worker) {
-    std::vector<std::uint32_t>& m = maps_[worker];
-    if (m.empty()) m.assign(vertices_, ~0u);
-    return m;
-  }
-
-private:
-  std::size_t vertices_;
-  std::vector<std::vector<std::uint32_t>> maps_;
-};
 
 // Each node's height: leaves 0, a parent one above its higher child.
 std::vector<int> node_heights(const MeshClusters& out) {

@@ -1,5 +1,6 @@
 #include "core/mesh/planar/planar_chunks.h"
 
+#include "core/mesh/local_vertices.h"
 #include "core/util/parallel_rows.h"
 
 #include <algorithm>
@@ -11,8 +12,7 @@ namespace irad {
 
 namespace {
 
-constexpr std::uint32_t kNoVertex = std::numeric_limits<std::uint32_t>::max(); // local maps
-constexpr std::uint32_t kNoChunk = std::numeric_limits<std::uint32_t>::max();  // owners
+constexpr std::uint32_t kNoChunk = std::numeric_limits<std::uint32_t>::max(); // owners
 constexpr std::uint32_t kSharedVertex = kNoChunk - 1;
 
 struct ChunkRange {
@@ -56,36 +56,28 @@ std::vector<std::uint32_t> vertex_owners(const std::vector<glm::uvec3>& triangle
   return owner;
 }
 
-// One chunk reduced over its own vertices (`local`: a worker's map from the mesh's vertices,
-// kNoVertex everywhere, and so again on return), its shared vertices locked; the result in the
-// mesh's vertices.
+// One chunk reduced over its own vertices (`map`: a LocalMaps map), its shared vertices locked;
+// the result in the mesh's vertices.
 PlanarReduction reduce_chunk(const std::vector<glm::vec3>& positions,
                              const std::vector<glm::uvec3>& triangles,
                              const std::vector<std::uint32_t>& chunk,
                              const std::vector<std::uint32_t>& owner, float epsilon,
-                             std::vector<std::uint32_t>& local) {
-  std::vector<std::uint32_t> global;
-  std::vector<glm::vec3> own_positions;
-  std::vector<glm::uvec3> own_triangles;
-  std::vector<bool> locked;
-  own_triangles.reserve(chunk.size());
-  for (std::uint32_t t : chunk) {
-    glm::uvec3 tri;
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t v = triangles[t][k];
-      if (local[v] == kNoVertex) {
-        local[v] = static_cast<std::uint32_t>(global.size());
-        global.push_back(v);
-        own_positions.push_back(positions[v]);
-        locked.push_back(owner[v] == kSharedVertex);
-      }
-      tri[k] = local[v];
-    }
-    own_triangles.push_back(tri);
+                             std::vector<std::uint32_t>& map) {
+  std::vector<std::uint32_t> corners(3 * chunk.size());
+  for (std::size_t k = 0; k < chunk.size(); ++k)
+    for (int c = 0; c < 3; ++c) corners[3 * k + std::size_t(c)] = triangles[chunk[k]][c];
+  const LocalVertices v = local_vertices(corners, map);
+  std::vector<glm::vec3> own_positions(v.global.size());
+  std::vector<bool> locked(v.global.size());
+  for (std::size_t l = 0; l < v.global.size(); ++l) {
+    own_positions[l] = positions[v.global[l]];
+    locked[l] = owner[v.global[l]] == kSharedVertex;
   }
-  for (std::uint32_t v : global) local[v] = kNoVertex;
+  std::vector<glm::uvec3> own_triangles(chunk.size());
+  for (std::size_t k = 0; k < chunk.size(); ++k)
+    own_triangles[k] = {v.local[3 * k], v.local[3 * k + 1], v.local[3 * k + 2]};
   PlanarReduction r = reduce_planar(own_positions, own_triangles, epsilon, locked);
-  for (glm::uvec3& t : r.triangles) t = {global[t.x], global[t.y], global[t.z]};
+  for (glm::uvec3& t : r.triangles) t = {v.global[t.x], v.global[t.y], v.global[t.z]};
   return r;
 }
 
@@ -133,14 +125,11 @@ PlanarReduction reduce_planar_chunked(const std::vector<glm::vec3>& positions,
   const std::vector<std::vector<std::uint32_t>> chunks =
       spatial_chunks(positions, triangles, chunk, threads);
   const std::vector<std::uint32_t> owner = vertex_owners(triangles, chunks, positions.size());
-  const unsigned workers = worker_count(threads, static_cast<int>(chunks.size()));
-  std::vector<std::vector<std::uint32_t>> local(workers);
+  LocalMaps local(positions.size(), worker_count(threads, static_cast<int>(chunks.size())));
   std::vector<PlanarReduction> parts(chunks.size());
   parallel_tasks(static_cast<int>(chunks.size()), threads, [&](int k, unsigned worker) {
-    std::vector<std::uint32_t>& map = local[worker];
-    if (map.empty()) map.assign(positions.size(), kNoVertex);
-    parts[std::size_t(k)] =
-        reduce_chunk(positions, triangles, chunks[std::size_t(k)], owner, epsilon, map);
+    parts[std::size_t(k)] = reduce_chunk(positions, triangles, chunks[std::size_t(k)], owner,
+                                         epsilon, local.of(worker));
   });
   PlanarReduction out;
   std::size_t total = 0;
