@@ -155,7 +155,7 @@ void bind_functions(py::module_& m) {
       },
       "scene"_a, py::kw_only(), "size"_a = py::none(), "paths"_a = py::none(),
       "estimator"_a = "raster", "spp"_a = 64u, "seed"_a = 0u, "clamp"_a = 0.05f,
-      "interleave"_a = py::none(), "batch"_a = 16, "shadow_res"_a = 0, "sequence"_a = "halton",
+      "interleave"_a = py::none(), "batch"_a = 64, "shadow_res"_a = 0, "sequence"_a = "halton",
       "jitter"_a = false, "camera"_a = "", "time"_a = py::none(), "threads"_a = 0u,
       "bias_compensation"_a = false, "gl"_a = "auto", "clusters"_a = py::none(), "rounds"_a = 1u,
       "interleave_edges"_a = "auto", "traced_roughness"_a = RenderOptions{}.traced_roughness,

@@ -24,7 +24,7 @@ struct RenderKeywords {
   std::uint64_t seed = 0;
   float clamp = 0.05f;
   std::optional<int> interleave; // None: auto (lib/irad/render.h)
-  int batch = 16;
+  int batch = 64;
   int shadow_res = 0;
   std::string sequence = "halton";
   bool jitter = false;

@@ -48,9 +48,12 @@ struct RasterOptions {
   bool jitter = false;
   // VPLs per batch (raster/passes/batched_passes.h): their shadow cubes in one atlas by one
   // instanced draw, their shading by one instanced draw per interleaved set. 1: one shadow cube and
-  // one shading pass per VPL (the reference, the same image). 16 is the fastest of 8..64 at
-  // 512x512 (docs/performance.md). Every kind of VPL and every mode takes them.
-  int batch = 16;
+  // one shading pass per VPL (the reference, the same image). 64: the raster stage at 256x256 is
+  // 5-10 % shorter than with 16 on the Cornell box, godot, zdm2 and the 2.1M sphere box, as
+  // short as with 107 (llvmpipe's most) with 60 % of its atlas memory
+  // (docs/performance.md "Batches"); the shadow helpers draw batches of 16. Every kind of VPL and
+  // every mode takes them.
+  int batch = 64;
   // How the batched shadow atlas draws the opaque triangles (core/mesh/hierarchy/mesh_clusters.h):
   // mode Off every triangle into every face, Cull only the clusters a face sees (the same image),
   // On culled and simplified below `texels` (0.5) shadow texels at the VPL's distance

@@ -159,7 +159,7 @@ TEST(HardCases, RasterShadowsHoldAtATwoMillimetreWall) {
   EXPECT_LT(r.raster[0].pixels, 10u);
 }
 
-// The leak as `irad render` makes it by default (RasterOptions{}: batch 16, interleave 4, shadow
+// The leak as `irad render` makes it by default (RasterOptions{}: batch 64, interleave 4, shadow
 // faces of a quarter of the image side, 64 here, shadow LOD and occlusion on), with --batch 1 and
 // with --interleave 1, at 1x, 10x and 0.1x the scene's size, as the ratio of the mean radiance of
 // room B's image to that of room A's (the same mode and VPLs).

@@ -13,7 +13,9 @@ BatchedPasses::make(const GladGLContext& api, const Scene& scene, float clamp, i
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
   if (b < 2 || DeferredShader::capacity(api, b, !scene.all_lambertian()) < b) return nullptr;
-  const int tiles = ortho_resolution > 0 ? OrthoAtlas::capacity(api, ortho_resolution, b) : 0;
+  const int tiles = ortho_resolution > 0
+                        ? OrthoAtlas::capacity(api, ortho_resolution, std::min(b, kOrthoTiles))
+                        : 0;
   return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution, tiles,
                                          tiles > 0 ? ortho_resolution : 0, lod, unsure, shared,
                                          context, helpers);
@@ -153,9 +155,9 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
 }
 
 std::vector<BatchedPasses::Batch>
-BatchedPasses::form_batches(const std::vector<const Vpl*>& order,
-                            const std::function<int(const Vpl&)>& set_of,
-                            const DeferredTarget& into) const {
+BatchedPasses::form_batches(const std::vector<const Vpl*>& order, std::size_t first, int size,
+                            int atlas_blocks, const std::function<int(const Vpl&)>& set_of,
+                            const DeferredTarget& into, std::size_t most) const {
   std::vector<Batch> batches;
   Batch batch;
   int blocks = 0;
@@ -167,7 +169,7 @@ BatchedPasses::form_batches(const std::vector<const Vpl*>& order,
     blocks = 0;
     directions.clear();
   };
-  for (std::size_t k = 0; k < order.size(); ++k) {
+  for (std::size_t k = first; k < order.size() && batches.size() < most; ++k) {
     const Vpl& vpl = *order[k];
     if (vpl.carries_light()) {
       if (vpl.kind == VplKind::Directional) {
@@ -177,34 +179,37 @@ BatchedPasses::form_batches(const std::vector<const Vpl*>& order,
         if (!known) directions.push_back(vpl.normal);
       } else {
         const int need = ShadowAtlas::blocks_for(vpl);
-        if (blocks + need > atlas_.blocks()) send(k); // a whole cube where only a hemisphere fits
+        if (blocks + need > atlas_blocks) send(k); // a whole cube where only a hemisphere fits
         blocks += need;
       }
       batch.entries.push_back({&vpl, into.interleaved ? set_of(vpl) : 0});
     }
     const bool apart = k + 1 < order.size() && !ShadowAtlas::same_batch(vpl, *order[k + 1]);
-    if (static_cast<int>(batch.entries.size()) == atlas_.batch() || k + 1 == order.size() || apart)
+    if (static_cast<int>(batch.entries.size()) == size || k + 1 == order.size() || apart)
       send(k + 1);
   }
   return batches;
 }
 
-void BatchedPasses::consider_helpers(int n, const GpuScene& gpu, std::size_t batches_left) {
-  if (helpers_asked_ || max_helpers_ < 1 || n < 1 || batches_left < kHelperBatches) return;
+void BatchedPasses::consider_helpers(int n, const GpuScene& gpu, std::size_t vpls_left) {
+  if (helpers_asked_ || max_helpers_ < 1 || n < 1 ||
+      vpls_left < kHelperBatches * static_cast<std::size_t>(helper_batch()))
+    return;
   helpers_asked_ = true;
   LodProvider* lod = atlas_.prepare_hierarchy(gpu);
   const std::size_t per_vpl =
       lod ? atlas_.cluster_triangles() / static_cast<std::size_t>(n) : gpu.scene().triangle_count();
   if (per_vpl < kHelperTrianglesPerVpl) return;
   ShadowHelpers::AtlasShape shape{atlas_.resolution(),
-                                  atlas_.batch(),
-                                  atlas_.blocks(),
+                                  helper_batch(),
+                                  helper_batch(),
                                   gpu.scene().bounds,
                                   MaterialFeatures::of(gpu.scene()),
                                   atlas_.lod_options()};
   if (!lod) shape.lod.mode = ShadowLodMode::Off; // never a hierarchy of their own
   try {
     helpers_ = std::make_unique<ShadowHelpers>(*context_, max_helpers_, shape, lod);
+    atlas_.release_atlases(); // the helpers draw every batch from here on
   } catch (const Error&) {
     // A GL that refuses a shared context or a thread's atlas: this context draws them all, as
     // with --shadow-helpers 0 (RasterTimings::shadow_helpers reports 0).
@@ -258,15 +263,29 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
                                 const std::function<int(const Vpl&)>& set_of,
                                 const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer,
                                 const std::function<bool(std::size_t)>& after) {
-  const std::vector<Batch> batches = form_batches(ShadowAtlas::batch_order(vpls), set_of, into);
+  const std::vector<const Vpl*> order = ShadowAtlas::batch_order(vpls);
   shadow_triangles_ = 0;
-  std::size_t drawn = 0;
-  for (std::size_t b = 0; b < batches.size(); ++b) {
-    if (helpers_) return drawn + draw_with_helpers(batches, b, into, gpu, timer, after);
-    flush(batches[b].entries, into, gpu, timer);
-    drawn += batches[b].entries.size();
-    if (after && !after(batches[b].end)) break;
-    consider_helpers(static_cast<int>(vpls_.size()), gpu, batches.size() - b - 1);
+  std::size_t drawn = 0, first = 0;
+  // Until the helpers are decided, batches of their size drawn here: what one draws decides.
+  const auto helper_vpls = static_cast<std::size_t>(helper_batch());
+  while (!helpers_asked_ && max_helpers_ > 0 &&
+         order.size() - first >= (1 + kHelperBatches) * helper_vpls) {
+    const std::vector<Batch> probe =
+        form_batches(order, first, helper_batch(), helper_batch(), set_of, into, 1);
+    flush(probe[0].entries, into, gpu, timer);
+    drawn += probe[0].entries.size();
+    first = probe[0].end;
+    if (after && !after(first)) return drawn;
+    consider_helpers(static_cast<int>(vpls_.size()), gpu, order.size() - first);
+  }
+  if (helpers_)
+    return drawn + draw_with_helpers(
+                       form_batches(order, first, helper_batch(), helper_batch(), set_of, into), 0,
+                       into, gpu, timer, after);
+  for (const Batch& b : form_batches(order, first, atlas_.batch(), atlas_.blocks(), set_of, into)) {
+    flush(b.entries, into, gpu, timer);
+    drawn += b.entries.size();
+    if (after && !after(b.end)) break;
   }
   return drawn;
 }

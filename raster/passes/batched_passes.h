@@ -110,12 +110,26 @@ private:
   // against 5.14-5.38 s, godot (5.0k) 2.18-2.31 against 2.07-2.19 s (docs/performance.md).
   static constexpr std::size_t kHelperTrianglesPerVpl = ShadowAtlas::kOcclusionTrianglesPerVpl;
   static constexpr std::size_t kHelperBatches = 8;
-  // draw()'s batches of `order` (ShadowAtlas::batch_order).
-  std::vector<Batch> form_batches(const std::vector<const Vpl*>& order,
+  // VPLs per batch the helpers draw (at most the requested batch), and the batches drawn here
+  // until the helpers are decided. Each helper holds kSlots atlases and a scene of its own in the
+  // GL, so that their memory grows with it: on the 10M-triangle terrain (256x256, peak resident
+  // set, runs in turn) batches of 64 VPLs with two helpers took 1276-1298 MiB, of 32 1228-1241,
+  // of 16 1192-1200, no faster.
+  static constexpr int kHelperBatch = 16;
+  // Directional maps per batch at most (OrthoAtlas tiles, each ortho_resolution^2).
+  static constexpr int kOrthoTiles = 16;
+  // draw()'s batches of order[first..] (ShadowAtlas::batch_order) of at most `batch` VPLs and
+  // `blocks` atlas blocks each, the first `most` of them.
+  std::vector<Batch> form_batches(const std::vector<const Vpl*>& order, std::size_t first,
+                                  int batch, int blocks,
                                   const std::function<int(const Vpl&)>& set_of,
-                                  const DeferredTarget& into) const;
-  // Makes the helpers when the batch just drawn here (n VPLs) asks for them.
-  void consider_helpers(int n, const GpuScene& gpu, std::size_t batches_left);
+                                  const DeferredTarget& into,
+                                  std::size_t most = ~std::size_t{0}) const;
+  // Makes the helpers when the batch just drawn here (n VPLs) asks for them and `vpls_left`
+  // are still to come.
+  void consider_helpers(int n, const GpuScene& gpu, std::size_t vpls_left);
+  // The helpers' batch (kHelperBatch, at most this atlas's).
+  int helper_batch() const { return std::min(atlas_.batch(), kHelperBatch); }
   // batches[first..] with the helpers drawing the atlases, round robin, each up to two ahead of
   // the shading, which stays in batch order. Returns the number of VPLs drawn.
   std::size_t draw_with_helpers(const std::vector<Batch>& batches, std::size_t first,

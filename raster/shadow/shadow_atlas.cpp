@@ -123,6 +123,17 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
   }
 }
 
+void ShadowAtlas::release_atlases() {
+  const GladGLContext& api = *api_;
+  const bool gradients = gradient_[current_].get() != 0;
+  atlas_.resize(1);
+  gradient_.resize(1);
+  fbo_.clear();
+  current_ = 0;
+  atlas_[0] = make_depth_texture(api, 1, 1);
+  gradient_[0] = gradients ? make_gradient_texture(api, 1, 1) : Texture();
+}
+
 bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
   if (lod_options_.mode == ShadowLodMode::Off || scene.scene().animation) return false;
   if (!lod_) {
@@ -243,6 +254,11 @@ void ShadowAtlas::draw_faces(std::vector<std::vector<ClusterPick>>& per_face) {
     cluster_triangles_ += selection_.triangles;
     api_->Uniform1i(u_face_, faces_[i].instance);
     lod_->draw(selection_, lod_vao_);
+    unflushed_ += selection_.triangles;
+    if (unflushed_ >= kFlushTriangles) {
+      api_->Flush();
+      unflushed_ = 0;
+    }
   }
 }
 
@@ -250,8 +266,10 @@ void ShadowAtlas::render(const Vpl* const* vpls, int n, const GpuScene& scene,
                          std::vector<glm::mat3>& frames, std::vector<float>& fars,
                          std::vector<glm::ivec4>& blocks) {
   const GladGLContext& api = *api_;
+  if (fbo_.empty()) throw Error("", "shadow atlas", "drawn into after its atlases were released");
   if (!scene_vao_) scene_vao_ = scene.vertex_array(); // in this atlas's context
   cluster_triangles_ = 0;
+  unflushed_ = 0; // the framebuffer bind below ends the GL's scene
   frames.resize(static_cast<std::size_t>(n));
   fars.resize(static_cast<std::size_t>(n));
   blocks.resize(static_cast<std::size_t>(n));

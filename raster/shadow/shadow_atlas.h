@@ -82,6 +82,11 @@ public:
   void render(const Vpl* const* vpls, int n, const GpuScene& scene, std::vector<glm::mat3>& frames,
               std::vector<float>& fars, std::vector<glm::ivec4>& blocks);
 
+  // Frees the atlases once other contexts draw the batches (raster/shadow/shadow_helpers.h):
+  // texture() and gradient_texture() then name 1x1 textures, all a shading pass binds for a
+  // batch without cubes, and render() throws.
+  void release_atlases();
+
   // The atlas the last render() drew into.
   GLuint texture() const { return atlas_[current_].get(); }
   // Per texel the gradient of the distance / far per face texel (raster/glsl/cube_glsl.h).
@@ -109,6 +114,14 @@ public:
   // Cornell box of 8k triangles, a few hundred per VPL, draws its shadows in 0.24 ms per VPL
   // without the rounds and 0.40-0.48 with them).
   static constexpr std::size_t kOcclusionTrianglesPerVpl = 8000;
+  // The faces' draws are flushed to the GL whenever this many triangles were drawn since the
+  // last flush: llvmpipe holds what it binned of a scene until the scene ends, so that the
+  // memory a batch's atlas takes grows with the batch unless its scene is cut. Measured on the
+  // 10M-triangle terrain (14.4k triangles per VPL, two helpers drawing batches of 107, 256x256,
+  // peak resident set of runs in turn): 1407-1435 MiB unflushed, 1296-1320 MiB at 65,536,
+  // 1195-1200 MiB in batches of 16 (which the helpers draw: BatchedPasses::kHelperBatch); no
+  // slower (the 2.1M sphere box and zdm2 at 16,384).
+  static constexpr std::size_t kFlushTriangles = 65536;
 
 private:
   // One face of the batch: instance 6 s + f, its view-projection, rectangle and VPL position.
@@ -177,6 +190,7 @@ private:
   std::vector<std::size_t> totals_, taken_;            // per face: indices picked, taken
   std::vector<float> depth_;                           // the atlas read back (occlusion culling)
   std::size_t cluster_triangles_ = 0;
+  std::size_t unflushed_ = 0; // triangles drawn since the last flush (kFlushTriangles)
 };
 
 } // namespace irad::gl
