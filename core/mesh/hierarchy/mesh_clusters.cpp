@@ -334,6 +334,8 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   TreeInput in;
   Builder b{scene, options, in, {}};
   std::vector<glm::uvec3> triangles; // welded
+  triangles.reserve(scene.triangle_count());
+  b.out.triangles.reserve(scene.triangle_count());
   const std::vector<std::uint32_t> welded =
       options.camera ? weld_vertices(scene) : weld_positions(scene);
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {

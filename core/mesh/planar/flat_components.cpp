@@ -100,10 +100,15 @@ PlanarReduction reduce_flat_components(const std::vector<glm::vec3>& positions,
   std::vector<bool> flat(positions.size(), false);
   for (std::size_t c = 0; c < flat.size(); ++c)
     flat[c] = tried[c] > 0 && found[c] * kFlatShare >= tried[c];
+  std::size_t flat_triangles = 0;
+  for (std::uint32_t c : component) flat_triangles += flat[c] ? 1 : 0;
+  if (flat_triangles == triangles.size())
+    return reduce_planar_chunked(positions, triangles, epsilon);
   std::vector<glm::uvec3> reducible, kept;
+  reducible.reserve(flat_triangles);
+  kept.reserve(triangles.size() - flat_triangles);
   for (std::size_t k = 0; k < triangles.size(); ++k)
     (flat[component[k]] ? reducible : kept).push_back(triangles[k]);
-  if (kept.empty()) return reduce_planar_chunked(positions, triangles, epsilon);
   PlanarReduction out = reduce_planar_chunked(positions, reducible, epsilon);
   out.triangles.insert(out.triangles.end(), kept.begin(), kept.end());
   return out;
