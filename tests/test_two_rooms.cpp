@@ -268,5 +268,5 @@ TEST(HardCases, AWallJustPastThePlanesReachLeaksNothingWithoutThem) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

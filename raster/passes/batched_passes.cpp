@@ -191,10 +191,8 @@ BatchedPasses::form_batches(const std::vector<const Vpl*>& order, std::size_t fi
   return batches;
 }
 
-void BatchedPasses::consider_helpers(int n, const GpuScene& gpu, std::size_t vpls_left) {
-  if (helpers_asked_ || max_helpers_ < 1 || n < 1 ||
-      vpls_left < kHelperBatches * static_cast<std::size_t>(helper_batch()))
-    return;
+void BatchedPasses::consider_helpers(int n, const GpuScene& gpu) {
+  if (helpers_asked_ || max_helpers_ < 1 || n < 1) return;
   helpers_asked_ = true;
   LodProvider* lod = atlas_.prepare_hierarchy(gpu);
   const std::size_t per_vpl =
@@ -266,17 +264,17 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
   const std::vector<const Vpl*> order = ShadowAtlas::batch_order(vpls);
   shadow_triangles_ = 0;
   std::size_t drawn = 0, first = 0;
-  // Until the helpers are decided, batches of their size drawn here: what one draws decides.
-  const auto helper_vpls = static_cast<std::size_t>(helper_batch());
+  // Until the helpers are decided, batches of their size drawn here while kHelperBatches more
+  // would follow: what one draws decides.
   while (!helpers_asked_ && max_helpers_ > 0 &&
-         order.size() - first >= (1 + kHelperBatches) * helper_vpls) {
+         order.size() - first >= (1 + kHelperBatches) * static_cast<std::size_t>(helper_batch())) {
     const std::vector<Batch> probe =
         form_batches(order, first, helper_batch(), helper_batch(), set_of, into, 1);
     flush(probe[0].entries, into, gpu, timer);
     drawn += probe[0].entries.size();
     first = probe[0].end;
     if (after && !after(first)) return drawn;
-    consider_helpers(static_cast<int>(vpls_.size()), gpu, order.size() - first);
+    consider_helpers(static_cast<int>(vpls_.size()), gpu);
   }
   if (helpers_)
     return drawn + draw_with_helpers(

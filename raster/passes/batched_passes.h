@@ -125,9 +125,9 @@ private:
                                   const std::function<int(const Vpl&)>& set_of,
                                   const DeferredTarget& into,
                                   std::size_t most = ~std::size_t{0}) const;
-  // Makes the helpers when the batch just drawn here (n VPLs) asks for them and `vpls_left`
-  // are still to come.
-  void consider_helpers(int n, const GpuScene& gpu, std::size_t vpls_left);
+  // Makes the helpers when the batch just drawn here (n VPLs) asks for them (draw() asks only
+  // while kHelperBatches of their batches follow).
+  void consider_helpers(int n, const GpuScene& gpu);
   // The helpers' batch (kHelperBatch, at most this atlas's).
   int helper_batch() const { return std::min(atlas_.batch(), kHelperBatch); }
   // batches[first..] with the helpers drawing the atlases, round robin, each up to two ahead of

@@ -125,13 +125,13 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
 
 void ShadowAtlas::release_atlases() {
   const GladGLContext& api = *api_;
-  const bool gradients = gradient_[current_].get() != 0;
   atlas_.resize(1);
   gradient_.resize(1);
   fbo_.clear();
   current_ = 0;
   atlas_[0] = make_depth_texture(api, 1, 1);
-  gradient_[0] = gradients ? make_gradient_texture(api, 1, 1) : Texture();
+  gradient_[0] =
+      lod_options_.planes != ShadowPlanes::Off ? make_gradient_texture(api, 1, 1) : Texture();
 }
 
 bool ShadowAtlas::prepare_lod(const GpuScene& scene) {
