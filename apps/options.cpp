@@ -37,6 +37,13 @@ ShadowLodMode parse_shadow_lod(const std::string& name) {
   throw Error("", "--shadow-lod", "unknown mode '" + name + "' (on, cull, off)");
 }
 
+Visibility parse_visibility(const std::string& name) {
+  if (name == "auto") return Visibility::Auto;
+  if (name == "maps") return Visibility::Maps;
+  if (name == "rays") return Visibility::Rays;
+  throw Error("", "--visibility", "unknown mode '" + name + "' (auto, maps, rays)");
+}
+
 ShadowPlanes parse_shadow_planes(const std::string& name) {
   if (name == "auto") return ShadowPlanes::Auto;
   if (name == "on") return ShadowPlanes::On;

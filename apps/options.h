@@ -21,6 +21,8 @@ std::pair<int, int> parse_size_option(const std::string& text);
 GlBackend parse_backend(const std::string& name);
 // --shadow-lod: on, cull, off (RasterOptions::shadow_lod).
 ShadowLodMode parse_shadow_lod(const std::string& name);
+// --visibility: auto, maps, rays (RasterOptions::visibility).
+Visibility parse_visibility(const std::string& name);
 // --shadow-planes: auto, on, off (RasterOptions::shadow_lod.planes).
 ShadowPlanes parse_shadow_planes(const std::string& name);
 // --camera-lod: on, off (RasterOptions::camera_lod).

@@ -65,6 +65,7 @@ struct RenderArgs {
   std::string hierarchy_cache = "on";
   std::string shadow_helpers = "auto";
   std::string shadow_planes = "auto";
+  std::string visibility = "auto";
   std::string camera_lod = "off";
   std::string jitter = "off";
   std::string interleave_edges = "auto";
@@ -152,6 +153,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
   if (args.estimator == "raster") {
     seconds["raster"] = r.seconds.raster;
     seconds["readback"] = r.seconds.readback;
+    if (r.visibility == "rays") seconds["visibility"] = r.seconds.visibility; // part of raster
     // In the order the stages ran: [[name, seconds], ...].
     const auto stages = [](const std::vector<std::pair<std::string, double>>& list) {
       nlohmann::json out = nlohmann::json::array();
@@ -200,6 +202,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
         {"camera_pages", r.gpu_bytes.camera_pages}}},
       {"wall_cache", {{"outcome", r.wall_cache}, {"reason", r.wall_cache_reason}}},
       {"shadow_planes", r.shadow_planes}, // as drawn: auto resolved
+      {"visibility", r.visibility},       // raster, as drawn: auto resolved
       {"thinnest_wall", r.thinnest_wall},
       {"jitter", args.jitter == "on"},
       {"clamp", args.clamp},
@@ -317,6 +320,7 @@ int run_render(const RenderArgs& args) {
   if (args.shadow_helpers != "auto")
     request.render.raster.shadow_helpers = std::stoi(args.shadow_helpers);
   request.render.raster.shadow_lod.planes = parse_shadow_planes(args.shadow_planes);
+  request.render.raster.visibility = parse_visibility(args.visibility);
   request.render.raster.camera_lod = parse_camera_lod(args.camera_lod);
   request.render.raster.jitter = args.jitter == "on";
   set_edge_pixels(args.interleave_edges, request.render); // checked by CLI11
@@ -539,6 +543,14 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "pixels), built beside the render and kept between runs with the shadow "
                   "hierarchy (--hierarchy-cache); off: every triangle")
       ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--visibility", args->visibility,
+                  "Raster, batched: where V(y, x) comes from: maps (shadow cubes), rays (a "
+                  "shadow ray per VPL and shaded pixel from the G-buffer, as rt-vpl's; no shadow "
+                  "map, hierarchy or wall scan; not with --jitter, --interleave-edges shaded, "
+                  "--camera-lod on or --batch 1); auto: rays on a CPU renderer (llvmpipe), where "
+                  "they cost less, when the options allow, else maps")
+      ->check(CLI::IsMember({"auto", "maps", "rays"}))
       ->capture_default_str();
   cmd->add_option("--shadow-planes", args->shadow_planes,
                   "Raster, batched: a gradient per shadow texel so that walls thinner than a "

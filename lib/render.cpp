@@ -9,6 +9,7 @@
 #include "walk/mirror_pass.h"
 #include "walk/ray_scene.h"
 #include "walk/thin_walls.h"
+#include "walk/visibility_tracer.h"
 #include "walk/vpl_clustering.h"
 #include "walk/vpl_tracer.h"
 #include "walk/wall_cache.h"
@@ -63,6 +64,8 @@ struct Stages {
   // The raster's shadow hierarchy, building since render() began (early_hierarchy), and the
   // camera's after it (early_camera_hierarchy).
   std::shared_ptr<BackgroundClusters> hierarchy = nullptr, camera_hierarchy = nullptr;
+  // The raster's visibility, resolved before anything is built for it (raster_visibility).
+  Visibility visibility = Visibility::Maps;
 
   bool cancelled() {
     r.cancelled = r.cancelled || stop.poll();
@@ -160,8 +163,19 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   options.interleave = interleave(s.options, s.r);
   options.edge_pixels = edge_pixel_mode(s.options, s.r);
   options.shadow_resolution = shadow_resolution(s.options, s.r, options);
-  const PlaneChoice planes = choose_shadow_planes(
-      s.scene, rays, options.shadow_lod.planes, options.shadow_resolution, options.hierarchy_cache);
+  options.visibility = s.visibility;
+  PlaneChoice planes{ShadowPlanes::Off, -1.0f, {}};
+  if (s.visibility != Visibility::Maps) {
+    const float dmin = options.clamp * s.scene.bounds.diagonal();
+    const unsigned threads = s.options.pt.threads;
+    options.visibility_tracer = [&rays, dmin, threads](const VisibilityRequest& request) {
+      trace_visibility(rays, dmin, request, threads);
+    };
+  }
+  if (s.visibility != Visibility::Rays) { // rays alone draw no map: no planes
+    planes = choose_shadow_planes(s.scene, rays, options.shadow_lod.planes,
+                                  options.shadow_resolution, options.hierarchy_cache);
+  }
   const double scan = since(t0);
   options.shadow_lod.planes = planes.planes;
   options.traced_roughness = s.options.traced_roughness;
@@ -220,6 +234,8 @@ void run_raster(Stages& s, const RayScene& rays) {
   s.r.passes = timings.passes;
   s.r.shadow_triangles = timings.shadow_triangles;
   s.r.shadow_helpers = timings.shadow_helpers;
+  s.r.visibility = timings.ray_visibility ? "rays" : "maps";
+  s.r.seconds.visibility = timings.visibility_seconds;
   s.r.single_passes = timings.single_passes;
   s.r.edge_pixels = timings.edge_pixels;
   s.r.unsure_pixels = timings.unsure_pixels;
@@ -519,16 +535,31 @@ void run_rounds(Stages& s, const RayScene& rays) {
   s.r.rounds = done;
 }
 
+// The raster's visibility (RasterOptions::visibility): Auto stays Auto where the GL will be a
+// CPU renderer (expects_cpu_renderer) and the options allow rays (the renderer switches to
+// rays where its first batch of maps draws many triangles per VPL), else Maps. Rays, decided
+// here before the walk, builds nothing for shadow maps (the hierarchy, the thinnest-wall scan).
+Visibility raster_visibility(const RenderOptions& o) {
+  const RasterOptions& raster = o.raster;
+  if (o.estimator != Estimator::Raster || raster.visibility == Visibility::Maps)
+    return Visibility::Maps;
+  if (raster.visibility == Visibility::Rays) return Visibility::Rays;
+  return rays_refused(raster) == nullptr && expects_cpu_renderer(raster.backend, raster.gl_device)
+             ? Visibility::Auto
+             : Visibility::Maps;
+}
+
 // The raster's shadow hierarchy started on its own thread
 // (core/mesh/hierarchy/background_clusters.h), where the batched passes will draw from it: raster,
 // batches, no jitter, a shadow level of detail, a static scene. On the 2.1M sphere box (256x256,
 // cold cache) its one-core stages then overlap the ray-tracing structure, the walk and the GL
 // set-up (docs/performance.md "Big scenes"). nullptr elsewhere: the raster builds it where it needs
 // it, if it does. A render that ends early (an error, a cancellation) waits for the build to end.
-std::shared_ptr<BackgroundClusters> early_hierarchy(const Scene& scene, const RenderOptions& o) {
+std::shared_ptr<BackgroundClusters> early_hierarchy(const Scene& scene, const RenderOptions& o,
+                                                    Visibility visibility) {
   const RasterOptions& raster = o.raster;
-  if (o.estimator != Estimator::Raster || raster.batch <= 1 || raster.jitter ||
-      raster.shadow_lod.mode == ShadowLodMode::Off || scene.animation)
+  if (o.estimator != Estimator::Raster || visibility == Visibility::Rays || raster.batch <= 1 ||
+      raster.jitter || raster.shadow_lod.mode == ShadowLodMode::Off || scene.animation)
     return nullptr;
   const ClusterOptions options{0, raster.shadow_lod.mode == ShadowLodMode::On};
   return std::make_shared<BackgroundClusters>(scene, options, raster.hierarchy_cache);
@@ -554,11 +585,14 @@ RenderOptions with_light_budget(RenderOptions o) {
 // The BVH's quality: Fast for the raster over a scene of a million triangles or more, where it
 // traces far fewer rays than it has triangles (the walk, the clustering's rows, the planes scan,
 // the compensation: about 5M rays against 2.1M triangles on the sphere box) and the build is the
-// cost that counts; High elsewhere (rt-vpl and pt trace rays per pixel and VPL).
-BvhQuality bvh_quality(const Scene& scene, const RenderOptions& o) {
+// cost that counts; High elsewhere (rt-vpl, pt and the raster's visibility by rays trace rays per
+// pixel and VPL).
+BvhQuality bvh_quality(const Scene& scene, const RenderOptions& o, Visibility visibility) {
   constexpr std::size_t kFastFrom = std::size_t{1} << 20;
-  return o.estimator == Estimator::Raster && scene.triangle_count() >= kFastFrom ? BvhQuality::Fast
-                                                                                 : BvhQuality::High;
+  return o.estimator == Estimator::Raster && visibility != Visibility::Rays &&
+                 scene.triangle_count() >= kFastFrom
+             ? BvhQuality::Fast
+             : BvhQuality::High;
 }
 
 RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) {
@@ -579,9 +613,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
     if (raster.interleave == 0) raster.interleave = 4;
     check_raster_options(raster);
   }
-  s.hierarchy = early_hierarchy(scene, options);
+  s.visibility = raster_visibility(options);
+  s.hierarchy = early_hierarchy(scene, options, s.visibility);
   s.camera_hierarchy = early_camera_hierarchy(scene, options, s.hierarchy.get());
-  const RayScene rays(scene, bvh_quality(scene, options));
+  const RayScene rays(scene, bvh_quality(scene, options, s.visibility));
   release_freed_memory(); // the BVH builder's
   r.seconds.load = since(t0);
   if (s.cancelled()) {

@@ -56,7 +56,9 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
   if (!batched || !batched->matches(options.batch, resolution, ortho))
     batched = gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
                                       options.shadow_lod, lists_unsure_pixels(options), &lod,
-                                      context.get(), shadow_helpers());
+                                      context.get(), shadow_helpers(),
+                                      rays_allowed() ? options.visibility_tracer : nullptr,
+                                      options.visibility == Visibility::Rays);
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {
@@ -194,6 +196,7 @@ void RasterRenderer::Impl::begin_image(const View& view) {
     if (jitter) jitter->average_albedo(camera, view, gpu);
     if (interleaved) interleaved->find_edges();
     if (interleaved && batched) interleaved->mark_receivers(); // the deferred passes read it
+    if (batched) batched->read_gbuffer(*gbuffer);              // with rays only
   }
   tile_depths = false;
   single_passes = 0;
@@ -263,10 +266,28 @@ void check_raster_options(const RasterOptions& options) {
     throw Error("", "--batch", "must be between 1 and 256");
   if (options.shadow_helpers < -1 || options.shadow_helpers > 8)
     throw Error("", "--shadow-helpers", "must be between 0 and 8, or auto");
+  if (options.visibility == Visibility::Rays)
+    if (const char* why = rays_refused(options))
+      throw Error("", "--visibility", std::string("rays do not take ") + why);
+}
+
+bool expects_cpu_renderer(GlBackend backend, int device) {
+  return gl::expects_cpu_renderer(backend, device);
+}
+
+const char* rays_refused(const RasterOptions& o) {
+  if (o.batch < 2) return "--batch 1 (the per-VPL passes draw their own shadow maps)";
+  if (o.jitter) return "--jitter (each VPL's G-buffer moves)";
+  if (o.edge_pixels == EdgePixelMode::Shaded) return "--interleave-edges shaded";
+  if (o.camera_lod == CameraLodMode::On)
+    return "--camera-lod on (its G-buffer lies off the surfaces the rays start from)";
+  return nullptr;
 }
 
 RasterRenderer::RasterRenderer(const Scene& scene, const RasterOptions& options) {
   check_raster_options(options);
+  if (options.visibility == Visibility::Rays && !options.visibility_tracer)
+    throw Error("", "--visibility", "rays need a ray tracer (irad::render gives one)");
   auto start = StageTimes::Clock::now();
   auto context = gl::create_context(options.backend, options.gl_device);
   if (options.gl_messages) context->route_debug_messages(options.gl_messages);
@@ -356,6 +377,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   im.vpl_shader.set_lobes(&vpls.lobes);
   im.vpl_shader.set_traced_roughness(im.options.traced_roughness);
   if (im.batched) {
+    im.batched->set_vpls(&vpls);
     im.batched->set_lobes(&vpls.lobes);
     im.batched->set_traced_roughness(im.options.traced_roughness);
   }
@@ -372,6 +394,7 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   im.vpl_shader.set_lobes(nullptr);
   im.vpl_shader.set_traced_roughness(0.0f);
   if (im.batched) {
+    im.batched->set_vpls(nullptr);
     im.batched->set_lobes(nullptr);
     im.batched->set_traced_roughness(0.0f);
   }
@@ -385,6 +408,8 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
   if (timings && im.batched) {
     timings->shadow_triangles = im.batched->shadow_triangles();
     timings->shadow_helpers = im.batched->helpers();
+    timings->ray_visibility = im.batched->rays();
+    timings->visibility_seconds = im.batched->visibility_seconds();
   }
   return image;
 }

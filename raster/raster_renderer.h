@@ -4,6 +4,7 @@
 // emitters' L_e once; then readback. Public header: no GL types.
 #include "core/camera/view.h"
 #include "core/image/image.h"
+#include "core/lights/visibility_request.h"
 #include "core/lights/vpl.h"
 #include "core/mesh/hierarchy/background_clusters.h"
 #include "core/mesh/hierarchy/cluster_cache.h"
@@ -29,6 +30,9 @@ namespace irad {
 // traces them), and with them the pixels whose shadow lookups were unsure (the batched passes
 // then report it: a tenth more shading where the scene has no occluder planes).
 enum class EdgePixelMode { Off, Shaded, Listed };
+
+// Where the batched passes' visibility V(y, x) comes from (RasterOptions::visibility).
+enum class Visibility { Auto, Maps, Rays };
 
 struct RasterOptions {
   int shadow_resolution = 0; // texels per cube face edge; 0: from the image size (see below)
@@ -65,6 +69,14 @@ struct RasterOptions {
   // their vertex work) with 2 or more cores, else 0; 0: this context draws them. The image is the
   // same either way.
   int shadow_helpers = -1;
+  // Visibility of the batched passes: Maps, the shadow cubes; Rays, the caller's ray tracer
+  // (`visibility_tracer`: one shadow ray per VPL and shaded pixel,
+  // core/lights/visibility_request.h; no shadow map, hierarchy or helper thread), which needs
+  // batches, no jitter, no shaded edge pixels and no camera level of detail; Auto: Rays on a CPU
+  // renderer (llvmpipe, where the rays cost less than the shadow faces: docs/performance.md
+  // "Visibility by rays") when a tracer is given and the options allow it, else Maps.
+  Visibility visibility = Visibility::Auto;
+  VisibilityTracer visibility_tracer = nullptr;
   // Where the shadow hierarchy is kept between runs (core/mesh/hierarchy/cluster_cache.h): the
   // user's cache folder by default; empty: built every time, never written.
   std::filesystem::path hierarchy_cache = default_cache_folder();
@@ -97,6 +109,11 @@ struct RasterOptions {
 // Throws irad::Error naming the option (--shadow-res, --clamp, --interleave, --batch) when
 // `options` are impossible; the constructor checks them too, a caller may check before its work.
 void check_raster_options(const RasterOptions& options);
+// Why visibility by rays cannot serve `options` (the option that refuses it), or nullptr.
+const char* rays_refused(const RasterOptions& options);
+// Whether a renderer of this backend and device will run on a CPU renderer (llvmpipe), as far as
+// can be told without making its context (raster/context/gl_context.h).
+bool expects_cpu_renderer(GlBackend backend, int device);
 
 // Whether a renderer with `options` lists the unsure pixels beside the edge pixels (the shading
 // then reports its unsure light: raster/passes/deferred_shader.h): edge pixels Listed, with
@@ -144,6 +161,10 @@ struct RasterTimings {
   // render(): the helper threads that drew shadow atlases (RasterOptions::shadow_helpers; 0 when
   // none were made).
   int shadow_helpers = 0;
+  // render(): whether visibility came from rays (RasterOptions::visibility resolved), and the
+  // seconds its tracer took.
+  bool ray_visibility = false;
+  double visibility_seconds = 0.0;
   // Interleaved with edge pixels (RasterOptions::edge_pixels): how many the image has (Shaded:
   // 0 when some VPL took the per-VPL passes, whose light they lack, so the filter kept them).
   std::size_t edge_pixels = 0;

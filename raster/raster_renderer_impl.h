@@ -107,6 +107,14 @@ struct RasterRenderer::Impl {
   }
 
   void prepare(const View& view);
+  // Whether rays may answer visibility here (RasterOptions::visibility): asked for, or Auto on a
+  // CPU renderer, with a tracer and options that allow them.
+  bool rays_allowed() const {
+    if (options.visibility == Visibility::Maps || !options.visibility_tracer ||
+        rays_refused(options) != nullptr)
+      return false;
+    return options.visibility == Visibility::Rays || context->cpu_renderer();
+  }
   // RasterOptions::shadow_helpers, auto resolved for this context.
   int shadow_helpers() const {
     if (options.shadow_helpers >= 0) return options.shadow_helpers;

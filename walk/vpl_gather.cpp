@@ -112,18 +112,25 @@ glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl&
 
 void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls,
                           std::size_t first, std::size_t n, float dmin, float eps, glm::vec3* out) {
+  const Vpl* chunk[kVplChunk];
+  for (std::size_t i = 0; i < n; ++i) chunk[i] = &vpls.vpls[first + i];
+  vpl_terms(rays, x, chunk, n, vpls, dmin, eps, out);
+}
+
+void vpl_terms(const RayScene& rays, const ShadingPoint& x, const Vpl* const* vpls, std::size_t n,
+               const VplSet& set, float dmin, float eps, glm::vec3* out) {
   glm::vec3 toward[kVplChunk] = {};
   float tmax[kVplChunk] = {};
   bool blocked[kVplChunk];
   std::size_t index[kVplChunk];
   std::size_t rays_n = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Vpl& v = vpls.vpls[first + i];
+    const Vpl& v = *vpls[i];
     if (v.kind == VplKind::Directional || v.mirror >= 0) { // their own visibility tests
-      out[i] = vpl_irradiance(rays, x, v, vpls, dmin, eps);
+      out[i] = vpl_irradiance(rays, x, v, set, dmin, eps);
       continue;
     }
-    const Unshadowed u = unshadowed(x, v, vpls, dmin, eps);
+    const Unshadowed u = unshadowed(x, v, set, dmin, eps);
     out[i] = u.term;
     if (u.term == glm::vec3(0.0f)) continue;
     toward[rays_n] = u.toward;

@@ -76,6 +76,9 @@ glm::vec3 vpl_irradiance(const RayScene& rays, const ShadingPoint& x, const Vpl&
 inline constexpr std::size_t kVplChunk = 64;
 void vpl_irradiance_chunk(const RayScene& rays, const ShadingPoint& x, const VplSet& vpls,
                           std::size_t first, std::size_t n, float dmin, float eps, glm::vec3* out);
+// The same for any n <= kVplChunk VPLs of `set` (its lobes and mirror polygons), by pointer.
+void vpl_terms(const RayScene& rays, const ShadingPoint& x, const Vpl* const* vpls, std::size_t n,
+               const VplSet& set, float dmin, float eps, glm::vec3* out);
 
 // f(j, vpl_irradiance of VPL j at x) for every VPL of the set in order, kVplChunk at a time
 // (vpl_irradiance_chunk): gather_vpls and the light rows go through it.

@@ -116,6 +116,7 @@ struct StageSeconds {
   // The estimates asked for after the image (RenderOptions::clamped_fraction, which `irad render
   // --stats` asks for): left out of `total`, which is the render's own time.
   double statistics = 0;
+  double visibility = 0; // raster, visibility by rays: the tracer's share of `raster`
   // Of `raster`, the one-time stages in the order they ran: "planes scan" (the thinnest wall,
   // walk/thin_walls.h) and RasterRenderer::setup_times (the GL context, the upload, the shadow
   // hierarchy's build stages and its upload).
@@ -156,6 +157,7 @@ struct RenderResult {
   bool cancelled = false; // stopped early by a cancellation
   std::size_t passes = 0; // VPL passes drawn (raster)
   int shadow_helpers = 0; // threads that drew shadow atlases (raster; RasterOptions)
+  std::string visibility; // raster: "rays" or "maps" (RasterOptions::visibility resolved)
   // Triangles the batched shadow faces drew from the shadow hierarchy (raster; RasterTimings)
   std::size_t shadow_triangles = 0;
   // Of them, those drawn one VPL at a time (--batch 1, the reference; RasterTimings)

@@ -69,4 +69,10 @@ std::unique_ptr<Context> create_context(GlBackend backend, int device) {
   return osmesa_available() ? create_osmesa_context() : create_egl_context(-1);
 }
 
+bool expects_cpu_renderer(GlBackend backend, int device) {
+  if (backend == GlBackend::OsMesa) return true;
+  if (device >= 0) return false;
+  return !egl_has_hardware_device();
+}
+
 } // namespace irad::gl

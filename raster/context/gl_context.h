@@ -103,4 +103,9 @@ bool osmesa_available();
 std::unique_ptr<Context> create_egl_context(int device = -1);
 bool egl_has_hardware_device();
 
+// Whether create_context(backend, device) will make a CPU renderer, as far as can be told
+// without making a context: OSMesa always, EGL where it sees no hardware device (Mesa's
+// surfaceless llvmpipe), never for a device asked for by index.
+bool expects_cpu_renderer(GlBackend backend, int device);
+
 } // namespace irad::gl

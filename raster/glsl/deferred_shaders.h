@@ -58,8 +58,14 @@ flat out int v_reachable;
 #ifdef IRAD_GLOSSY_VPLS
 flat out vec4 v_lobe[4];
 #endif
+#ifdef IRAD_RAYS
+flat out int v_record; // its layer of the visibility texture
+#endif
 void main() {
   BatchVpl vpl = u_vpl[u_first + gl_InstanceID];
+#ifdef IRAD_RAYS
+  v_record = u_first + gl_InstanceID;
+#endif
 #ifdef IRAD_GLOSSY_RECEIVERS
   v_reachable = vpl.info.w;
 #endif
@@ -117,6 +123,13 @@ uniform sampler2D u_shadow_gradient; // its gradient per texel (cube_glsl.h)
 #pragma irad_unsure
 uniform sampler2D u_ortho_atlas;   // orthographic maps (raster/shadow/ortho_atlas.h)
 uniform int u_ortho_res;           // M, texels per tile edge
+#ifdef IRAD_RAYS
+// Visibility by rays (raster/passes/ray_visibility.h): layer r holds whether uploaded VPL r
+// lights tile pixel t's surface (1) or not (0), in place of every shadow lookup.
+flat in int v_record;
+uniform sampler2DArray u_visibility;
+ivec2 g_tile_pixel; // main's t
+#endif
 uniform sampler2D u_position;    // G-buffer: xyz, w = 1 on a surface
 uniform sampler2D u_normal;      // towards the camera
 uniform sampler2D u_albedo;      // with IRAD_GLOSSY the directional albedo toward the camera
@@ -228,7 +241,15 @@ vec3 directional_light(vec3 x, vec3 n) {
 // `unsure` its luminance unshadowed where the shadow lookup was unsure (shadowed()), else 0.
 vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
   unsure = 0.0;
+#ifdef IRAD_RAYS
+  if (texelFetch(u_visibility, ivec3(g_tile_pixel, v_record), 0).r < 0.5) return vec3(0.0);
+  if (v_kind == 4) {
+    float cos_d = dot(n, -v_vpl_normal);
+    return cos_d > 0.0 ? v_vpl_intensity * (cos_d * INV_PI) : vec3(0.0);
+  }
+#else
   if (v_kind == 4) return directional_light(x, n);
+#endif
 #ifdef IRAD_MIRRORS
   if (v_mirror.x >= 0 && !through_mirror(x)) return vec3(0.0);
 #endif
@@ -248,11 +269,15 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
     e = t * t;
   }
   if (e <= 0.0) return vec3(0.0);
+#ifdef IRAD_RAYS
+  bool lookup_unsure = false, hidden = false; // the rays' answer, read above
+#else
   // Normal-offset lookup (raster/glsl/cube_glsl.h).
   vec3 dp = lookup_offset(x, n, dist, cos_x, u_bias_texel, v_vpl_position);
   mat3 frame = mat3(v_frame[0].xyz, v_frame[1].xyz, v_frame[2].xyz);
   bool lookup_unsure;
   bool hidden = shadowed(frame * dp, length(dp) - u_bias_constant, frame * n, lookup_unsure);
+#endif
   float g = e * cos_x / max(dist2, v_cone.z);
   vec3 light = v_vpl_intensity * (g * INV_PI);
 #ifdef IRAD_GLOSSY_VPLS
@@ -287,6 +312,9 @@ vec3 receiver_weight(ivec2 p, vec3 x, vec3 n, float r, vec3 wi) {
 void main() {
   ivec2 t = ivec2(gl_FragCoord.xy) - u_tile_origin;
   ivec2 p = u_listed ? texelFetch(u_pixel_list, t, 0).xy : t * u_pixel.x + u_pixel.yz;
+#ifdef IRAD_RAYS
+  g_tile_pixel = t;
+#endif
   if (p.x < 0 || p.x >= u_size.x || p.y >= u_size.y) discard;
   vec4 x = texelFetch(u_position, p, 0);
   if (x.w <= 0.0) discard;

@@ -44,4 +44,17 @@ void GBuffer::bind_brdf_textures(GLint first) const {
   }
 }
 
+void GBuffer::read(std::vector<glm::vec4>& positions, std::vector<glm::vec4>& normals) const {
+  const std::size_t texels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+  positions.resize(texels);
+  normals.resize(texels);
+  api_->BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.get());
+  api_->PixelStorei(GL_PACK_ALIGNMENT, 4);
+  api_->ReadBuffer(GL_COLOR_ATTACHMENT0);
+  api_->ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, positions.data());
+  api_->ReadBuffer(GL_COLOR_ATTACHMENT1);
+  api_->ReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, normals.data());
+  api_->ReadBuffer(GL_COLOR_ATTACHMENT0);
+}
+
 } // namespace irad::gl

@@ -13,6 +13,7 @@
 #include "raster/context/gl_objects.h"
 
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace irad::gl {
 
@@ -31,6 +32,9 @@ public:
   void bind_textures(GLint first) const;
   // glossy(): binds (base, f90) and (f0, metallic) to units first and first + 1.
   void bind_brdf_textures(GLint first) const;
+  // The positions and normals, row by row from the bottom (VisibilityRequest's layout): what
+  // visibility by rays starts its shadow rays from.
+  void read(std::vector<glm::vec4>& positions, std::vector<glm::vec4>& normals) const;
   // The camera it was drawn from, as the shaders' u_eye (raster/passes/camera_passes.h
   // eye_uniform): set by CameraPasses::gbuffer.
   const glm::vec4& eye() const { return eye_; }

@@ -9,7 +9,8 @@ namespace irad::gl {
 std::unique_ptr<BatchedPasses>
 BatchedPasses::make(const GladGLContext& api, const Scene& scene, float clamp, int batch,
                     int resolution, int ortho_resolution, const ShadowLodOptions& lod, bool unsure,
-                    LodProvider* shared, Context* context, int helpers) {
+                    LodProvider* shared, Context* context, int helpers, VisibilityTracer rays,
+                    bool rays_now) {
   if (batch < 2) return nullptr;
   const int b = ShadowAtlas::capacity(api, resolution, batch);
   if (b < 2 || DeferredShader::capacity(api, b, !scene.all_lambertian()) < b) return nullptr;
@@ -18,13 +19,14 @@ BatchedPasses::make(const GladGLContext& api, const Scene& scene, float clamp, i
                         : 0;
   return std::make_unique<BatchedPasses>(api, scene, clamp, batch, b, resolution, tiles,
                                          tiles > 0 ? ortho_resolution : 0, lod, unsure, shared,
-                                         context, helpers);
+                                         context, helpers, std::move(rays), rays_now);
 }
 
 BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp,
                              int requested, int batch, int resolution, int ortho_tiles,
                              int ortho_resolution, const ShadowLodOptions& lod, bool unsure,
-                             LodProvider* shared, Context* context, int helpers)
+                             LodProvider* shared, Context* context, int helpers,
+                             VisibilityTracer rays, bool rays_now)
     : requested_(requested),
       atlas_(api, resolution, batch, batch, scene.bounds, MaterialFeatures::of(scene), lod, shared),
       ortho_(ortho_tiles > 0
@@ -35,7 +37,11 @@ BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float
           api, scene, clamp,
           DeferredShader::capacity(api, std::max(batch, kShadingBatch), !scene.all_lambertian()),
           lod.planes != ShadowPlanes::Off, unsure),
-      context_(context), max_helpers_(context ? helpers : 0) {}
+      context_(context), max_helpers_(context && !rays_now ? helpers : 0),
+      rays_(rays ? std::make_unique<RayVisibility>(api, std::move(rays)) : nullptr),
+      rays_on_(rays_ && rays_now) {
+  if (rays_on_) atlas_.release_atlases(); // never drawn
+}
 
 void BatchedPasses::draw_ortho(const std::vector<std::size_t>& directional, const GpuScene& gpu) {
   // One map per direction: a directional light's VPLs (or a sun's) share theirs.
@@ -75,6 +81,14 @@ void BatchedPasses::gather(const std::vector<Entry>& batch) {
 void BatchedPasses::flush(const std::vector<Entry>& batch, const DeferredTarget& into,
                           const GpuScene& gpu, PassTimer* timer) {
   gather(batch);
+  if (rays_on_) { // no maps: complete() reads the frames, fars and blocks of none
+    frames_.assign(cubes_.size(), glm::mat3(1.0f));
+    fars_.assign(cubes_.size(), 1.0f);
+    blocks_.assign(cubes_.size(), glm::ivec4(0));
+    complete(atlas_.texture(), atlas_.gradient_texture(), frames_, fars_, blocks_, into, gpu,
+             timer);
+    return;
+  }
   if (timer) timer->begin(PassTimer::Shadow);
   if (!vpls_.empty()) {
     atlas_.render(vpls_.data(), static_cast<int>(vpls_.size()), gpu, frames_, fars_, blocks_);
@@ -87,7 +101,7 @@ void BatchedPasses::flush(const std::vector<Entry>& batch, const DeferredTarget&
 void BatchedPasses::complete(GLuint texture, GLuint gradient, const std::vector<glm::mat3>& frames,
                              const std::vector<float>& fars, const std::vector<glm::ivec4>& blocks,
                              const DeferredTarget& into, const GpuScene& gpu, PassTimer* timer) {
-  if (!directional_.empty()) {
+  if (!directional_.empty() && !rays_on_) {
     if (timer) timer->begin(PassTimer::Shadow);
     draw_ortho(directional_, gpu);
     if (timer) timer->end();
@@ -126,6 +140,14 @@ void BatchedPasses::shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shado
 void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& shadow,
                                const DeferredTarget& into) {
   shader_.upload(vpls, n);
+  ShadowLookup lookup = shadow;
+  if (rays_on_) {
+    const int k = into.interleaved ? into.interleaved->k() : 1;
+    const glm::ivec4 tile = into.interleaved
+                                ? into.interleaved->tile(0)
+                                : glm::ivec4(0, 0, into.gbuffer->width(), into.gbuffer->height());
+    lookup.visibility = rays_->answer(vpls, n, k, glm::ivec2(tile.z, tile.w));
+  }
   for (int first = 0; first < n;) {
     const int set = vpls[first].set;
     int end = first + 1;
@@ -141,7 +163,7 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
     } else {
       into.bind_image();
     }
-    shader_.draw(first, end - first, pixels, *into.gbuffer, shadow, !into.interleaved);
+    shader_.draw(first, end - first, pixels, *into.gbuffer, lookup, !into.interleaved);
     first = end;
   }
   // The edge pixels: every set's VPLs, unscaled (the sets' sum is the whole estimate whatever
@@ -151,7 +173,7 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
   edges->bind_light();
   TilePixels listed;
   listed.list = edges->list();
-  shader_.draw(0, n, listed, *into.gbuffer, shadow, false);
+  shader_.draw(0, n, listed, *into.gbuffer, lookup, false);
 }
 
 std::vector<BatchedPasses::Batch>
@@ -191,13 +213,22 @@ BatchedPasses::form_batches(const std::vector<const Vpl*>& order, std::size_t fi
   return batches;
 }
 
-void BatchedPasses::consider_helpers(int n, const GpuScene& gpu) {
-  if (helpers_asked_ || max_helpers_ < 1 || n < 1) return;
+void BatchedPasses::consider_helpers(int n, const GpuScene& gpu, const DeferredTarget& into) {
+  const bool may_switch = rays_ && !rays_on_;
+  if (helpers_asked_ || (max_helpers_ < 1 && !may_switch) || n < 1) return;
   helpers_asked_ = true;
   LodProvider* lod = atlas_.prepare_hierarchy(gpu);
   const std::size_t per_vpl =
       lod ? atlas_.cluster_triangles() / static_cast<std::size_t>(n) : gpu.scene().triangle_count();
   if (per_vpl < kHelperTrianglesPerVpl) return;
+  if (may_switch) { // rays for the rest of this image and the images after it
+    rays_on_ = true;
+    atlas_.release_atlases();
+    rays_->read(*into.gbuffer);
+    rays_->reset_seconds();
+    return;
+  }
+  if (max_helpers_ < 1) return;
   ShadowHelpers::AtlasShape shape{atlas_.resolution(),
                                   helper_batch(),
                                   helper_batch(),
@@ -266,7 +297,7 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
   std::size_t drawn = 0, first = 0;
   // Until the helpers are decided, batches of their size drawn here while kHelperBatches more
   // would follow: what one draws decides.
-  while (!helpers_asked_ && max_helpers_ > 0 &&
+  while (!helpers_asked_ && (max_helpers_ > 0 || (rays_ && !rays_on_)) &&
          order.size() - first >= (1 + kHelperBatches) * static_cast<std::size_t>(helper_batch())) {
     const std::vector<Batch> probe =
         form_batches(order, first, helper_batch(), helper_batch(), set_of, into, 1);
@@ -274,7 +305,7 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
     drawn += probe[0].entries.size();
     first = probe[0].end;
     if (after && !after(first)) return drawn;
-    consider_helpers(static_cast<int>(vpls_.size()), gpu);
+    consider_helpers(static_cast<int>(vpls_.size()), gpu, into);
   }
   if (helpers_)
     return drawn + draw_with_helpers(

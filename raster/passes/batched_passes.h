@@ -16,6 +16,7 @@
 #include "raster/image/gbuffer.h"
 #include "raster/image/interleaved.h"
 #include "raster/passes/deferred_shader.h"
+#include "raster/passes/ray_visibility.h"
 #include "raster/scene/gpu_scene.h"
 #include "raster/shadow/ortho_atlas.h"
 #include "raster/shadow/shadow_atlas.h"
@@ -48,14 +49,15 @@ public:
   // hierarchy (ShadowAtlas; nullptr: the atlas builds its own). helpers > 0: up to that many
   // threads draw the shadow atlases in contexts shared with `context` (the one current here)
   // while it shades, once a batch draws enough triangles per VPL (kHelperTrianglesPerVpl, 8000).
-  static std::unique_ptr<BatchedPasses> make(const GladGLContext& api, const Scene& scene,
-                                             float clamp, int batch, int resolution,
-                                             int ortho_resolution, const ShadowLodOptions& lod,
-                                             bool unsure, LodProvider* shared = nullptr,
-                                             Context* context = nullptr, int helpers = 0);
+  static std::unique_ptr<BatchedPasses>
+  make(const GladGLContext& api, const Scene& scene, float clamp, int batch, int resolution,
+       int ortho_resolution, const ShadowLodOptions& lod, bool unsure,
+       LodProvider* shared = nullptr, Context* context = nullptr, int helpers = 0,
+       VisibilityTracer rays = nullptr, bool rays_now = false);
   BatchedPasses(const GladGLContext& api, const Scene& scene, float clamp, int requested, int batch,
                 int resolution, int ortho_tiles, int ortho_resolution, const ShadowLodOptions& lod,
-                bool unsure, LodProvider* shared, Context* context, int helpers);
+                bool unsure, LodProvider* shared, Context* context, int helpers,
+                VisibilityTracer rays = nullptr, bool rays_now = false);
 
   // Whether this object serves make(..., batch, resolution, ortho_resolution).
   bool matches(int batch, int resolution, int ortho_resolution) const {
@@ -67,6 +69,23 @@ public:
   std::size_t shadow_triangles() const { return shadow_triangles_; }
   // Whether directional VPLs can be drawn here (an orthographic atlas was made).
   bool directional() const { return ortho_ != nullptr; }
+  // Whether visibility comes from rays (RayVisibility; no shadow map is drawn): from the start
+  // with make's rays_now, else from where the first batch drawn with maps picked at least
+  // kHelperTrianglesPerVpl triangles per VPL (there instead of helpers), when make was
+  // given a tracer (`rays`).
+  bool rays() const { return rays_on_; }
+  // With rays(): the G-buffer the next draw()s shade, read back for the rays, and the set their
+  // VPLs come from (not owned: it must outlive those draws).
+  void read_gbuffer(const GBuffer& gbuffer) {
+    if (!rays_on_) return;
+    rays_->read(gbuffer);
+    rays_->reset_seconds();
+  }
+  // With rays(): the seconds the tracer took since read_gbuffer.
+  double visibility_seconds() const { return rays_on_ ? rays_->seconds() : 0.0; }
+  void set_vpls(const VplSet* set) {
+    if (rays_) rays_->set_vpls(set);
+  }
   // The helper threads drawing the atlases (0 until a batch asked for them).
   int helpers() const { return helpers_ ? helpers_->count() : 0; }
 
@@ -127,7 +146,8 @@ private:
                                   std::size_t most = ~std::size_t{0}) const;
   // Makes the helpers when the batch just drawn here (n VPLs) asks for them (draw() asks only
   // while kHelperBatches of their batches follow).
-  void consider_helpers(int n, const GpuScene& gpu);
+  // Or, given a tracer, switches to rays instead.
+  void consider_helpers(int n, const GpuScene& gpu, const DeferredTarget& into);
   // The helpers' batch (kHelperBatch, at most this atlas's).
   int helper_batch() const { return std::min(atlas_.batch(), kHelperBatch); }
   // batches[first..] with the helpers drawing the atlases, round robin, each up to two ahead of
@@ -177,6 +197,8 @@ private:
   bool helpers_asked_ = false; // consider_helpers decided
   std::unique_ptr<ShadowHelpers> helpers_;
   const std::vector<VplLobe>* lobes_ = nullptr;
+  std::unique_ptr<RayVisibility> rays_; // given a tracer
+  bool rays_on_ = false;                // visibility by rays instead of the atlases
 };
 
 } // namespace irad::gl

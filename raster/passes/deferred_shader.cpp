@@ -29,11 +29,12 @@ constexpr std::size_t kFloatsPerVpl = floats_per_vpl(false);
 // at shadow_unit).
 constexpr GLint gbuffer_unit = 3;
 constexpr GLint ortho_unit = 6;
-constexpr GLint gradient_unit = 7; // ShadowLookup::gradient
-constexpr GLint mirror_unit = 8;   // the mirror polygons' corners
-constexpr GLint list_unit = 9;     // TilePixels::list
-constexpr GLint brdf_unit = 10;    // glossy: the G-buffer's (base, f90) and (f0, metallic)
-constexpr GLint table_unit = 12;   // glossy: the albedo table (the VSLs' widened lobes)
+constexpr GLint gradient_unit = 7;    // ShadowLookup::gradient
+constexpr GLint mirror_unit = 8;      // the mirror polygons' corners
+constexpr GLint list_unit = 9;        // TilePixels::list
+constexpr GLint brdf_unit = 10;       // glossy: the G-buffer's (base, f90) and (f0, metallic)
+constexpr GLint table_unit = 12;      // glossy: the albedo table (the VSLs' widened lobes)
+constexpr GLint visibility_unit = 13; // rays: ShadowLookup::visibility
 
 // The BatchVpl record of raster/glsl/deferred_shaders.h (std140, 160 bytes). `triangles`: the
 // triangles of the VPL's mirror polygon (0: its light reaches nothing, as VplShader's).
@@ -73,9 +74,9 @@ void write_lobe(float* out, const AtlasVpl& a) {
   std::memcpy(out, r.data(), sizeof(float) * r.size());
 }
 
-std::string defines(bool mirrors, bool glossy, bool receivers, bool lobes) {
+std::string defines(bool mirrors, bool glossy, bool receivers, bool lobes, bool rays) {
   return std::string(mirrors ? "#define IRAD_MIRRORS 1\n" : "") +
-         (glossy ? "#define IRAD_GLOSSY 1\n" : "") +
+         (rays ? "#define IRAD_RAYS 1\n" : "") + (glossy ? "#define IRAD_GLOSSY 1\n" : "") +
          (receivers ? "#define IRAD_GLOSSY_RECEIVERS 1\n" : "") +
          (lobes ? "#define IRAD_GLOSSY_VPLS 1\n" : "");
 }
@@ -126,15 +127,19 @@ int DeferredShader::capacity(const GladGLContext& api, int wanted, bool glossy) 
 }
 
 DeferredShader::Program::Program(const GladGLContext& api, int batch, bool planes, bool unsure,
-                                 bool mirrors, bool glossy, bool receivers, bool lobes)
-    : program(api, "deferred vpl",
-              shaders::batched_source(shaders::deferred_vpl_vertex, batch,
-                                      defines(mirrors, glossy, receivers, lobes)),
-              fragment_source(batch, planes, unsure, defines(mirrors, glossy, receivers, lobes))),
+                                 bool mirrors, bool glossy, bool receivers, bool lobes, bool rays)
+    : program(
+          api, "deferred vpl",
+          shaders::batched_source(shaders::deferred_vpl_vertex, batch,
+                                  defines(mirrors, glossy, receivers, lobes, rays)),
+          fragment_source(batch, planes, unsure, defines(mirrors, glossy, receivers, lobes, rays))),
       first(program.uniform("u_first")), tile_origin(program.uniform("u_tile_origin")),
       pixel(program.uniform("u_pixel")), size(program.uniform("u_size")),
-      shadow_res(program.uniform("u_shadow_res")), shadow_half(program.uniform("u_shadow_half")),
-      bias_texel(program.uniform("u_bias_texel")), ortho_res(program.uniform("u_ortho_res")),
+      // (optional: the rays' programs read no shadow map)
+      shadow_res(program.optional_uniform("u_shadow_res")),
+      shadow_half(program.optional_uniform("u_shadow_half")),
+      bias_texel(program.optional_uniform("u_bias_texel")),
+      ortho_res(program.optional_uniform("u_ortho_res")),
       apply_albedo(program.uniform("u_apply_albedo")), listed(program.uniform("u_listed")),
       eye(program.optional_uniform("u_eye")),
       traced(program.optional_uniform("u_traced_roughness")), depth(program.uniform("u_depth")) {
@@ -153,6 +158,7 @@ DeferredShader::Program::Program(const GladGLContext& api, int batch, bool plane
   program.set_sampler("u_specular", brdf_unit + 1);
   program.set_sampler("u_albedo_table", table_unit);
   program.set_sampler("u_mirror_corners", mirror_unit);
+  if (rays) program.set_sampler("u_visibility", visibility_unit);
 }
 
 DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch,
@@ -168,19 +174,22 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
           static_cast<int>(std::min(m.triangles.size() / 3, MirrorPolygon::max_triangles)));
   }
   if (glossy_) albedo_table_ = albedo_table_texture(api);
-  program(glossy_, glossy_); // the one every draw can take: compile errors show here
+  program(glossy_, glossy_, false); // the one every draw can take: compile errors show here
 }
 
-const DeferredShader::Program& DeferredShader::program(bool receivers, bool lobes) const {
-  std::unique_ptr<Program>& p = programs_[(receivers ? 1 : 0) + (lobes ? 2 : 0)];
+const DeferredShader::Program& DeferredShader::program(bool receivers, bool lobes,
+                                                       bool rays) const {
+  std::unique_ptr<Program>& p = programs_[(receivers ? 1 : 0) + (lobes ? 2 : 0) + (rays ? 4 : 0)];
   if (p) return *p;
-  p = std::make_unique<Program>(*api_, batch_, planes_, unsure_, mirrors_, glossy_, receivers,
-                                lobes);
+  p = std::make_unique<Program>(*api_, batch_, planes_ && !rays, unsure_ && !rays, mirrors_,
+                                glossy_, receivers, lobes, rays);
   // Scale-relative constants, as VplShader: the coincidence guard and the shadow bias.
   const GladGLContext& api = *api_;
   api.Uniform1f(p->program.uniform("u_min_dist2"), 1e-10f * diagonal_ * diagonal_);
-  api.Uniform1f(p->program.uniform("u_bias_constant"), 2e-4f * diagonal_);
-  api.Uniform1f(p->program.uniform("u_offset_texels"), normal_offset_texels(planes_));
+  if (!rays) { // the shadow lookups' (the rays' programs have none)
+    api.Uniform1f(p->program.uniform("u_bias_constant"), 2e-4f * diagonal_);
+    api.Uniform1f(p->program.uniform("u_offset_texels"), normal_offset_texels(planes_));
+  }
   return *p;
 }
 
@@ -212,15 +221,15 @@ void DeferredShader::draw(int first, int count, const TilePixels& pixels, const 
   for (int end = first + count; first < end;) {
     int run = first + 1;
     while (run < end && lobed(run) == lobed(first)) ++run;
-    const bool lobes = glossy_ && lobed(first);
+    const bool lobes = glossy_ && lobed(first), rays = shadow.visibility != 0;
     if (masked(pixels)) {
-      draw_run(program(false, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
-               shaders::kLambertianReceiverDepth);
-      draw_run(program(true, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
-               shaders::kGlossyReceiverDepth);
+      draw_run(program(false, lobes, rays), first, run - first, pixels, gbuffer, shadow,
+               apply_albedo, shaders::kLambertianReceiverDepth);
+      draw_run(program(true, lobes, rays), first, run - first, pixels, gbuffer, shadow,
+               apply_albedo, shaders::kGlossyReceiverDepth);
     } else {
-      draw_run(program(glossy_, lobes), first, run - first, pixels, gbuffer, shadow, apply_albedo,
-               shaders::kLambertianReceiverDepth);
+      draw_run(program(glossy_, lobes, rays), first, run - first, pixels, gbuffer, shadow,
+               apply_albedo, shaders::kLambertianReceiverDepth);
     }
     first = run;
   }
@@ -262,10 +271,14 @@ void DeferredShader::draw_run(const Program& p, int first, int count, const Tile
   api.BindTexture(GL_TEXTURE_2D, shadow.texture);
   api.ActiveTexture(GL_TEXTURE0 + ortho_unit);
   api.BindTexture(GL_TEXTURE_2D, shadow.ortho_texture);
-  if (planes_) {
+  if (planes_ && shadow.visibility == 0) {
     if (shadow.gradient == 0) throw Error("", "deferred vpl", "shadow lookup without gradients");
     api.ActiveTexture(GL_TEXTURE0 + gradient_unit);
     api.BindTexture(GL_TEXTURE_2D, shadow.gradient);
+  }
+  if (shadow.visibility != 0) {
+    api.ActiveTexture(GL_TEXTURE0 + visibility_unit);
+    api.BindTexture(GL_TEXTURE_2D_ARRAY, shadow.visibility);
   }
   if (mirror_corners_) {
     api.ActiveTexture(GL_TEXTURE0 + mirror_unit);

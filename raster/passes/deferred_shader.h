@@ -44,6 +44,9 @@ struct ShadowLookup {
   GLuint ortho_texture = 0;
   int ortho_resolution = 0;
   GLuint gradient = 0; // the distances' gradients, texel by texel as `texture`; 0: none
+  // Visibility by rays instead (DeferredShader made with `rays`; raster/passes/ray_visibility.h):
+  // a 2D array texture, layer r the uploaded VPL r's answers over the draw's tile pixels.
+  GLuint visibility = 0;
 };
 
 // A VPL whose shadow map is in an atlas, with what the lookup needs and its interleaved set.
@@ -70,6 +73,8 @@ public:
   // ShadowLookup must then carry gradients. Without, gradients are not read. unsure: alpha adds
   // the light of the VPLs whose shadow lookup was unsure, unshadowed (cube_glsl.h
   // lookup_unsure; its luminance, without rho(x)); without, alpha adds 0.
+  // A draw whose ShadowLookup has `visibility` reads it instead of any shadow map (a program
+  // of its own, without planes or unsure light).
   DeferredShader(const GladGLContext& api, const Scene& scene, float clamp, int batch, bool planes,
                  bool unsure)
       : DeferredShader(api, scene, clamp, batch, planes, unsure,
@@ -112,13 +117,13 @@ private:
   // (Lambertian VPLs alone).
   struct Program {
     Program(const GladGLContext& api, int batch, bool planes, bool unsure, bool mirrors,
-            bool glossy, bool receivers, bool lobes);
+            bool glossy, bool receivers, bool lobes, bool rays);
     ShaderProgram program;
     GLint first, tile_origin, pixel, size, shadow_res, shadow_half, bias_texel, ortho_res,
         apply_albedo, listed, eye, traced, depth;
   };
   // The variant, compiled at its first use.
-  const Program& program(bool receivers, bool lobes) const;
+  const Program& program(bool receivers, bool lobes, bool rays) const;
   // Whether a draw over `pixels` goes through the receiver mask: Lambertian and glossy pixels
   // apart.
   bool masked(const TilePixels& pixels) const { return glossy_ && pixels.receivers; }
@@ -129,8 +134,8 @@ private:
                 float depth) const;
 
   bool unsure_, mirrors_;
-  // programs_[receivers + 2 lobes] (a Lambertian scene uses only programs_[0]).
-  mutable std::array<std::unique_ptr<Program>, 4> programs_;
+  // programs_[receivers + 2 lobes + 4 rays] (a Lambertian scene uses only programs_[0] and [4]).
+  mutable std::array<std::unique_ptr<Program>, 8> programs_;
   // Per uploaded VPL: whether it has a lobe (AtlasVpl::lobe).
   std::vector<bool> lobed_;
   float traced_roughness_ = 0.0f;
