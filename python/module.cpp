@@ -129,8 +129,8 @@ void bind_functions(py::module_& m) {
          const std::string& sequence, bool jitter, const std::string& camera,
          std::optional<float> time, unsigned threads, bool bias_compensation, const std::string& gl,
          std::optional<std::size_t> clusters, std::uint32_t rounds,
-         const std::string& interleave_edges, float traced_roughness,
-         std::uint32_t glossy_samples) {
+         const std::string& interleave_edges, float traced_roughness, std::uint32_t glossy_samples,
+         const std::string& visibility) {
         return render(scene, {size,
                               paths,
                               estimator,
@@ -151,7 +151,8 @@ void bind_functions(py::module_& m) {
                               rounds,
                               interleave_edges,
                               traced_roughness,
-                              glossy_samples});
+                              glossy_samples,
+                              visibility});
       },
       "scene"_a, py::kw_only(), "size"_a = py::none(), "paths"_a = py::none(),
       "estimator"_a = "raster", "spp"_a = 64u, "seed"_a = 0u, "clamp"_a = 0.05f,
@@ -159,11 +160,12 @@ void bind_functions(py::module_& m) {
       "jitter"_a = false, "camera"_a = "", "time"_a = py::none(), "threads"_a = 0u,
       "bias_compensation"_a = false, "gl"_a = "auto", "clusters"_a = py::none(), "rounds"_a = 1u,
       "interleave_edges"_a = "auto", "traced_roughness"_a = RenderOptions{}.traced_roughness,
-      "glossy_samples"_a = RenderOptions{}.glossy_samples,
+      "glossy_samples"_a = RenderOptions{}.glossy_samples, "visibility"_a = "auto",
       "Renders the scene: (float32 array (h, w, 3), stats dict); paths, clusters and interleave "
       "None: the light budget, as irad render's auto; rounds: the mean of independent light "
       "sets; interleave_edges: auto, traced, shaded or off, as irad render's --interleave-edges; "
-      "traced_roughness, glossy_samples: irad render's --traced-roughness, --glossy-samples; "
+      "traced_roughness, glossy_samples, visibility: irad render's --traced-roughness, "
+      "--glossy-samples, --visibility; "
       "the GIL is released, Ctrl-C cancels (KeyboardInterrupt)");
   m.def("walk", &walk, "scene"_a, py::kw_only(), "paths"_a = 256u, "sequence"_a = "halton",
         "seed"_a = 0u, "The quasi-random walk's VPLs: (structured array, stats dict)");

@@ -64,6 +64,12 @@ RenderOptions render_options(const RenderKeywords& k) {
   o.bias_compensation = k.bias_compensation;
   o.auto_clusters = !k.clusters;
   set_edges(k.interleave_edges, o);
+  if (k.visibility == "auto" || k.visibility == "maps" || k.visibility == "rays")
+    o.raster.visibility = k.visibility == "auto"   ? Visibility::Auto
+                          : k.visibility == "maps" ? Visibility::Maps
+                                                   : Visibility::Rays;
+  else
+    throw Error("", "visibility", "'" + k.visibility + "' is not auto, maps or rays");
   o.clusters = k.clusters.value_or(0);
   require_at_least_one(k.rounds, "rounds");
   o.rounds = k.rounds;
@@ -81,6 +87,7 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   seconds["walk"] = r.seconds.walk;
   seconds["cluster"] = r.seconds.cluster;
   seconds["raster"] = r.seconds.raster;
+  seconds["visibility"] = r.seconds.visibility;
   seconds["trace"] = r.seconds.trace;
   seconds["glossy"] = r.seconds.glossy;
   seconds["total"] = r.seconds.total;
@@ -95,6 +102,7 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   s["interleave_edges"] = r.edge_mode;
   s["edge_pixels"] = r.edge_pixels;
   s["unsure_pixels"] = r.unsure_pixels;
+  s["visibility"] = r.visibility; // raster, as drawn: auto resolved
   s["rounds"] = r.rounds;
   s["paths"] = r.vpls.paths;
   s["rho_bar"] = r.vpls.rho_bar;

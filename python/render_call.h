@@ -38,6 +38,7 @@ struct RenderKeywords {
   std::string interleave_edges = "auto"; // auto, traced, shaded, off (irad render's option)
   float traced_roughness = RenderOptions{}.traced_roughness;     // --traced-roughness
   std::uint32_t glossy_samples = RenderOptions{}.glossy_samples; // --glossy-samples
+  std::string visibility = "auto"; // auto, maps, rays (irad render's --visibility)
 };
 
 // (image float32 (h, w, 3), stats dict). The GIL is released while rendering; Ctrl-C (SIGINT

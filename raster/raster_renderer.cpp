@@ -196,7 +196,6 @@ void RasterRenderer::Impl::begin_image(const View& view) {
     if (jitter) jitter->average_albedo(camera, view, gpu);
     if (interleaved) interleaved->find_edges();
     if (interleaved && batched) interleaved->mark_receivers(); // the deferred passes read it
-    if (batched) batched->read_gbuffer(*gbuffer);              // with rays only
   }
   tile_depths = false;
   single_passes = 0;

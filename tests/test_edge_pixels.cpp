@@ -129,14 +129,14 @@ TEST(EdgePixels, HoldEveryVplsLightWhereTheWindowIsCut) {
 }
 
 // `irad render --stats` reports the edge pixels: none unless asked for; the unsure pixels only
-// when traced.
+// when traced (the shadow maps': visibility by rays, which auto takes at 32x32, leaves none).
 TEST(EdgePixels, StatsCountThem) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(::testing::TempDir()) / "irad_edge_pixels_stats";
   fs::remove_all(dir);
   fs::create_directories(dir);
   const std::string base = std::string(IRAD_BINARY) + " render " + cornell.string() +
-                           " --size 32x32 --paths 64 --interleave 2 --quiet -o " +
+                           " --size 32x32 --paths 64 --interleave 2 --visibility maps --quiet -o " +
                            (dir / "c.exr").string() + " --stats " + (dir / "s.json").string();
   for (const char* edges : {"shaded", "traced", "off"}) {
     ASSERT_EQ(std::system((base + " --interleave-edges " + edges).c_str()), 0);
@@ -315,5 +315,5 @@ TEST(EdgePixels, UnsurePixelsAreWhereTheMapsErr) {
   EXPECT_LT(static_cast<double>(n_listed), 0.5 * pixels);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -83,12 +83,14 @@ TEST(RayVisibility, RtVplsImageOverTheSameVpls) {
   }
 }
 
-// Auto on a CPU renderer keeps the maps where a batch draws few triangles per VPL (the Cornell
-// box: about 30), and builds what they need.
+// Auto on a CPU renderer keeps the maps where a batch draws few triangles per VPL against the
+// pixels each VPL shades (BatchedPasses::kPixelsPerTriangle): the Cornell box's 160 (its
+// faces') against 4096 at 128x128, k = 2.
 TEST(RayVisibility, AutoKeepsMapsOnALightScene) {
   Log log = quiet_log();
   const Scene scene = load_gltf(data / "cornell_box.gltf", log);
   RenderOptions o = every_vpl(Estimator::Raster, Visibility::Auto);
+  o.size = std::pair{128, 128};
   o.raster.interleave = 2;
   const RenderResult r = render(scene, o, log);
   EXPECT_EQ(r.visibility, "maps");

@@ -93,7 +93,7 @@ TEST(Ring, MemoryLimitIsAnError) {
   EXPECT_THROW(RingRenderer(f.scene, o), Error);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad
 
 namespace irad {
@@ -140,7 +140,8 @@ TEST(Walkthrough, AnimatedFramesThroughOsMesaAndEgl) {
 
 // Many more frames than paths in a still scene: every mode's frame is the instant radiosity
 // image of the N paths (what irad render draws with the same N and the walkthrough's global
-// clamp without compensation; the ring never interleaves).
+// clamp without compensation, and its shadow maps: at 32x32 irad render's auto visibility takes
+// rays; the ring never interleaves).
 TEST(Walkthrough, AfterManyFramesAStillSceneShowsTheFullImage) {
   const fs::path dir = fs::path(::testing::TempDir()) / "irad_walkthrough_still";
   fs::remove_all(dir);
@@ -149,7 +150,7 @@ TEST(Walkthrough, AfterManyFramesAStillSceneShowsTheFullImage) {
   for (const char* k : {"1", "4"}) {
     const std::string cmd = std::string(IRAD_BINARY) + " render " + scene +
                             " --size 32x32 --paths 8 --quiet --clamp-mode global "
-                            "--compensation off --interleave " +
+                            "--compensation off --visibility maps --interleave " +
                             k + " -o " + (dir / fmt::format("full_k{}.exr", k)).string();
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   }
@@ -195,5 +196,5 @@ TEST(Walkthrough, CachedShadowMapsEqualRedrawingThemUnderCameraMotion) {
   fs::remove_all(dir);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

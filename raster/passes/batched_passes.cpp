@@ -39,8 +39,8 @@ BatchedPasses::BatchedPasses(const GladGLContext& api, const Scene& scene, float
           lod.planes != ShadowPlanes::Off, unsure),
       context_(context), max_helpers_(context && !rays_now ? helpers : 0),
       rays_(rays ? std::make_unique<RayVisibility>(api, std::move(rays)) : nullptr),
-      rays_on_(rays_ && rays_now) {
-  if (rays_on_) atlas_.release_atlases(); // never drawn
+      rays_now_(rays_ && rays_now), rays_on_(rays_now_) {
+  if (rays_now_) atlas_.release_atlases(); // never drawn
 }
 
 void BatchedPasses::draw_ortho(const std::vector<std::size_t>& directional, const GpuScene& gpu) {
@@ -213,22 +213,45 @@ BatchedPasses::form_batches(const std::vector<const Vpl*>& order, std::size_t fi
   return batches;
 }
 
-void BatchedPasses::consider_helpers(int n, const GpuScene& gpu, const DeferredTarget& into) {
-  const bool may_switch = rays_ && !rays_on_;
-  if (helpers_asked_ || (max_helpers_ < 1 && !may_switch) || n < 1) return;
+bool BatchedPasses::rays_pay(const GpuScene& gpu, const DeferredTarget& into) {
+  // Surface VPLs at the points the pixels of a kProbeGrid^2 grid see, facing the camera.
+  rays_->read(*into.gbuffer);
+  std::vector<Vpl> probes;
+  const int w = rays_->width(), h = rays_->height();
+  for (int gy = 0; gy < kProbeGrid; ++gy)
+    for (int gx = 0; gx < kProbeGrid; ++gx) {
+      const int x = (2 * gx + 1) * w / (2 * kProbeGrid), y = (2 * gy + 1) * h / (2 * kProbeGrid);
+      const std::size_t at =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+      const glm::vec4 p = rays_->positions()[at];
+      if (!(p.w > 0.0f)) continue;
+      Vpl v;
+      v.position = glm::vec3(p);
+      v.normal = glm::vec3(rays_->normals()[at]);
+      v.intensity = glm::vec3(1.0f);
+      probes.push_back(v);
+    }
+  if (probes.empty()) return false;
+  std::vector<const Vpl*> list;
+  for (const Vpl& v : probes) list.push_back(&v);
+  LodProvider* lod = atlas_.prepare_hierarchy(gpu);
+  atlas_.render(list.data(), static_cast<int>(list.size()), gpu, frames_, fars_, blocks_);
+  const std::size_t per_vpl =
+      lod ? atlas_.cluster_triangles() / list.size() : gpu.scene().triangle_count();
+  const glm::ivec4 tile = into.interleaved
+                              ? into.interleaved->tile(0)
+                              : glm::ivec4(0, 0, into.gbuffer->width(), into.gbuffer->height());
+  const auto pixels = static_cast<std::size_t>(tile.z) * static_cast<std::size_t>(tile.w);
+  return per_vpl * kPixelsPerTriangle >= pixels;
+}
+
+void BatchedPasses::consider_helpers(int n, const GpuScene& gpu) {
+  if (helpers_asked_ || max_helpers_ < 1 || n < 1) return;
   helpers_asked_ = true;
   LodProvider* lod = atlas_.prepare_hierarchy(gpu);
   const std::size_t per_vpl =
       lod ? atlas_.cluster_triangles() / static_cast<std::size_t>(n) : gpu.scene().triangle_count();
   if (per_vpl < kHelperTrianglesPerVpl) return;
-  if (may_switch) { // rays for the rest of this image and the images after it
-    rays_on_ = true;
-    atlas_.release_atlases();
-    rays_->read(*into.gbuffer);
-    rays_->reset_seconds();
-    return;
-  }
-  if (max_helpers_ < 1) return;
   ShadowHelpers::AtlasShape shape{atlas_.resolution(),
                                   helper_batch(),
                                   helper_batch(),
@@ -294,10 +317,14 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
                                 const std::function<bool(std::size_t)>& after) {
   const std::vector<const Vpl*> order = ShadowAtlas::batch_order(vpls);
   shadow_triangles_ = 0;
+  if (rays_) {
+    rays_on_ = rays_now_ || rays_pay(gpu, into);
+    if (rays_now_) rays_->read(*into.gbuffer); // rays_pay reads it too
+  }
   std::size_t drawn = 0, first = 0;
   // Until the helpers are decided, batches of their size drawn here while kHelperBatches more
   // would follow: what one draws decides.
-  while (!helpers_asked_ && (max_helpers_ > 0 || (rays_ && !rays_on_)) &&
+  while (!rays_on_ && !helpers_asked_ && max_helpers_ > 0 &&
          order.size() - first >= (1 + kHelperBatches) * static_cast<std::size_t>(helper_batch())) {
     const std::vector<Batch> probe =
         form_batches(order, first, helper_batch(), helper_batch(), set_of, into, 1);
@@ -305,7 +332,7 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
     drawn += probe[0].entries.size();
     first = probe[0].end;
     if (after && !after(first)) return drawn;
-    consider_helpers(static_cast<int>(vpls_.size()), gpu, into);
+    consider_helpers(static_cast<int>(vpls_.size()), gpu);
   }
   if (helpers_)
     return drawn + draw_with_helpers(

@@ -69,19 +69,12 @@ public:
   std::size_t shadow_triangles() const { return shadow_triangles_; }
   // Whether directional VPLs can be drawn here (an orthographic atlas was made).
   bool directional() const { return ortho_ != nullptr; }
-  // Whether visibility comes from rays (RayVisibility; no shadow map is drawn): from the start
-  // with make's rays_now, else from where the first batch drawn with maps picked at least
-  // kHelperTrianglesPerVpl triangles per VPL (there instead of helpers), when make was
-  // given a tracer (`rays`).
+  // Whether the last draw()'s visibility came from rays (RayVisibility; no shadow map drawn):
+  // always with make's rays_now, else, given a tracer (`rays`), where rays_pay said so.
   bool rays() const { return rays_on_; }
-  // With rays(): the G-buffer the next draw()s shade, read back for the rays, and the set their
-  // VPLs come from (not owned: it must outlive those draws).
-  void read_gbuffer(const GBuffer& gbuffer) {
-    if (!rays_on_) return;
-    rays_->read(gbuffer);
-    rays_->reset_seconds();
-  }
-  // With rays(): the seconds the tracer took since read_gbuffer.
+  // Given a tracer: the set the next draw()s' VPLs come from (not owned: it must outlive those
+  // draws).
+  // With rays(): the seconds the tracer took in the last draw().
   double visibility_seconds() const { return rays_on_ ? rays_->seconds() : 0.0; }
   void set_vpls(const VplSet* set) {
     if (rays_) rays_->set_vpls(set);
@@ -129,6 +122,14 @@ private:
   // against 5.14-5.38 s, godot (5.0k) 2.18-2.31 against 2.07-2.19 s (docs/performance.md).
   static constexpr std::size_t kHelperTrianglesPerVpl = ShadowAtlas::kOcclusionTrianglesPerVpl;
   static constexpr std::size_t kHelperBatches = 8;
+  // Given a tracer, rays are taken instead where a batch drawn here picks at least a
+  // kPixelsPerTriangle-th of the pixels each VPL shades (its interleaved set's) in triangles per
+  // VPL: a shadow ray per pixel then costs less than the triangles. Measured (llvmpipe, 2 cores,
+  // 256x256, k = 2: 16,384 pixels per VPL; docs/performance.md "Visibility by rays"): a shadow
+  // triangle about 0.14 us of one core, a shadow ray about 0.035 us.
+  static constexpr std::size_t kPixelsPerTriangle = 4;
+  // rays_pay's probes: surface VPLs at the points of a grid of pixels this many on a side.
+  static constexpr int kProbeGrid = 3;
   // VPLs per batch the helpers draw (at most the requested batch), and the batches drawn here
   // until the helpers are decided. Each helper holds kSlots atlases and a scene of its own in the
   // GL, so that their memory grows with it: on the 10M-triangle terrain (256x256, peak resident
@@ -146,8 +147,13 @@ private:
                                   std::size_t most = ~std::size_t{0}) const;
   // Makes the helpers when the batch just drawn here (n VPLs) asks for them (draw() asks only
   // while kHelperBatches of their batches follow).
-  // Or, given a tracer, switches to rays instead.
-  void consider_helpers(int n, const GpuScene& gpu, const DeferredTarget& into);
+  void consider_helpers(int n, const GpuScene& gpu);
+  // Whether rays cost less than maps for the image `into` (make given a tracer, not rays_now):
+  // surface VPLs on what a kProbeGrid^2 grid of its pixels sees, facing the camera, are drawn
+  // into the atlas, and their triangles per VPL times kPixelsPerTriangle set against the pixels a
+  // VPL shades. One answer for every VPL of the image, whatever part of a walk or which round it
+  // draws (the VPLs' own triangles would differ between parts).
+  bool rays_pay(const GpuScene& gpu, const DeferredTarget& into);
   // The helpers' batch (kHelperBatch, at most this atlas's).
   int helper_batch() const { return std::min(atlas_.batch(), kHelperBatch); }
   // batches[first..] with the helpers drawing the atlases, round robin, each up to two ahead of
@@ -198,7 +204,8 @@ private:
   std::unique_ptr<ShadowHelpers> helpers_;
   const std::vector<VplLobe>* lobes_ = nullptr;
   std::unique_ptr<RayVisibility> rays_; // given a tracer
-  bool rays_on_ = false;                // visibility by rays instead of the atlases
+  bool rays_now_ = false;               // rays for every image (make's rays_now)
+  bool rays_on_ = false;                // this image's visibility by rays instead of the atlases
 };
 
 } // namespace irad::gl

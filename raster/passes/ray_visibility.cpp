@@ -16,6 +16,7 @@ void RayVisibility::read(const GBuffer& gbuffer) {
   gbuffer.read(positions_, normals_);
   width_ = gbuffer.width();
   height_ = gbuffer.height();
+  seconds_ = 0.0;
 }
 
 void RayVisibility::ensure_texture(int n, glm::ivec2 tile) {

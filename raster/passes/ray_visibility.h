@@ -22,16 +22,20 @@ class RayVisibility {
 public:
   RayVisibility(const GladGLContext& api, VisibilityTracer tracer);
 
-  // The G-buffer the next answers are for (read back here).
+  // The G-buffer the next answers are for (read back here); seconds() starts again.
   void read(const GBuffer& gbuffer);
+  // The G-buffer as read: row by row from the bottom.
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const std::vector<glm::vec4>& positions() const { return positions_; }
+  const std::vector<glm::vec4>& normals() const { return normals_; }
   // The set the next answers' VPLs belong to (its lobes and mirrors); not owned.
   void set_vpls(const VplSet* set) { set_ = set; }
   // vpls[0..n) answered over the tile pixels of their sets (k x k interleaving, tiles of `tile`
   // pixels; k = 1: the image) and uploaded, layer r for vpls[r]; returns the texture.
   GLuint answer(const AtlasVpl* vpls, int n, int k, glm::ivec2 tile);
-  // Seconds spent in the tracer since the renderer's image began (RasterTimings).
+  // Seconds spent in the tracer since read().
   double seconds() const { return seconds_; }
-  void reset_seconds() { seconds_ = 0.0; }
 
 private:
   // The texture for at least n layers of `tile`.
