@@ -4,7 +4,8 @@ the default options at --size (256x256) three times, the raster with an empty ca
 raster again (warm: the shadow hierarchy and the thinnest-wall scan read back), and rt-vpl over
 the same VPLs, each in a fresh process with its --stats. Prints a Markdown table per file: every
 stage's seconds and share of the whole process (wall clock), the peak resident memory (the
-process's own, from wait4), and the passes (what the raster stage spends after its set-up). The
+process's own, from wait4), and the passes (what the raster stage spends after its set-up, the
+shadow rays' share apart where the raster took visibility by rays). The
 estimates that --stats alone asks for (seconds.statistics) are left out of the whole process,
 as a render without --stats does not compute them. The
 shadow hierarchy's build runs on a thread of its own from the start of the render: its stages,
@@ -52,7 +53,9 @@ def rows(stats, wall):
         for name, t in s.get("raster_setup", []):
             out.append((name, t))
             setup += t
-        out.append(("passes (shadow maps, shading, resolve)", s["raster"] - setup))
+        out.append(("passes (shadow maps or rays, shading, resolve)", s["raster"] - setup))
+        if "visibility" in s:  # visibility by rays: the tracer's share of the passes
+            out.append(("of which shadow rays", s["visibility"]))
         # The hierarchy's build on its own thread, beside load, walk and clusters (the raster's
         # "hierarchy wait" is what was left of it): outside the sum of the stages above.
         for name, t in s.get("hierarchy_beside", []):
@@ -102,7 +105,9 @@ def table(scene, runs):
         return ", ".join(stats.get(key, {}).get("outcome", "-") for _, stats, _, _ in runs)
     lines.append("")
     lines.append("hierarchy cache: " + outcomes("hierarchy_cache") + "; wall cache: " +
-                 outcomes("wall_cache") + "; shadow triangles per VPL: " +
+                 outcomes("wall_cache") + "; visibility: " +
+                 ", ".join(stats.get("visibility") or "-" for _, stats, _, _ in runs) +
+                 "; shadow triangles per VPL: " +
                  f"{runs[0][1]['shadow_triangles'] / max(1, runs[0][1]['vpls']):.0f}")
     return "\n".join(lines)
 
