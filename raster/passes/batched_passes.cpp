@@ -6,6 +6,17 @@
 
 namespace irad::gl {
 
+namespace {
+
+// The pixels one VPL shades: its interleaved set's tile, or the whole image.
+glm::ivec2 shaded_tile(const DeferredTarget& into) {
+  if (!into.interleaved) return {into.gbuffer->width(), into.gbuffer->height()};
+  const glm::ivec4 tile = into.interleaved->tile(0);
+  return {tile.z, tile.w};
+}
+
+} // namespace
+
 std::unique_ptr<BatchedPasses>
 BatchedPasses::make(const GladGLContext& api, const Scene& scene, float clamp, int batch,
                     int resolution, int ortho_resolution, const ShadowLodOptions& lod, bool unsure,
@@ -143,10 +154,7 @@ void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& 
   ShadowLookup lookup = shadow;
   if (rays_on_) {
     const int k = into.interleaved ? into.interleaved->k() : 1;
-    const glm::ivec4 tile = into.interleaved
-                                ? into.interleaved->tile(0)
-                                : glm::ivec4(0, 0, into.gbuffer->width(), into.gbuffer->height());
-    lookup.visibility = rays_->answer(vpls, n, k, glm::ivec2(tile.z, tile.w));
+    lookup.visibility = rays_->answer(vpls, n, k, shaded_tile(into));
   }
   for (int first = 0; first < n;) {
     const int set = vpls[first].set;
@@ -238,10 +246,8 @@ bool BatchedPasses::rays_pay(const GpuScene& gpu, const DeferredTarget& into) {
   atlas_.render(list.data(), static_cast<int>(list.size()), gpu, frames_, fars_, blocks_);
   const std::size_t per_vpl =
       lod ? atlas_.cluster_triangles() / list.size() : gpu.scene().triangle_count();
-  const glm::ivec4 tile = into.interleaved
-                              ? into.interleaved->tile(0)
-                              : glm::ivec4(0, 0, into.gbuffer->width(), into.gbuffer->height());
-  const auto pixels = static_cast<std::size_t>(tile.z) * static_cast<std::size_t>(tile.w);
+  const glm::ivec2 tile = shaded_tile(into);
+  const auto pixels = static_cast<std::size_t>(tile.x) * static_cast<std::size_t>(tile.y);
   return per_vpl * kPixelsPerTriangle >= pixels;
 }
 
@@ -318,7 +324,7 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
   const std::vector<const Vpl*> order = ShadowAtlas::batch_order(vpls);
   shadow_triangles_ = 0;
   if (rays_) {
-    rays_on_ = rays_now_ || rays_pay(gpu, into);
+    rays_on_ = rays_now_ || (!order.empty() && rays_pay(gpu, into));
     if (rays_now_) rays_->read(*into.gbuffer); // rays_pay reads it too
   }
   std::size_t drawn = 0, first = 0;
