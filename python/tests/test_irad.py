@@ -85,6 +85,17 @@ def test_edge_pixels_equal_the_cli(cornell, tmp_path, edges):
         irad.render(cornell, size=(8, 8), paths=4, interleave_edges="sometimes")
 
 
+def test_visibility_by_rays_equals_the_cli(cornell, tmp_path):
+    image, stats = irad.render(cornell, size=(32, 24), paths=64, visibility="rays")
+    assert stats["visibility"] == "rays" and stats["seconds"]["visibility"] > 0.0
+    exr = cli_render(tmp_path, "raster", ["--visibility", "rays"], paths=64)
+    assert np.array_equal(image, exr[..., :3])  # bit-identical
+    with pytest.raises(irad.Error, match="visibility"):
+        irad.render(cornell, size=(8, 8), paths=4, visibility="sometimes")
+    with pytest.raises(irad.Error, match="visibility"):
+        irad.render(cornell, size=(8, 8), paths=4, visibility="rays", jitter=True)
+
+
 def test_glossy_pass_equals_the_cli(tmp_path):
     glossy = irad.load(CORNELL_GLOSSY)
     image, stats = irad.render(glossy, size=(32, 24), paths=64, traced_roughness=0.5,
