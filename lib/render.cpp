@@ -536,9 +536,10 @@ void run_rounds(Stages& s, const RayScene& rays) {
 }
 
 // The raster's visibility (RasterOptions::visibility): Auto stays Auto where the GL will be a
-// CPU renderer (expects_cpu_renderer) and the options allow rays (the renderer switches to
-// rays where its first batch of maps draws many triangles per VPL), else Maps. Rays, decided
-// here before the walk, builds nothing for shadow maps (the hierarchy, the thinnest-wall scan).
+// CPU renderer (expects_cpu_renderer) and the options allow rays (the renderer then asks per
+// image whether rays pay, raster/passes/batched_passes.h rays_pay, which draws its probes as
+// shadow maps: the hierarchy and the wall scan are still made), else Maps. Rays, decided here
+// before the walk, builds nothing for shadow maps.
 Visibility raster_visibility(const RenderOptions& o) {
   const RasterOptions& raster = o.raster;
   if (o.estimator != Estimator::Raster || raster.visibility == Visibility::Maps)

@@ -72,9 +72,10 @@ struct RasterOptions {
   // Visibility of the batched passes: Maps, the shadow cubes; Rays, the caller's ray tracer
   // (`visibility_tracer`: one shadow ray per VPL and shaded pixel,
   // core/lights/visibility_request.h; no shadow map, hierarchy or helper thread), which needs
-  // batches, no jitter, no shaded edge pixels and no camera level of detail; Auto: Rays on a CPU
-  // renderer (llvmpipe, where the rays cost less than the shadow faces: docs/performance.md
-  // "Visibility by rays") when a tracer is given and the options allow it, else Maps.
+  // batches, no jitter, no shaded edge pixels and no camera level of detail; Auto: on a CPU
+  // renderer (llvmpipe), when a tracer is given and the options allow it, Rays for an image whose
+  // VPLs would draw many shadow triangles against the pixels each shades (BatchedPasses::rays_pay;
+  // there rays cost less: docs/performance.md "Visibility by rays"), else Maps.
   Visibility visibility = Visibility::Auto;
   VisibilityTracer visibility_tracer = nullptr;
   // Where the shadow hierarchy is kept between runs (core/mesh/hierarchy/cluster_cache.h): the
