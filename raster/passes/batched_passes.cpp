@@ -144,8 +144,15 @@ void BatchedPasses::shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shado
     return a.set < b.set || (a.set == b.set && la < lb);
   });
   const int n = static_cast<int>(vpls.size());
-  for (int first = 0; first < n; first += shader_.batch())
-    shade_some(vpls.data() + first, std::min(shader_.batch(), n - first), shadow, into);
+  int step = shader_.batch();
+  if (rays_on_) { // each VPL's answers take a byte per pixel it shades
+    const glm::ivec2 tile = shaded_tile(into);
+    const std::size_t bytes = static_cast<std::size_t>(tile.x) * static_cast<std::size_t>(tile.y);
+    step = static_cast<int>(std::clamp<std::size_t>(
+        kRayAnswerBytes / std::max<std::size_t>(bytes, 1), 1, static_cast<std::size_t>(step)));
+  }
+  for (int first = 0; first < n; first += step)
+    shade_some(vpls.data() + first, std::min(step, n - first), shadow, into);
 }
 
 void BatchedPasses::shade_some(const AtlasVpl* vpls, int n, const ShadowLookup& shadow,

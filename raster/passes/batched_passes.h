@@ -128,6 +128,9 @@ private:
   // 256x256, k = 2: 16,384 pixels per VPL; docs/performance.md "Visibility by rays"): a shadow
   // triangle about 0.14 us of one core, a shadow ray about 0.035 us.
   static constexpr std::size_t kPixelsPerTriangle = 4;
+  // With rays, a shading upload holds at most this many bytes of answers (a byte per VPL and
+  // pixel it shades): 64 VPLs at 1024x1024 with k = 2, 4 at 4096x4096 without interleaving.
+  static constexpr std::size_t kRayAnswerBytes = std::size_t{64} << 20;
   // rays_pay's probes: surface VPLs at the points of a grid of pixels this many on a side.
   static constexpr int kProbeGrid = 3;
   // VPLs per batch the helpers draw (at most the requested batch), and the batches drawn here
