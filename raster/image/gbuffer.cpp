@@ -44,6 +44,18 @@ void GBuffer::bind_brdf_textures(GLint first) const {
   }
 }
 
+std::pair<glm::vec4, glm::vec4> GBuffer::texel(int x, int y) const {
+  std::pair<glm::vec4, glm::vec4> out;
+  api_->BindFramebuffer(GL_READ_FRAMEBUFFER, fbo_.get());
+  api_->PixelStorei(GL_PACK_ALIGNMENT, 4);
+  api_->ReadBuffer(GL_COLOR_ATTACHMENT0);
+  api_->ReadPixels(x, y, 1, 1, GL_RGBA, GL_FLOAT, &out.first.x);
+  api_->ReadBuffer(GL_COLOR_ATTACHMENT1);
+  api_->ReadPixels(x, y, 1, 1, GL_RGBA, GL_FLOAT, &out.second.x);
+  api_->ReadBuffer(GL_COLOR_ATTACHMENT0);
+  return out;
+}
+
 void GBuffer::read(std::vector<glm::vec4>& positions, std::vector<glm::vec4>& normals) const {
   const std::size_t texels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
   positions.resize(texels);

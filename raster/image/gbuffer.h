@@ -13,6 +13,7 @@
 #include "raster/context/gl_objects.h"
 
 #include <glm/glm.hpp>
+#include <utility>
 #include <vector>
 
 namespace irad::gl {
@@ -35,6 +36,8 @@ public:
   // The positions and normals, row by row from the bottom (VisibilityRequest's layout): what
   // visibility by rays starts its shadow rays from.
   void read(std::vector<glm::vec4>& positions, std::vector<glm::vec4>& normals) const;
+  // The position and normal of texel (x, y).
+  std::pair<glm::vec4, glm::vec4> texel(int x, int y) const;
   // The camera it was drawn from, as the shaders' u_eye (raster/passes/camera_passes.h
   // eye_uniform): set by CameraPasses::gbuffer.
   const glm::vec4& eye() const { return eye_; }

@@ -230,19 +230,16 @@ BatchedPasses::form_batches(const std::vector<const Vpl*>& order, std::size_t fi
 
 bool BatchedPasses::rays_pay(const GpuScene& gpu, const DeferredTarget& into) {
   // Surface VPLs at the points the pixels of a kProbeGrid^2 grid see, facing the camera.
-  rays_->read(*into.gbuffer);
   std::vector<Vpl> probes;
-  const int w = rays_->width(), h = rays_->height();
+  const int w = into.gbuffer->width(), h = into.gbuffer->height();
   for (int gy = 0; gy < kProbeGrid; ++gy)
     for (int gx = 0; gx < kProbeGrid; ++gx) {
       const int x = (2 * gx + 1) * w / (2 * kProbeGrid), y = (2 * gy + 1) * h / (2 * kProbeGrid);
-      const std::size_t at =
-          static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
-      const glm::vec4 p = rays_->positions()[at];
-      if (!(p.w > 0.0f)) continue;
+      const auto [position, normal] = into.gbuffer->texel(x, y);
+      if (!(position.w > 0.0f)) continue;
       Vpl v;
-      v.position = glm::vec3(p);
-      v.normal = glm::vec3(rays_->normals()[at]);
+      v.position = glm::vec3(position);
+      v.normal = glm::vec3(normal);
       v.intensity = glm::vec3(1.0f);
       probes.push_back(v);
     }
@@ -332,7 +329,7 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
   shadow_triangles_ = 0;
   if (rays_) {
     rays_on_ = rays_now_ || (!order.empty() && rays_pay(gpu, into));
-    if (rays_now_) rays_->read(*into.gbuffer); // rays_pay reads it too
+    if (rays_on_) rays_->read(*into.gbuffer);
   }
   std::size_t drawn = 0, first = 0;
   // Until the helpers are decided, batches of their size drawn here while kHelperBatches more

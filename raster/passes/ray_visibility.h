@@ -24,11 +24,6 @@ public:
 
   // The G-buffer the next answers are for (read back here); seconds() starts again.
   void read(const GBuffer& gbuffer);
-  // The G-buffer as read: row by row from the bottom.
-  int width() const { return width_; }
-  int height() const { return height_; }
-  const std::vector<glm::vec4>& positions() const { return positions_; }
-  const std::vector<glm::vec4>& normals() const { return normals_; }
   // The set the next answers' VPLs belong to (its lobes and mirrors); not owned.
   void set_vpls(const VplSet* set) { set_ = set; }
   // vpls[0..n) answered over the tile pixels of their sets (k x k interleaving, tiles of `tile`
