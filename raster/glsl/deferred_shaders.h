@@ -228,12 +228,14 @@ bool through_mirror(vec3 x) {
 vec3 directional_light(vec3 x, vec3 n) {
   float cos_x = dot(n, -v_vpl_normal);
   if (cos_x <= 0.0) return vec3(0.0);
+#ifndef IRAD_RAYS // with rays, vpl_light has read V
   float sin_x = sqrt(max(1.0 - cos_x * cos_x, 0.0));
   vec4 p = vec4(x + n * (v_cone.x * sin_x), 1.0);
   vec3 s = vec3(dot(v_frame[0], p), dot(v_frame[1], p), dot(v_frame[2], p));
   ivec2 texel = clamp(ivec2(floor(s.xy * float(u_ortho_res))), ivec2(0), ivec2(u_ortho_res - 1));
   float z = texelFetch(u_ortho_atlas, texel + v_blocks.xy, 0).r;
   if (s.z > (2.0 * z - 1.0) * v_cone.y + u_bias_constant) return vec3(0.0);
+#endif
   return v_vpl_intensity * (cos_x * INV_PI);
 }
 
@@ -243,13 +245,8 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
   unsure = 0.0;
 #ifdef IRAD_RAYS
   if (texelFetch(u_visibility, ivec3(g_tile_pixel, v_record), 0).r < 0.5) return vec3(0.0);
-  if (v_kind == 4) {
-    float cos_d = dot(n, -v_vpl_normal);
-    return cos_d > 0.0 ? v_vpl_intensity * (cos_d * INV_PI) : vec3(0.0);
-  }
-#else
-  if (v_kind == 4) return directional_light(x, n);
 #endif
+  if (v_kind == 4) return directional_light(x, n);
 #ifdef IRAD_MIRRORS
   if (v_mirror.x >= 0 && !through_mirror(x)) return vec3(0.0);
 #endif

@@ -92,10 +92,7 @@ void BatchedPasses::gather(const std::vector<Entry>& batch) {
 void BatchedPasses::flush(const std::vector<Entry>& batch, const DeferredTarget& into,
                           const GpuScene& gpu, PassTimer* timer) {
   gather(batch);
-  if (rays_on_) { // no maps: complete() reads the frames, fars and blocks of none
-    frames_.assign(cubes_.size(), glm::mat3(1.0f));
-    fars_.assign(cubes_.size(), 1.0f);
-    blocks_.assign(cubes_.size(), glm::ivec4(0));
+  if (rays_on_) { // no maps: the shading reads the rays' answers
     complete(atlas_.texture(), atlas_.gradient_texture(), frames_, fars_, blocks_, into, gpu,
              timer);
     return;
@@ -117,7 +114,7 @@ void BatchedPasses::complete(GLuint texture, GLuint gradient, const std::vector<
     draw_ortho(directional_, gpu);
     if (timer) timer->end();
   }
-  for (std::size_t c = 0; c < cubes_.size(); ++c) {
+  for (std::size_t c = 0; c < cubes_.size() && !rays_on_; ++c) {
     AtlasVpl& a = shaded_[cubes_[c]];
     a.frame = frames[c];
     a.far = fars[c];
@@ -228,6 +225,11 @@ BatchedPasses::form_batches(const std::vector<const Vpl*>& order, std::size_t fi
   return batches;
 }
 
+std::size_t BatchedPasses::drawn_per_vpl(const LodProvider* lod, std::size_t n,
+                                         const GpuScene& gpu) const {
+  return lod ? atlas_.cluster_triangles() / n : gpu.scene().triangle_count();
+}
+
 bool BatchedPasses::rays_pay(const GpuScene& gpu, const DeferredTarget& into) {
   // Surface VPLs at the points the pixels of a kProbeGrid^2 grid see, facing the camera.
   std::vector<Vpl> probes;
@@ -246,10 +248,9 @@ bool BatchedPasses::rays_pay(const GpuScene& gpu, const DeferredTarget& into) {
   if (probes.empty()) return false;
   std::vector<const Vpl*> list;
   for (const Vpl& v : probes) list.push_back(&v);
-  LodProvider* lod = atlas_.prepare_hierarchy(gpu);
+  const LodProvider* lod = atlas_.prepare_hierarchy(gpu);
   atlas_.render(list.data(), static_cast<int>(list.size()), gpu, frames_, fars_, blocks_);
-  const std::size_t per_vpl =
-      lod ? atlas_.cluster_triangles() / list.size() : gpu.scene().triangle_count();
+  const std::size_t per_vpl = drawn_per_vpl(lod, list.size(), gpu);
   const glm::ivec2 tile = shaded_tile(into);
   const auto pixels = static_cast<std::size_t>(tile.x) * static_cast<std::size_t>(tile.y);
   return per_vpl * kPixelsPerTriangle >= pixels;
@@ -259,9 +260,7 @@ void BatchedPasses::consider_helpers(int n, const GpuScene& gpu) {
   if (helpers_asked_ || max_helpers_ < 1 || n < 1) return;
   helpers_asked_ = true;
   LodProvider* lod = atlas_.prepare_hierarchy(gpu);
-  const std::size_t per_vpl =
-      lod ? atlas_.cluster_triangles() / static_cast<std::size_t>(n) : gpu.scene().triangle_count();
-  if (per_vpl < kHelperTrianglesPerVpl) return;
+  if (drawn_per_vpl(lod, static_cast<std::size_t>(n), gpu) < kHelperTrianglesPerVpl) return;
   ShadowHelpers::AtlasShape shape{atlas_.resolution(),
                                   helper_batch(),
                                   helper_batch(),

@@ -72,10 +72,10 @@ public:
   // Whether the last draw()'s visibility came from rays (RayVisibility; no shadow map drawn):
   // always with make's rays_now, else, given a tracer (`rays`), where rays_pay said so.
   bool rays() const { return rays_on_; }
-  // Given a tracer: the set the next draw()s' VPLs come from (not owned: it must outlive those
-  // draws).
   // With rays(): the seconds the tracer took in the last draw().
   double visibility_seconds() const { return rays_on_ ? rays_->seconds() : 0.0; }
+  // Given a tracer: the set the next draw()s' VPLs come from (not owned: it must outlive those
+  // draws).
   void set_vpls(const VplSet* set) {
     if (rays_) rays_->set_vpls(set);
   }
@@ -122,9 +122,9 @@ private:
   // against 5.14-5.38 s, godot (5.0k) 2.18-2.31 against 2.07-2.19 s (docs/performance.md).
   static constexpr std::size_t kHelperTrianglesPerVpl = ShadowAtlas::kOcclusionTrianglesPerVpl;
   static constexpr std::size_t kHelperBatches = 8;
-  // Given a tracer, rays are taken instead where a batch drawn here picks at least a
-  // kPixelsPerTriangle-th of the pixels each VPL shades (its interleaved set's) in triangles per
-  // VPL: a shadow ray per pixel then costs less than the triangles. Measured (llvmpipe, 2 cores,
+  // Given a tracer, rays are taken where rays_pay's probes pick at least a kPixelsPerTriangle-th
+  // of the pixels each VPL shades (its interleaved set's) in triangles per VPL: a shadow ray per
+  // pixel then costs less than the triangles. Measured (llvmpipe, 2 cores,
   // 256x256, k = 2: 16,384 pixels per VPL; docs/performance.md "Visibility by rays"): a shadow
   // triangle about 0.14 us of one core, a shadow ray about 0.035 us.
   static constexpr std::size_t kPixelsPerTriangle = 4;
@@ -157,6 +157,9 @@ private:
   // VPL shades. One answer for every VPL of the image, whatever part of a walk or which round it
   // draws (the VPLs' own triangles would differ between parts).
   bool rays_pay(const GpuScene& gpu, const DeferredTarget& into);
+  // The triangles per VPL of the last atlas render of n VPLs (lod: the hierarchy it drew from;
+  // without one, every face draws the whole scene).
+  std::size_t drawn_per_vpl(const LodProvider* lod, std::size_t n, const GpuScene& gpu) const;
   // The helpers' batch (kHelperBatch, at most this atlas's).
   int helper_batch() const { return std::min(atlas_.batch(), kHelperBatch); }
   // batches[first..] with the helpers drawing the atlases, round robin, each up to two ahead of
