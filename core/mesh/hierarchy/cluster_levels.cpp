@@ -244,9 +244,11 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
 // Every node's coarser levels, in parallel (the component roots first: the longest tasks), then
 // appended in node order: the same result on any number of threads.
 void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, int step,
-                        const std::vector<bool>& whole, unsigned threads) {
-  std::vector<std::size_t> order(out.nodes.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
+                        const std::vector<bool>& whole, bool leaf_levels, unsigned threads) {
+  std::vector<std::size_t> order;
+  order.reserve(out.nodes.size());
+  for (std::size_t n = 0; n < out.nodes.size(); ++n)
+    if (leaf_levels || whole[n] || !out.nodes[n].leaf()) order.push_back(n);
   std::stable_partition(order.begin(), order.end(), [&](std::size_t n) { return whole[n]; });
   std::vector<NodeLevels> levels(out.nodes.size());
   const std::vector<int> height = node_heights(out);

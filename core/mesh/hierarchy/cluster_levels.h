@@ -17,8 +17,8 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
 // Every node's coarser levels (at most max_levels), each simplifying its region's border too,
 // each a `step`-th of the one before (2 or 4); whole[n]: node n is the root of one connected
 // component, whose levels simplify the whole component, its open edges locked, a quarter at a
-// time.
+// time. leaf_levels false: leaves (other than such roots) keep none.
 void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, int step,
-                        const std::vector<bool>& whole, unsigned threads);
+                        const std::vector<bool>& whole, bool leaf_levels, unsigned threads);
 
 } // namespace irad

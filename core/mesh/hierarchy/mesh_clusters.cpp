@@ -132,14 +132,16 @@ struct Builder {
     std::size_t bin_counts[3][kBins] = {};
     for (std::size_t k = begin; k < end; ++k) {
       const TreeTriangle& t = in.items[k];
-      Bounds box;
-      for (int c = 0; c < 3; ++c) box.extend(scene.positions[t.vertices[c]]);
+      const glm::vec3 &p0 = scene.positions[t.vertices[0]], &p1 = scene.positions[t.vertices[1]],
+                      &p2 = scene.positions[t.vertices[2]];
+      const glm::vec3 lo = glm::min(glm::min(p0, p1), p2), hi = glm::max(glm::max(p0, p1), p2);
       for (int axis = 0; axis < 3; ++axis) {
         if (!(extent[axis] > 0.0f)) continue;
         const int b = bin_of(t, axis);
         ++bin_counts[axis][b];
-        bins[axis][b].extend(box.lo);
-        bins[axis][b].extend(box.hi);
+        Bounds& bin = bins[axis][b];
+        bin.lo = glm::min(bin.lo, lo);
+        bin.hi = glm::max(bin.hi, hi);
       }
     }
     double best = std::numeric_limits<double>::infinity();
@@ -317,6 +319,10 @@ int level_step(std::uint32_t leaf_triangles) {
   return leaf_triangles >= kQuarteringLeaf ? 4 : 2;
 }
 
+bool leaf_levels(std::uint32_t leaf_triangles) {
+  return leaf_triangles < kQuarteringLeaf;
+}
+
 std::uint32_t automatic_leaf_triangles(std::size_t triangles) {
   std::uint32_t leaf = 128;
   while (leaf < 1024 && static_cast<std::size_t>(leaf) * 512 < triangles) leaf *= 2;
@@ -396,7 +402,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   start = stages.lap("inner", start);
   if (options.simplify && !options.camera)
     add_coarser_levels(scene, b.out, options.max_levels, level_step(options.leaf_triangles), whole,
-                       options.threads);
+                       leaf_levels(options.leaf_triangles), options.threads);
   stages.lap("levels", start);
   return std::move(b.out);
 }
