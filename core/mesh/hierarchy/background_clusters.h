@@ -11,8 +11,9 @@
 // The same hierarchy as a build in place, bit for bit (the build's result does not depend on its
 // threads). An exception of the build reaches the caller of take(); one never taken is dropped.
 // A build is handed on before its cache file is written: the thread writes it while the
-// hierarchy is in use (the indices shared, in memory), off the raster's critical path (0.2 s on
-// the 2.1M sphere box, 0.9 s on the 10M terrain).
+// hierarchy is in use (the indices shared, in memory, until the file holds them:
+// StoredIndices::leave_in_file), off the raster's critical path (0.2 s on the 2.1M sphere box,
+// 0.9 s on the 10M terrain).
 #include "core/mesh/hierarchy/cluster_cache.h"
 #include "core/mesh/hierarchy/mesh_clusters.h"
 #include "core/util/stage_times.h"

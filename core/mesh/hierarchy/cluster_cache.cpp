@@ -160,10 +160,12 @@ std::uintmax_t expected_size(const Header& h) {
          sizeof(std::uint64_t);
 }
 
-// The indices of a hierarchy whose indices are in memory (its own, or shared with its user).
-const std::vector<std::uint32_t>& indices_in_memory(const MeshClusters& c) {
-  if (c.stored_indices && c.stored_indices->in_memory()) return *c.stored_indices->in_memory();
-  return c.indices;
+// The indices of a hierarchy whose indices are in memory (its own, or shared with its user, then
+// held in `keep`).
+const std::vector<std::uint32_t>&
+indices_in_memory(const MeshClusters& c, std::shared_ptr<const std::vector<std::uint32_t>>& keep) {
+  if (c.stored_indices) keep = c.stored_indices->in_memory();
+  return keep ? *keep : c.indices;
 }
 
 // The header write_file gives c (its indices in memory) under `key`.
@@ -185,7 +187,8 @@ bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& k
   HashedWriter w(path);
   const Header h = header_of(c, key);
   w.bytes(&h, sizeof h);
-  w.values(indices_in_memory(c));
+  std::shared_ptr<const std::vector<std::uint32_t>> shared;
+  w.values(indices_in_memory(c, shared));
   std::vector<std::uint32_t> words;
   words.reserve(c.nodes.size() * kNodeWords);
   for (const ClusterNode& n : c.nodes) {
@@ -267,12 +270,21 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, const Scene&
   return c;
 }
 
+// After c was written to `path`: the file open, when it opens and has the size c's counts give;
+// else nullptr.
+std::shared_ptr<const OpenFile> written_file(const fs::path& path, const ClusterKey& key,
+                                             const MeshClusters& c) {
+  auto file = std::make_shared<const OpenFile>(path);
+  if (!file->valid() || file->size() != expected_size(header_of(c, key))) return nullptr;
+  return file;
+}
+
 // After c was written to `path`: its indices from there (as a hit has them), their memory freed,
-// when the file opens and has the size c's counts give; else c as it is.
+// when written_file opens it; else c as it is.
 void leave_indices_in(const fs::path& path, const ClusterKey& key, std::size_t vertices,
                       MeshClusters& c) {
-  const auto file = std::make_shared<const OpenFile>(path);
-  if (!file->valid() || file->size() != expected_size(header_of(c, key))) return;
+  const std::shared_ptr<const OpenFile> file = written_file(path, key, c);
+  if (!file) return;
   c.stored_indices =
       std::make_shared<const StoredIndices>(file, sizeof(Header), c.index_count(), vertices);
   std::vector<std::uint32_t>().swap(c.indices);
@@ -501,8 +513,12 @@ void write_cache_file(const fs::path& path, const ClusterKey& key, const MeshClu
 void PendingCacheWrite::run(StageTimes* times, CacheResult* result) noexcept {
   if (!pending()) return;
   CacheResult own;
-  write_cache_file(path_, key_, hierarchy_, times, result ? *result : own);
-  hierarchy_ = {}; // the indices stay with their other user
+  CacheResult& out = result ? *result : own;
+  write_cache_file(path_, key_, hierarchy_, times, out);
+  if (out.outcome != CacheOutcome::Unwritable) // the indices read from the file from now on
+    if (std::shared_ptr<const OpenFile> file = written_file(path_, key_, hierarchy_))
+      hierarchy_.stored_indices->leave_in_file(std::move(file), sizeof(Header), vertices_);
+  hierarchy_ = {}; // the indices stay with their other user, or go
 }
 
 MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
@@ -537,6 +553,7 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
     later->hierarchy_ = c;
     later->path_ = path;
     later->key_ = key;
+    later->vertices_ = scene.positions.size();
     return c;
   }
   write_cache_file(path, key, c, &stages, out);

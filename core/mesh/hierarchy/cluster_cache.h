@@ -86,7 +86,8 @@ public:
   bool pending() const { return !path_.empty() && hierarchy_.stored_indices != nullptr; }
   // Writes the file as cached_mesh_clusters would have (atomically, then the folder trimmed):
   // `result` becomes Written (a Rebuilt stays so) or Unwritable with the reason, `times` gets
-  // "cache write". Then holds nothing. Never throws.
+  // "cache write". Once written, the indices handed on are read from the file
+  // (StoredIndices::leave_in_file) and their memory goes. Then holds nothing. Never throws.
   void run(StageTimes* times, CacheResult* result) noexcept;
 
 private:
@@ -95,7 +96,8 @@ private:
                                            PendingCacheWrite*);
   std::filesystem::path path_;
   ClusterKey key_;
-  MeshClusters hierarchy_; // its indices shared with the hierarchy handed on
+  std::size_t vertices_ = 0; // the scene's
+  MeshClusters hierarchy_;   // its indices shared with the hierarchy handed on
 };
 
 // build_mesh_clusters through the cache in `folder` (empty: off). times gets the build's stages,

@@ -42,18 +42,37 @@ bool below(const std::uint32_t* words, std::size_t count, std::size_t vertices) 
   return count == 0 || largest < vertices;
 }
 
+StoredIndices::Source StoredIndices::source() const {
+  const std::lock_guard lock(mutex_);
+  return source_;
+}
+
+std::shared_ptr<const std::vector<std::uint32_t>> StoredIndices::in_memory() const {
+  return source().memory;
+}
+
+void StoredIndices::leave_in_file(std::shared_ptr<const OpenFile> file, std::uint64_t offset,
+                                  std::size_t vertices) const {
+  std::shared_ptr<const std::vector<std::uint32_t>> memory; // freed after the lock, if last
+  const std::lock_guard lock(mutex_);
+  if (!source_.memory) return;
+  memory = std::move(source_.memory);
+  source_ = {std::move(file), nullptr, offset, vertices};
+}
+
 void StoredIndices::copy_range(std::size_t first, std::size_t count, std::uint32_t* out) const {
+  const Source s = source(); // a copy: a move to the file meanwhile leaves it whole
   if (first > count_ || count > count_ - first)
-    throw Error(file_ ? file_->path().string() : std::string(), "cluster hierarchy",
+    throw Error(s.file ? s.file->path().string() : std::string(), "cluster hierarchy",
                 "indices read past their end");
-  if (memory_) {
-    std::copy_n(memory_->begin() + static_cast<std::ptrdiff_t>(first), count, out);
+  if (s.memory) {
+    std::copy_n(s.memory->begin() + static_cast<std::ptrdiff_t>(first), count, out);
     return;
   }
-  if (!file_->read_at(out, count * sizeof(std::uint32_t),
-                      offset_ + first * sizeof(std::uint32_t)) ||
-      !below(out, count, vertices_))
-    throw Error(file_->path().string(), "cluster hierarchy",
+  if (!s.file->read_at(out, count * sizeof(std::uint32_t),
+                       s.offset + first * sizeof(std::uint32_t)) ||
+      !below(out, count, s.vertices))
+    throw Error(s.file->path().string(), "cluster hierarchy",
                 "the cache file changed while in use; remove it and render again");
 }
 

@@ -1,11 +1,11 @@
 #pragma once
 // The shadow hierarchy's indices where they lie: in memory shared with the cache's writer (a build
-// handed on before its file is written: core/mesh/hierarchy/background_clusters.h), or in its cache
-// file (core/mesh/hierarchy/cluster_cache.h): a hit checks them as it streams the file (checksum,
-// every index below the vertex count) but keeps none of them; the one reader that needs them, the
-// GPU buffer (raster/shadow/shadow_lod.h), copies the parts the shadow faces draw from the file
-// straight into its storage. After a hit the process never holds them (docs/performance.md "Big
-// scenes").
+// handed on before its file is written: core/mesh/hierarchy/background_clusters.h) until the file
+// is written, or in its cache file (core/mesh/hierarchy/cluster_cache.h): a hit checks them as it
+// streams the file (checksum, every index below the vertex count) but keeps none of them; the one
+// reader that needs them, the GPU buffer (raster/shadow/shadow_lod.h), copies the parts the shadow
+// faces draw from the file straight into its storage. After a hit, and once a build's file is
+// written, the process holds none of them (docs/performance.md "Big scenes").
 //
 // The file stays open from the check to the last copy, so a writer that renames another file into
 // its place, or a trim that removes it, leaves this one readable as it was. Only a change of the
@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace irad {
@@ -45,10 +46,12 @@ public:
   // `count` 32-bit indices from byte `offset` of `file`, each below `vertices` when checked.
   StoredIndices(std::shared_ptr<const OpenFile> file, std::uint64_t offset, std::size_t count,
                 std::size_t vertices)
-      : file_(std::move(file)), offset_(offset), count_(count), vertices_(vertices) {}
+      : source_{std::move(file), nullptr, offset, vertices}, count_(count) {}
   // Indices a build made, shared with whoever else reads them (checked by the build).
   explicit StoredIndices(std::shared_ptr<const std::vector<std::uint32_t>> memory)
-      : memory_(std::move(memory)), count_(memory_->size()) {}
+      : count_(memory->size()) {
+    source_.memory = std::move(memory);
+  }
 
   std::size_t size() const { return count_; }
   // Copies indices [first, first + count) (within size()) into out[0, count). Throws Error
@@ -58,13 +61,28 @@ public:
   // All of them, copied as above.
   std::vector<std::uint32_t> read() const;
   // The indices when they are in memory; nullptr when in a file.
-  const std::vector<std::uint32_t>* in_memory() const { return memory_.get(); }
+  std::shared_ptr<const std::vector<std::uint32_t>> in_memory() const;
+  // Indices in memory, once written to `file` from byte `offset`: later copies read them from
+  // there (checked against `vertices` as a hit's are) and the memory is freed with its last
+  // user (a copy under way keeps it), so that a build's render holds no more of them than a
+  // warm one. Nothing when they are in a file already.
+  void leave_in_file(std::shared_ptr<const OpenFile> file, std::uint64_t offset,
+                     std::size_t vertices) const;
 
 private:
-  std::shared_ptr<const OpenFile> file_;
-  std::shared_ptr<const std::vector<std::uint32_t>> memory_;
-  std::uint64_t offset_ = 0;
-  std::size_t count_ = 0, vertices_ = 0;
+  // Where the indices are: memory, or a file from `offset` (a build's move to its file once
+  // written: leave_in_file). Read and changed under `mutex`.
+  struct Source {
+    std::shared_ptr<const OpenFile> file;
+    std::shared_ptr<const std::vector<std::uint32_t>> memory;
+    std::uint64_t offset = 0;
+    std::size_t vertices = 0;
+  };
+  Source source() const;
+
+  mutable std::mutex mutex_;
+  mutable Source source_;
+  std::size_t count_ = 0;
 };
 
 // Whether the `count` indices in `words` are all below `vertices`.
