@@ -330,6 +330,32 @@ TEST_F(ClusterCache, ABuildBesideGivesWhatTheBuildGives) {
   EXPECT_TRUE(same(taken, built));
 }
 
+// wait_for_build: after a build it returns once the file is written (the indices then read from
+// it, their memory gone); after a hit it returns too, and the hit gives the same hierarchy.
+TEST_F(ClusterCache, WaitForBuildEndsWithTheWrite) {
+  const Scene s = two_spheres();
+  BackgroundClusters built(s, options_, folder_);
+  built.wait_for_build();
+  EXPECT_EQ(file().filename().string(), cluster_key(s, options_).hex() + ".lod");
+  const MeshClusters taken = built.take();
+  EXPECT_EQ(taken.stored_indices->in_memory(), nullptr);
+  EXPECT_EQ(built.cache_result().outcome, CacheOutcome::Written);
+  BackgroundClusters hit(s, options_, folder_);
+  hit.wait_for_build();
+  EXPECT_TRUE(same(hit.take(), taken));
+  EXPECT_EQ(hit.cache_result().outcome, CacheOutcome::Hit);
+  // A write that fails (the cache folder is a file) lets the waiter go too; the indices stay in
+  // memory.
+  fs::remove_all(folder_);
+  fs::create_directories(folder_.parent_path());
+  std::ofstream(folder_) << "not a folder";
+  BackgroundClusters unwritable(s, options_, folder_);
+  unwritable.wait_for_build();
+  EXPECT_EQ(unwritable.cache_result().outcome, CacheOutcome::Unwritable);
+  EXPECT_NE(unwritable.take().stored_indices->in_memory(), nullptr);
+  fs::remove(folder_);
+}
+
 // A write left for later that fails (the cache folder is a file) is reported, never thrown; the
 // hierarchy handed on is whole.
 TEST_F(ClusterCache, ALaterWriteThatFailsIsReported) {

@@ -5,22 +5,33 @@ namespace irad {
 BackgroundClusters::BackgroundClusters(const Scene& scene, const ClusterOptions& options,
                                        std::filesystem::path cache, const BackgroundClusters* after)
     : scene_(&scene), options_(options), cache_(std::move(cache)), future_(hierarchy_.get_future()),
-      built_future_(built_.get_future().share()) {
+      built_future_(built_.get_future().share()), building_future_(building_.get_future().share()) {
   std::shared_future<void> first = after ? after->built_future_ : std::shared_future<void>{};
   done_ = std::async(std::launch::async, [this, first] {
     if (first.valid()) first.wait();
     PendingCacheWrite write;
+    bool told = false; // whether building_ is set
+    const auto tell = [&](bool building) {
+      if (!told) building_.set_value(building);
+      told = true;
+    };
     try {
-      hierarchy_.set_value(
-          cached_mesh_clusters(*scene_, options_, cache_, &times_, &result_, &write));
+      hierarchy_.set_value(cached_mesh_clusters(*scene_, options_, cache_, &times_, &result_,
+                                                &write, [&] { tell(true); }));
     } catch (...) {
       hierarchy_.set_exception(std::current_exception());
+      tell(false);
       built_.set_value();
       return;
     }
+    tell(false);
     built_.set_value();
     write.run(&times_, &result_);
   });
+}
+
+void BackgroundClusters::wait_for_build() const {
+  if (building_future_.get()) done_.wait();
 }
 
 BackgroundClusters::~BackgroundClusters() {

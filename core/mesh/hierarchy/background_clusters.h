@@ -43,6 +43,11 @@ public:
               const std::filesystem::path& cache) const;
   // The hierarchy, once: waits for it; rethrows what the build threw.
   MeshClusters take();
+  // Where the hierarchy is built, not read from the cache: waits until the build has ended and
+  // its cache file is written (or failed), without taking the hierarchy, for a caller that would
+  // otherwise hold its own big arrays beside the build's. After a cache hit: returns without
+  // waiting for the read.
+  void wait_for_build() const;
   // After take(): the build's stages (as cached_mesh_clusters reports them, "cache write"
   // included) and the cache's outcome; both wait for the cache write.
   const StageTimes& times() const;
@@ -58,6 +63,8 @@ private:
   std::future<MeshClusters> future_; // the hierarchy
   std::promise<void> built_;         // set when the hierarchy (or its exception) is
   std::shared_future<void> built_future_;
+  std::promise<bool> building_; // set once known: true for a build, false for a hit (or an error)
+  std::shared_future<bool> building_future_;
   std::future<void> done_; // the thread: the build, then the cache write
 };
 

@@ -523,11 +523,15 @@ void PendingCacheWrite::run(StageTimes* times, CacheResult* result) noexcept {
 
 MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
                                   const fs::path& folder, StageTimes* times, CacheResult* result,
-                                  PendingCacheWrite* later) {
+                                  PendingCacheWrite* later, const std::function<void()>& on_build) {
   CacheResult own;
   CacheResult& out = result ? *result : own;
   out = {};
-  if (folder.empty()) return build_mesh_clusters(scene, options, times);
+  const auto build = [&](StageTimes* stages) {
+    if (on_build) on_build();
+    return build_mesh_clusters(scene, options, stages);
+  };
+  if (folder.empty()) return build(times);
   StageTimes local;
   StageTimes& stages = times ? *times : local;
   auto start = StageTimes::Clock::now();
@@ -545,7 +549,7 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
     }
     out = {CacheOutcome::Rebuilt, why};
   }
-  MeshClusters c = build_mesh_clusters(scene, options, &stages);
+  MeshClusters c = build(&stages);
   if (later) { // the indices shared between the hierarchy's user and the writer
     auto shared = std::make_shared<const std::vector<std::uint32_t>>(std::move(c.indices));
     c.indices = {};

@@ -93,7 +93,7 @@ public:
 private:
   friend MeshClusters cached_mesh_clusters(const Scene&, const ClusterOptions&,
                                            const std::filesystem::path&, StageTimes*, CacheResult*,
-                                           PendingCacheWrite*);
+                                           PendingCacheWrite*, const std::function<void()>&);
   std::filesystem::path path_;
   ClusterKey key_;
   std::size_t vertices_ = 0; // the scene's
@@ -105,12 +105,13 @@ private:
 // indices are left in the file (MeshClusters::stored_indices); with the cache off, or a write
 // that failed, they are in memory. With `later`, a build is returned before its file is written:
 // its indices in memory, shared with *later, which writes the file when run (result's outcome is
-// then Off, or Rebuilt, until it has). Throws only what the build throws: a cache that cannot be
-// read or written is reported in `result`, never an error.
+// then Off, or Rebuilt, until it has). `on_build` (if given) is called once it is known that the
+// hierarchy is built, not read (before the build). Throws only what the build throws: a cache
+// that cannot be read or written is reported in `result`, never an error.
 MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& options,
                                   const std::filesystem::path& folder, StageTimes* times = nullptr,
-                                  CacheResult* result = nullptr,
-                                  PendingCacheWrite* later = nullptr);
+                                  CacheResult* result = nullptr, PendingCacheWrite* later = nullptr,
+                                  const std::function<void()>& on_build = {});
 
 // Writes `path` through a temporary file beside it (write(temporary) returns whether every write
 // succeeded) renamed into place, so that a reader sees a whole file or none; the folder is made
