@@ -581,11 +581,12 @@ std::shared_ptr<BackgroundClusters> early_camera_hierarchy(const Scene& scene,
 // and everything after it: from kBuildFirstFrom triangles, where the build's transient arrays
 // (about 50 bytes a triangle) beside the BVH's build and the GL upload set the process's peak.
 // Waited for until its cache file is written, so that its indices are in the file, not in memory
-// (StoredIndices::leave_in_file), when the BVH is built; a cache hit's read is not waited for. Cold
-// renders at 256x256 (one run each, in turn): the 10M terrain 19.8-20.3 s against 20.2 s
-// overlapped, peak 1207 MiB (3.95x its decoded geometry) against 1721-1795; the 10M sphere
-// box 14.5-15.3 s against 12.5-12.8 s, peak 1135-1147 MiB against 1424-1596. Below it the build
-// overlaps the rest, whose cores it shares.
+// (StoredIndices::leave_in_file), when the BVH is built; a cache hit's read is not waited for.
+// Cold renders at 256x256, three rounds in turn against three overlapped: the 10M terrain's peak
+// 1217-1221 MiB (4.0x its decoded geometry) against 1588-1811, in 20.6-21.0 s against
+// 17.1-19.3 s; the 10M sphere box's 1134-1148 MiB against 1423-1446, in 16.1-18.4 s against
+// 12.4-13.7 s (its planar reduction and weld leave a core idle). Below it the build overlaps the
+// rest, whose cores it shares.
 bool builds_first(const Scene& scene) {
   constexpr std::size_t kBuildFirstFrom = std::size_t{1} << 22;
   return scene.triangle_count() >= kBuildFirstFrom;
