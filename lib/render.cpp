@@ -585,7 +585,7 @@ std::shared_ptr<BackgroundClusters> early_camera_hierarchy(const Scene& scene,
 // Cold renders at 256x256, three rounds in turn against three overlapped: the 10M terrain's peak
 // 1217-1221 MiB (4.0x its decoded geometry) against 1588-1811, in 20.6-21.0 s against
 // 17.1-19.3 s; the 10M sphere box's 1134-1148 MiB against 1423-1446, in 16.1-18.4 s against
-// 12.4-13.7 s (its planar reduction and weld leave a core idle). Below it the build overlaps the
+// 12.4-13.7 s (the weld runs on one thread, the other core idle). Below it the build overlaps the
 // rest, whose cores it shares.
 bool builds_first(const Scene& scene) {
   constexpr std::size_t kBuildFirstFrom = std::size_t{1} << 22;
