@@ -20,11 +20,18 @@ namespace {
 // they were no faster and left their holes resident (the 10M terrain's rt-vpl peak 1.87 GiB
 // against 1.57 GiB). Transparent huge pages are the kernel's choice (glibc's
 // glibc.malloc.hugetlb=1 made no render faster and some slower: docs/performance.md "Huge pages").
+// One arena for all threads: the shadow hierarchy's build allocates on its own threads, and the
+// holes it leaves in their arenas stayed resident after malloc_trim (the 10M sphere box's cold
+// peak 1125-1151 MiB against 1039 with one arena, the 10M terrain's 1208 against 1087, the 2.1M
+// sphere box's 525-528 against 467-471; one run each, in turn). No render measured slower: the
+// 2.1M sphere box warm 1.70-2.21 s against 1.74-2.15 (four pairs), cold 3.45-3.68 against
+// 3.56-3.91, zdm2 7.18-7.33 against 7.21-8.11 (two pairs).
 void keep_freed_heap() {
 #if defined(__GLIBC__)
   mallopt(M_TRIM_THRESHOLD, 128 << 20);
   mallopt(M_TOP_PAD, 16 << 20);
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_ARENA_MAX, 1);
 #endif
 }
 
