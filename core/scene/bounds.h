@@ -13,6 +13,11 @@ struct Bounds {
     lo = glm::min(lo, p);
     hi = glm::max(hi, p);
   }
+  // The union with b (nothing for an empty b: its lo is +max, its hi -max).
+  void extend(const Bounds& b) {
+    lo = glm::min(lo, b.lo);
+    hi = glm::max(hi, b.hi);
+  }
   bool empty() const { return lo.x > hi.x; }
   glm::vec3 center() const { return 0.5f * (lo + hi); }
   float diagonal() const { return empty() ? 0.0f : glm::length(hi - lo); }

@@ -32,11 +32,7 @@ Bounds triangle_bounds(const std::vector<glm::vec3>& positions,
     }
   });
   Bounds b;
-  for (const Bounds& part : parts) {
-    if (part.empty()) continue;
-    b.extend(part.lo);
-    b.extend(part.hi);
-  }
+  for (const Bounds& part : parts) b.extend(part);
   return b;
 }
 

@@ -139,14 +139,12 @@ struct Builder {
       const TreeTriangle& t = in.items[k];
       const glm::vec3 &p0 = scene.positions[t.vertices[0]], &p1 = scene.positions[t.vertices[1]],
                       &p2 = scene.positions[t.vertices[2]];
-      const glm::vec3 lo = glm::min(glm::min(p0, p1), p2), hi = glm::max(glm::max(p0, p1), p2);
+      const Bounds box{glm::min(glm::min(p0, p1), p2), glm::max(glm::max(p0, p1), p2)};
       for (int axis = 0; axis < 3; ++axis) {
         if (!(extent[axis] > 0.0f)) continue;
         const int b = bin_of(t, axis);
         ++bin_counts[axis][b];
-        Bounds& bin = bins[axis][b];
-        bin.lo = glm::min(bin.lo, lo);
-        bin.hi = glm::max(bin.hi, hi);
+        bins[axis][b].extend(box);
       }
     }
     double best = std::numeric_limits<double>::infinity();
@@ -160,18 +158,13 @@ struct Builder {
       std::size_t right_count[kBins + 1] = {};
       for (int b = kBins - 1; b >= 0; --b) {
         right[b] = right[b + 1];
-        right[b].extend(boxes[b].lo);
-        right[b].extend(boxes[b].hi);
-        if (boxes[b].empty()) right[b] = right[b + 1];
+        right[b].extend(boxes[b]);
         right_count[b] = right_count[b + 1] + counts[b];
       }
       Bounds left;
       std::size_t left_count = 0;
       for (int b = 0; b + 1 < kBins; ++b) {
-        if (!boxes[b].empty()) {
-          left.extend(boxes[b].lo);
-          left.extend(boxes[b].hi);
-        }
+        left.extend(boxes[b]);
         left_count += counts[b];
         if (left_count == 0 || right_count[b + 1] == 0) continue;
         const double cost = area(left) * static_cast<double>(left_count) +
@@ -235,8 +228,7 @@ struct Builder {
     node.children[0] = c0;
     node.children[1] = c1;
     node.bounds = a.bounds;
-    node.bounds.extend(b.bounds.lo);
-    node.bounds.extend(b.bounds.hi);
+    node.bounds.extend(b.bounds);
     node.leaf_first = a.leaf_first;
     node.leaf_count = a.leaf_count + b.leaf_count;
   }
