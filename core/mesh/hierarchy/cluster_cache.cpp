@@ -160,14 +160,6 @@ std::uintmax_t expected_size(const Header& h) {
          sizeof(std::uint64_t);
 }
 
-// The indices of a hierarchy whose indices are in memory (its own, or shared with its user, then
-// held in `keep`).
-const std::vector<std::uint32_t>&
-indices_in_memory(const MeshClusters& c, std::shared_ptr<const std::vector<std::uint32_t>>& keep) {
-  if (c.stored_indices) keep = c.stored_indices->in_memory();
-  return keep ? *keep : c.indices;
-}
-
 // The header write_file gives c (its indices in memory) under `key`.
 Header header_of(const MeshClusters& c, const ClusterKey& key) {
   Header h{};
@@ -187,8 +179,9 @@ bool write_file(const fs::path& path, const MeshClusters& c, const ClusterKey& k
   HashedWriter w(path);
   const Header h = header_of(c, key);
   w.bytes(&h, sizeof h);
-  std::shared_ptr<const std::vector<std::uint32_t>> shared;
-  w.values(indices_in_memory(c, shared));
+  // Its indices in memory: its own, or shared with its user (held while written).
+  const auto shared = c.stored_indices ? c.stored_indices->in_memory() : nullptr;
+  w.values(shared ? *shared : c.indices);
   std::vector<std::uint32_t> words;
   words.reserve(c.nodes.size() * kNodeWords);
   for (const ClusterNode& n : c.nodes) {
@@ -270,21 +263,17 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, const Scene&
   return c;
 }
 
-// After c was written to `path`: the file open, when it opens and has the size c's counts give;
-// else nullptr.
-std::shared_ptr<const OpenFile> written_file(const fs::path& path, const ClusterKey& key,
-                                             const MeshClusters& c) {
-  auto file = std::make_shared<const OpenFile>(path);
-  if (!file->valid() || file->size() != expected_size(header_of(c, key))) return nullptr;
-  return file;
-}
-
-// After c was written to `path`: its indices from there (as a hit has them), their memory freed,
-// when written_file opens it; else c as it is.
+// After c was written to `path`: its indices from there (as a hit has them), their memory freed
+// (indices shared with another user: StoredIndices::leave_in_file, for both), when the file opens
+// and has the size c's counts give; else c as it is.
 void leave_indices_in(const fs::path& path, const ClusterKey& key, std::size_t vertices,
                       MeshClusters& c) {
-  const std::shared_ptr<const OpenFile> file = written_file(path, key, c);
-  if (!file) return;
+  const auto file = std::make_shared<const OpenFile>(path);
+  if (!file->valid() || file->size() != expected_size(header_of(c, key))) return;
+  if (c.stored_indices) {
+    c.stored_indices->leave_in_file(file, sizeof(Header), vertices);
+    return;
+  }
   c.stored_indices =
       std::make_shared<const StoredIndices>(file, sizeof(Header), c.index_count(), vertices);
   std::vector<std::uint32_t>().swap(c.indices);
@@ -516,8 +505,7 @@ void PendingCacheWrite::run(StageTimes* times, CacheResult* result) noexcept {
   CacheResult& out = result ? *result : own;
   write_cache_file(path_, key_, hierarchy_, times, out);
   if (out.outcome != CacheOutcome::Unwritable) // the indices read from the file from now on
-    if (std::shared_ptr<const OpenFile> file = written_file(path_, key_, hierarchy_))
-      hierarchy_.stored_indices->leave_in_file(std::move(file), sizeof(Header), vertices_);
+    leave_indices_in(path_, key_, vertices_, hierarchy_);
   hierarchy_ = {}; // the indices stay with their other user, or go
 }
 
