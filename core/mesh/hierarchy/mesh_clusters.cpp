@@ -3,6 +3,7 @@
 #include "core/mesh/hierarchy/cluster_levels.h"
 #include "core/mesh/planar/flat_components.h"
 #include "core/mesh/planar/planar_reduction.h"
+#include "core/mesh/position_weld.h"
 #include "core/util/parallel_rows.h"
 
 #include <algorithm>
@@ -27,15 +28,6 @@ std::vector<std::uint32_t> first_of_class(const std::vector<unsigned int>& remap
     welded[v] = first[remap[v]];
   }
   return welded;
-}
-
-// welded[v]: the first vertex at v's position (bitwise equal floats).
-std::vector<std::uint32_t> weld_positions(const Scene& scene) {
-  const std::size_t n = scene.positions.size();
-  std::vector<unsigned int> remap(n);
-  const std::size_t unique = meshopt_generateVertexRemap(
-      remap.data(), nullptr, n, scene.positions.data(), n, sizeof(glm::vec3));
-  return first_of_class(remap, unique);
 }
 
 // welded[v]: the first vertex equal to v in every attribute the camera passes read (position,
@@ -304,8 +296,10 @@ void bound_by_edges(const Scene& scene, MeshClusters& out, unsigned threads) {
 
 // The opaque triangles (scene triangle ids ascending into out.triangles), their vertices welded
 // (weld_vertices for the camera's hierarchy, else weld_positions).
-std::vector<glm::uvec3> welded_triangles(const Scene& scene, bool camera, MeshClusters& out) {
-  const std::vector<std::uint32_t> welded = camera ? weld_vertices(scene) : weld_positions(scene);
+std::vector<glm::uvec3> welded_triangles(const Scene& scene, const ClusterOptions& options,
+                                         MeshClusters& out) {
+  const std::vector<std::uint32_t> welded =
+      options.camera ? weld_vertices(scene) : weld_positions(scene.positions, options.threads);
   std::vector<glm::uvec3> triangles;
   triangles.reserve(scene.triangle_count());
   out.triangles.reserve(scene.triangle_count());
@@ -401,7 +395,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   if (options.leaf_triangles == 0)
     options.leaf_triangles = automatic_leaf_triangles(scene.triangle_count());
   MeshClusters out;
-  std::vector<glm::uvec3> triangles = welded_triangles(scene, options.camera, out);
+  std::vector<glm::uvec3> triangles = welded_triangles(scene, options, out);
   start = stages.lap("weld", start);
   float leaf_error = 0.0f;
   if (options.simplify && !options.camera) {

@@ -1,0 +1,75 @@
+#include "core/mesh/position_weld.h"
+
+#include "core/util/parallel_rows.h"
+
+#include <bit>
+#include <cstring>
+
+namespace irad {
+
+namespace {
+
+constexpr std::uint32_t kEmpty = ~0u;
+
+// A position's bits mixed to 64 (the parts take the high half, the table slots the low).
+std::uint64_t position_hash(const glm::vec3& p) {
+  std::uint32_t b[3];
+  std::memcpy(b, &p, sizeof b);
+  std::uint64_t h = (std::uint64_t{b[0]} << 32 | b[1]) * 0x9E3779B97F4A7C15ull;
+  h ^= (std::uint64_t{b[2]} + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full;
+  h ^= h >> 29;
+  h *= 0xBF58476D1CE4E5B9ull;
+  return h ^ (h >> 32);
+}
+
+std::uint32_t part_of(std::uint64_t hash, std::uint32_t parts) {
+  return static_cast<std::uint32_t>(((hash >> 32) * parts) >> 32);
+}
+
+bool same_bits(const glm::vec3& a, const glm::vec3& b) {
+  return std::memcmp(&a, &b, sizeof(glm::vec3)) == 0;
+}
+
+// The vertices of one part welded into `welded` (its entries alone are written).
+void weld_part(const std::vector<glm::vec3>& positions, std::uint32_t part, std::uint32_t parts,
+               std::vector<std::uint32_t>& welded) {
+  const std::size_t n = positions.size();
+  std::size_t count = 0;
+  for (std::size_t v = 0; v < n; ++v) count += part_of(position_hash(positions[v]), parts) == part;
+  // At most half full: probes stay short.
+  const std::size_t size = std::bit_ceil(std::max<std::size_t>(2 * count, 16));
+  const std::size_t mask = size - 1;
+  std::vector<std::uint32_t> table(size, kEmpty);
+  for (std::size_t v = 0; v < n; ++v) {
+    const std::uint64_t hash = position_hash(positions[v]);
+    if (part_of(hash, parts) != part) continue;
+    for (std::size_t slot = hash & mask;; slot = (slot + 1) & mask) {
+      std::uint32_t& entry = table[slot];
+      if (entry == kEmpty) {
+        entry = static_cast<std::uint32_t>(v);
+        welded[v] = entry;
+        break;
+      }
+      if (same_bits(positions[entry], positions[v])) {
+        welded[v] = entry;
+        break;
+      }
+    }
+  }
+}
+
+} // namespace
+
+std::vector<std::uint32_t> weld_positions(const std::vector<glm::vec3>& positions,
+                                          unsigned threads) {
+  // Parts of about a million vertices, so that a small mesh stays on one thread.
+  const int wanted = static_cast<int>(positions.size() >> 20) + 1;
+  const std::uint32_t parts = worker_count(threads, wanted);
+  std::vector<std::uint32_t> welded(positions.size());
+  parallel_tasks(static_cast<int>(parts), parts, [&](int part, unsigned) {
+    weld_part(positions, static_cast<std::uint32_t>(part), parts, welded);
+  });
+  return welded;
+}
+
+} // namespace irad
