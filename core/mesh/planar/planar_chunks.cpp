@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <glm/glm.hpp>
 #include <limits>
-#include <numeric>
 
 namespace irad {
 
@@ -20,23 +19,29 @@ struct ChunkRange {
   std::size_t size() const { return end - first; }
 };
 
-// Splits order[r] at its middle: the half with the smaller centroids along the longest axis of
+// A triangle's centroid beside its index: the splits move both together, so that each reads its
+// range in order.
+struct Centred {
+  glm::vec3 centroid;
+  std::uint32_t triangle;
+};
+
+// Splits items[r] at its middle: the half with the smaller centroids along the longest axis of
 // their bounds first (ties by index, so the split is the same on every run).
-std::array<ChunkRange, 2> split_at_median(const std::vector<glm::vec3>& centroids,
-                                          std::vector<std::uint32_t>& order, ChunkRange r) {
+std::array<ChunkRange, 2> split_at_median(std::vector<Centred>& items, ChunkRange r) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
   for (std::size_t k = r.first; k < r.end; ++k) {
-    lo = glm::min(lo, centroids[order[k]]);
-    hi = glm::max(hi, centroids[order[k]]);
+    lo = glm::min(lo, items[k].centroid);
+    hi = glm::max(hi, items[k].centroid);
   }
   const glm::vec3 extent = hi - lo;
   const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
   const std::size_t middle = r.first + r.size() / 2;
-  const auto begin = order.begin();
+  const auto begin = items.begin();
   std::nth_element(begin + std::ptrdiff_t(r.first), begin + std::ptrdiff_t(middle),
-                   begin + std::ptrdiff_t(r.end), [&](std::uint32_t a, std::uint32_t b) {
-                     const float ka = centroids[a][axis], kb = centroids[b][axis];
-                     return ka != kb ? ka < kb : a < b;
+                   begin + std::ptrdiff_t(r.end), [axis](const Centred& a, const Centred& b) {
+                     const float ka = a.centroid[axis], kb = b.centroid[axis];
+                     return ka != kb ? ka < kb : a.triangle < b.triangle;
                    });
   return {ChunkRange{r.first, middle}, ChunkRange{middle, r.end}};
 }
@@ -86,21 +91,20 @@ PlanarReduction reduce_chunk(const std::vector<glm::vec3>& positions,
 std::vector<std::vector<std::uint32_t>> spatial_chunks(const std::vector<glm::vec3>& positions,
                                                        const std::vector<glm::uvec3>& triangles,
                                                        std::size_t chunk, unsigned threads) {
-  std::vector<glm::vec3> centroids(triangles.size());
+  std::vector<Centred> items(triangles.size());
   parallel_chunks(triangles.size(), [&](std::size_t first, std::size_t end) {
     for (std::size_t t = first; t < end; ++t) {
       const glm::uvec3& v = triangles[t];
-      centroids[t] = (positions[v.x] + positions[v.y] + positions[v.z]) / 3.0f;
+      items[t] = {(positions[v.x] + positions[v.y] + positions[v.z]) / 3.0f,
+                  static_cast<std::uint32_t>(t)};
     }
   });
-  std::vector<std::uint32_t> order(triangles.size());
-  std::iota(order.begin(), order.end(), 0u);
   std::vector<ChunkRange> level, done;
   (triangles.size() > chunk ? level : done).push_back({0, triangles.size()});
   while (!level.empty()) {
     std::vector<std::array<ChunkRange, 2>> halves(level.size());
     parallel_tasks(static_cast<int>(level.size()), threads, [&](int k, unsigned) {
-      halves[std::size_t(k)] = split_at_median(centroids, order, level[std::size_t(k)]);
+      halves[std::size_t(k)] = split_at_median(items, level[std::size_t(k)]);
     });
     level.clear();
     for (const auto& pair : halves)
@@ -112,7 +116,8 @@ std::vector<std::vector<std::uint32_t>> spatial_chunks(const std::vector<glm::ve
   parallel_tasks(static_cast<int>(done.size()), threads, [&](int k, unsigned) {
     const ChunkRange r = done[std::size_t(k)];
     std::vector<std::uint32_t>& c = out[std::size_t(k)];
-    c.assign(order.begin() + std::ptrdiff_t(r.first), order.begin() + std::ptrdiff_t(r.end));
+    c.resize(r.size());
+    for (std::size_t i = 0; i < r.size(); ++i) c[i] = items[r.first + i].triangle;
     std::sort(c.begin(), c.end());
   });
   return out;
