@@ -259,7 +259,7 @@ TEST(ClusterCacheValidation, NamesWhatIsWrong) {
   c.levels[0].count = static_cast<std::uint32_t>(c.indices.size()) + 3;
   EXPECT_NE(validate_clusters(c, vertices, triangles, 1000), "");
   c = good;
-  c.triangles.back() = static_cast<std::uint32_t>(triangles);
+  c.triangles = {0, static_cast<std::uint32_t>(triangles)}; // (a list: some left out)
   EXPECT_NE(validate_clusters(c, vertices, triangles, 1000), "");
   c = good;
   c.nodes[1].error = std::numeric_limits<float>::quiet_NaN();

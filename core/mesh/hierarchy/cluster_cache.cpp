@@ -24,7 +24,7 @@ namespace {
 
 constexpr char kMagic[8] = {'I', 'R', 'A', 'D', 'L', 'O', 'D', '\0'};
 // The file layout's version: raise it whenever the layout or the build's results change.
-constexpr std::uint32_t kFormat = 12;
+constexpr std::uint32_t kFormat = 13;
 constexpr std::size_t kNodeWords = 15; // a node as 32-bit words (write_node)
 constexpr std::size_t kLevelWords = 3; // a level as 32-bit words
 // indices, nodes, roots, levels, triangles, original, root materials

@@ -294,19 +294,24 @@ void bound_by_edges(const Scene& scene, MeshClusters& out, unsigned threads) {
   });
 }
 
-// The opaque triangles (scene triangle ids ascending into out.triangles), their vertices welded
-// (weld_vertices for the camera's hierarchy, else weld_positions).
+// The opaque triangles, their vertices welded (weld_vertices for the camera's hierarchy, else
+// weld_positions); their scene triangle ids ascending into out.triangles where some triangle is
+// left out.
 std::vector<glm::uvec3> welded_triangles(const Scene& scene, const ClusterOptions& options,
                                          MeshClusters& out) {
   const std::vector<std::uint32_t> welded =
       options.camera ? weld_vertices(scene) : weld_positions(scene.positions, options.threads);
+  const auto opaque = [&](std::size_t t) {
+    return scene.material_of(t).alpha_mode == AlphaMode::Opaque;
+  };
+  bool every = true;
+  for (std::size_t t = 0; t < scene.triangle_count() && every; ++t) every = opaque(t);
   std::vector<glm::uvec3> triangles;
   triangles.reserve(scene.triangle_count());
-  out.triangles.reserve(scene.triangle_count());
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
-    if (scene.material_of(t).alpha_mode != AlphaMode::Opaque) continue;
+    if (!every && !opaque(t)) continue;
     const glm::uvec3 v = scene.triangles[t];
-    out.triangles.push_back(static_cast<std::uint32_t>(t));
+    if (!every) out.triangles.push_back(static_cast<std::uint32_t>(t));
     triangles.emplace_back(welded[v.x], welded[v.y], welded[v.z]);
   }
   return triangles;
@@ -325,9 +330,9 @@ std::vector<bool> build_trees(const Scene& scene, const ClusterOptions& options,
       component_groups(triangles, scene.positions.size(), options.leaf_triangles);
   std::vector<std::uint32_t> material; // the camera's: of each triangle of the tree
   if (options.camera) {
-    material.resize(out.triangles.size());
+    material.resize(triangles.size());
     for (std::size_t t = 0; t < material.size(); ++t)
-      material[t] = scene.triangle_material[out.triangles[t]];
+      material[t] = scene.triangle_material[out.triangles.empty() ? t : out.triangles[t]];
     split_by_material(group, material);
   }
   std::vector<std::uint32_t> order(triangles.size());
