@@ -582,11 +582,10 @@ std::shared_ptr<BackgroundClusters> early_camera_hierarchy(const Scene& scene,
 // (about 50 bytes a triangle) beside the BVH's build and the GL upload set the process's peak.
 // Waited for until its cache file is written, so that its indices are in the file, not in memory
 // (StoredIndices::leave_in_file), when the BVH is built; a cache hit's read is not waited for.
-// Cold renders at 256x256, three rounds in turn against three overlapped (with glibc's
-// per-thread malloc arenas, as MALLOC_ARENA_MAX=8 gives): the 10M terrain's peak 1217-1221 MiB
-// against 1588-1811, in 20.6-21.0 s against 17.1-19.3 s; the 10M sphere box's 1134-1148 MiB against
-// 1423-1446, in 16.1-18.4 s against 12.4-13.7 s (the weld runs on one thread, the other core idle).
-// With one arena (apps/main.cpp) 1091-1096 and 1045-1055 MiB, 3.6x and 3.9x the decoded geometry.
+// Cold renders at 256x256, three rounds in turn against three overlapped: the 10M terrain's
+// peak 1091-1097 MiB against 1542-1630, in 18.0-20.9 s against 15.1-17.8 s; the 10M sphere box's
+// 1035-1037 MiB against 1354-1356, in 12.2-14.4 s against 10.3-12.3 s (3.6x and 3.9x the decoded
+// geometry against 5.0-5.3x).
 // Below it the build overlaps the rest, whose cores it shares.
 bool builds_first(const Scene& scene) {
   constexpr std::size_t kBuildFirstFrom = std::size_t{1} << 22;
