@@ -41,9 +41,10 @@ Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& 
   std::vector<std::uint32_t> dest(input.size());
   const std::size_t target = divisor == 0 ? 0 : input.size() / (3 * divisor) * 3;
   float relative = 0.0f;
-  const std::size_t count = meshopt_simplify(
-      dest.data(), local.data(), local.size(), &positions[0].x, positions.size(), sizeof(glm::vec3),
-      target, target_error, border == Border::Locked ? meshopt_SimplifyLockBorder : 0u, &relative);
+  const unsigned options = border == Border::Locked ? unsigned{meshopt_SimplifyLockBorder} : 0u;
+  const std::size_t count =
+      meshopt_simplify(dest.data(), local.data(), local.size(), &positions[0].x, positions.size(),
+                       sizeof(glm::vec3), target, target_error, options, &relative);
   s.error = relative * meshopt_simplifyScale(&positions[0].x, positions.size(), sizeof(glm::vec3)) *
             (border == Border::Free ? kFreeBorderError : 1.0f);
   s.exact = relative <= kExact;
