@@ -270,8 +270,9 @@ TEST(GltfValidateSemantics, DataChecksSeeEveryChunk) {
             1);
   // Nothing else about accessor 0's components 1 and 2: the NaN is skipped in the bounds.
   for (const auto& i : issues)
-    if (i.pointer.rfind("/accessors/0/m", 0) == 0)
+    if (i.pointer.rfind("/accessors/0/m", 0) == 0) {
       EXPECT_EQ(i.pointer.back(), '0') << i.code << " at " << i.pointer;
+    }
 }
 
 // Any JSON value in any place: the checks read defensively and never throw.

@@ -84,7 +84,9 @@ TEST(Octahedral, TheGBufferHoldsTheDecodedNormals) {
     const glm::vec3 n = normals[std::size_t(row * 8 + col)], got(g.normal[i]);
     worst_cpu = std::max(worst_cpu, angle(got, gl::octahedral_decode(gl::octahedral_encode(n))));
     worst = std::max(worst, angle(got, n));
-    if (row * 8 + col < 6) EXPECT_EQ(got, n);
+    if (row * 8 + col < 6) {
+      EXPECT_EQ(got, n);
+    }
   }
   std::printf("%zu pixels: largest angle to the C++ decoding %.3g, to the normal %.3g rad\n",
               covered, worst_cpu, worst);

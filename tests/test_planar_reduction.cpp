@@ -159,7 +159,7 @@ TEST(PlanarReduction, CurvedSurfaceUnchanged) {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const auto at = [&](int a, int b) {
-        const float x = float(a) / n, y = float(b) / n;
+        const float x = float(a) / float(n), y = float(b) / float(n);
         return m.vertex({x, y, 0.3f * x * x + 0.2f * y * y + 0.1f * x * y});
       };
       const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
@@ -183,7 +183,7 @@ TEST(PlanarReduction, OnlyComponentsWithFlatPartsAreReduced) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const auto at = [&](int a, int b) {
-          const float x = float(a) / n, y = float(b) / n;
+          const float x = float(a) / float(n), y = float(b) / float(n);
           return m.vertex(o + glm::vec3(x, y, bowl(x, y)));
         };
         const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
@@ -250,7 +250,7 @@ Mesh height_field(int n) {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const auto at = [&](int a, int b) {
-        const float x = float(a) / n, y = float(b) / n;
+        const float x = float(a) / float(n), y = float(b) / float(n);
         return m.vertex({x, y, h(x, y)});
       };
       const std::uint32_t a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);

@@ -54,7 +54,7 @@ struct Cornell {
 
 // data/cornell_glossy.gltf (metal and plastic blocks, semi-gloss floor) at 64x64, 128 paths.
 const Cornell& glossy_cornell() {
-  static const Cornell c = [] {
+  static const Cornell cornell = [] {
     Log log = quiet();
     Cornell c{
         load_gltf(std::filesystem::path(IRAD_SOURCE_DIR) / "data" / "cornell_glossy.gltf", log),
@@ -69,7 +69,7 @@ const Cornell& glossy_cornell() {
     c.rt = trace_vpls(c.scene, rays, c.view, c.vpls, {});
     return c;
   }();
-  return c;
+  return cornell;
 }
 
 // Every VPL on every pixel (interleave 1), by the per-VPL passes and by the batched deferred
@@ -214,7 +214,8 @@ int add_texture(Scene& s, int n, F f) {
   Texture t;
   t.width = t.height = n;
   for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) t.texels.push_back(f((x + 0.5f) / n, (y + 0.5f) / n));
+    for (int x = 0; x < n; ++x)
+      t.texels.push_back(f((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)));
   s.textures.push_back(t);
   return int(s.textures.size()) - 1;
 }

@@ -133,7 +133,9 @@ TEST(RayQueries, LeavingATriangleOutFindsWhatLiesBeyondIt) {
       if (beyond[i]->t < first[i]->t + 1e-3f) continue; // a neighbour at the same point
     }
     ASSERT_EQ(restarted.has_value(), beyond[i].has_value()) << i; // past a wall: nothing
-    if (restarted) EXPECT_EQ(restarted->triangle, beyond[i]->triangle) << i;
+    if (restarted) {
+      EXPECT_EQ(restarted->triangle, beyond[i]->triangle) << i;
+    }
     ++compared;
   }
   EXPECT_GT(compared, 900);

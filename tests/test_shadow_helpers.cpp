@@ -62,8 +62,9 @@ struct BoxField {
 void add_boxes(Scene& s, std::uint32_t wall) {
   for (int i = 0; i < 32; ++i)
     for (int j = 0; j < 32; ++j) {
-      const glm::vec3 lo(0.2f + 0.11f * i, 0.0f, 0.2f + 0.11f * j);
-      add_box(s, lo, lo + glm::vec3(0.08f, 0.05f + 0.01f * ((i * 7 + j * 3) % 11), 0.08f), wall);
+      const glm::vec3 lo(0.2f + 0.11f * float(i), 0.0f, 0.2f + 0.11f * float(j));
+      add_box(s, lo, lo + glm::vec3(0.08f, 0.05f + 0.01f * float((i * 7 + j * 3) % 11), 0.08f),
+              wall);
     }
   for (int k = 0; k < 2; ++k) {
     const std::uint32_t m = add_material(s, glm::vec3(0.5f));
@@ -138,8 +139,8 @@ TEST_P(GlThreadOn, RunsJobsInOrderInAContextThatSharesObjects) {
 }
 
 INSTANTIATE_TEST_SUITE_P(GlThread, GlThreadOn, ::testing::Values(GlBackend::OsMesa, GlBackend::Egl),
-                         [](const auto& info) {
-                           return std::string(info.param == GlBackend::Egl ? "Egl" : "OsMesa");
+                         [](const auto& test) {
+                           return std::string(test.param == GlBackend::Egl ? "Egl" : "OsMesa");
                          });
 
 // Renders box_field() with and without helpers for one way of drawing the atlas.
