@@ -78,8 +78,10 @@ std::vector<std::uint32_t> weld_positions(const std::vector<glm::vec3>& position
   const std::uint32_t parts = worker_count(threads, wanted);
   std::vector<std::size_t> first(parts + 1, 0); // each part's slots in one table
   parallel_tasks(static_cast<int>(parts), parts, [&](int part, unsigned) {
-    first[std::size_t(part) + 1] =
-        table_size(part_size(positions, static_cast<std::uint32_t>(part), parts));
+    // (One part holds every vertex: nothing to count.)
+    const std::size_t count =
+        parts == 1 ? positions.size() : part_size(positions, std::uint32_t(part), parts);
+    first[std::size_t(part) + 1] = table_size(count);
   });
   for (std::uint32_t part = 0; part < parts; ++part) first[part + 1] += first[part];
   // One allocation for every part's table, given back whole: tables allocated by the threads
