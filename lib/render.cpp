@@ -60,7 +60,7 @@ struct Stages {
   StopFlag& stop; // render()'s, shared by the rounds
   RenderResult& r;
   std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
-  double planes_scan = 0.0;               // its thinnest-wall scan (seconds)
+  double planes_scan = -1.0;              // its thinnest-wall scan (seconds); -1: not run
   // The raster's shadow hierarchy, building since render() began (early_hierarchy), and the
   // camera's after it (early_camera_hierarchy).
   std::shared_ptr<BackgroundClusters> hierarchy = nullptr, camera_hierarchy = nullptr;
@@ -154,17 +154,33 @@ int shadow_resolution(const RenderOptions& o, const RenderResult& r, const Raste
                                           lists_unsure_pixels(raster));
 }
 
+// The occluder planes Auto of the raster's shadow maps (RasterOptions::choose_planes, asked when
+// maps are first drawn to shade): chosen by the thin-wall scan through its cache in `cache`,
+// timed, logged and reported in the result.
+ShadowPlanes settle_planes(Stages& s, const RayScene& rays, int resolution,
+                           const std::filesystem::path& cache) {
+  const auto t0 = Clock::now();
+  const PlaneChoice planes =
+      choose_shadow_planes(s.scene, rays, ShadowPlanes::Auto, resolution, cache);
+  s.planes_scan = since(t0);
+  log_planes(s.log, planes, resolution, s.planes_scan);
+  s.r.shadow_planes = planes.planes == ShadowPlanes::On;
+  s.r.thinnest_wall = planes.thinnest_wall;
+  s.r.wall_cache = outcome_name(planes.cache.outcome);
+  s.r.wall_cache_reason = planes.cache.reason;
+  return planes.planes;
+}
+
 // The raster renderer, made by the first raster stage: its shadow resolution, interleaving and
-// occluder planes for this view and these options, in the result. Later rounds reuse it.
+// occluder planes (or their choice, settle_planes) for this view and these options, in the
+// result. Later rounds reuse it.
 RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   if (s.raster) return *s.raster;
-  const auto t0 = Clock::now();
   RasterOptions options = s.options.raster;
   options.interleave = interleave(s.options, s.r);
   options.edge_pixels = edge_pixel_mode(s.options, s.r);
   options.shadow_resolution = shadow_resolution(s.options, s.r, options);
   options.visibility = s.visibility;
-  PlaneChoice planes{ShadowPlanes::Off, -1.0f, {}};
   if (s.visibility != Visibility::Maps) {
     const float dmin = options.clamp * s.scene.bounds.diagonal();
     const unsigned threads = s.options.pt.threads;
@@ -172,27 +188,26 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
       trace_visibility(rays, dmin, request, threads);
     };
   }
-  if (s.visibility != Visibility::Rays) { // rays alone draw no map: no planes
-    planes = choose_shadow_planes(s.scene, rays, options.shadow_lod.planes,
-                                  options.shadow_resolution, options.hierarchy_cache);
+  // The planes are settled when shadow maps are first drawn to shade: an image whose visibility
+  // is traced needs none, nor does Rays, which draws no map.
+  if (s.visibility == Visibility::Rays) {
+    options.shadow_lod.planes = ShadowPlanes::Off;
+  } else if (options.shadow_lod.planes == ShadowPlanes::Auto) {
+    options.choose_planes = [&s, &rays, resolution = options.shadow_resolution,
+                             cache = options.hierarchy_cache] {
+      return settle_planes(s, rays, resolution, cache);
+    };
   }
-  const double scan = since(t0);
-  options.shadow_lod.planes = planes.planes;
+  s.r.shadow_planes = options.shadow_lod.planes == ShadowPlanes::On; // Auto: settle_planes's
   options.traced_roughness = s.options.traced_roughness;
   options.cancel = s.stop.flag();
   options.gl_messages = [&log = s.log](const std::string& message) { log.warn(message); };
   options.hierarchy_build = s.hierarchy;
   options.camera_build = s.camera_hierarchy;
   s.raster = std::make_unique<RasterRenderer>(s.scene, options); // checks the options
-  s.planes_scan = scan;
-  log_planes(s.log, planes, options.shadow_resolution, scan);
   s.r.shadow_resolution = options.shadow_resolution;
   s.r.interleave = options.interleave;
   s.r.edge_mode = options.interleave > 1 ? edge_mode_name(options.edge_pixels) : "off";
-  s.r.shadow_planes = planes.planes == ShadowPlanes::On;
-  s.r.thinnest_wall = planes.thinnest_wall;
-  s.r.wall_cache = outcome_name(planes.cache.outcome);
-  s.r.wall_cache_reason = planes.cache.reason;
   s.r.gl = s.raster->description();
   return *s.raster;
 }
@@ -218,7 +233,7 @@ void run_raster(Stages& s, const RayScene& rays) {
     subtract(s.r.image, raster.render(s.r.view, no_vpls(s.r.vpls)));
   s.r.seconds.raster = since(t0);
   s.r.seconds.readback = timings.readback;
-  s.r.seconds.raster_setup = {{"planes scan", s.planes_scan}};
+  s.r.seconds.raster_setup.clear();
   s.r.seconds.hierarchy_beside = raster.hierarchy_beside_times().stages();
   s.r.hierarchy_cache = outcome_name(raster.hierarchy_cache().outcome);
   s.r.hierarchy_cache_reason = raster.hierarchy_cache().reason;
@@ -231,6 +246,7 @@ void run_raster(Stages& s, const RayScene& rays) {
                    timings.gpu_camera_pages_bytes};
   const StageTimes setup = raster.setup_times();
   for (const auto& stage : setup.stages()) s.r.seconds.raster_setup.push_back(stage);
+  if (s.planes_scan >= 0.0) s.r.seconds.raster_setup.emplace_back("planes scan", s.planes_scan);
   s.r.passes = timings.passes;
   s.r.shadow_triangles = timings.shadow_triangles;
   s.r.shadow_helpers = timings.shadow_helpers;

@@ -43,6 +43,7 @@ void RasterRenderer::cache_path(std::uint32_t slot, const std::vector<Vpl>& vpls
                                 int height, const std::vector<VplLobe>& lobes) {
   Impl& im = *impl_;
   const gl::CurrentScope current(*im.context);
+  im.settle_planes(); // the kept maps are drawn to shade
   const int resolution = shadow_resolution_for(im.options.shadow_resolution, width, height);
   if (!im.cache_shadow || im.cache_shadow->resolution() != resolution) {
     im.cache.clear(); // cubes of another resolution

@@ -53,12 +53,21 @@ void RasterRenderer::Impl::ensure_batched(int width, int height) {
   const int ortho = gl::has_directional_light(scene)
                         ? gl::ortho_resolution_for(options.shadow_resolution, width, height)
                         : 0;
-  if (!batched || !batched->matches(options.batch, resolution, ortho))
-    batched = gl::BatchedPasses::make(api, scene, options.clamp, options.batch, resolution, ortho,
-                                      options.shadow_lod, lists_unsure_pixels(options), &lod,
-                                      context.get(), shadow_helpers(),
-                                      rays_allowed() ? options.visibility_tracer : nullptr,
-                                      options.visibility == Visibility::Rays);
+  if (batched && batched->matches(options.batch, resolution, ortho)) return;
+  batched = gl::BatchedPasses::make(
+      api, scene, options.clamp, options.batch, resolution, ortho, drawn_lod(),
+      lists_unsure_pixels(options), &lod, context.get(), shadow_helpers(),
+      rays_allowed() ? options.visibility_tracer : nullptr, options.visibility == Visibility::Rays);
+  if (batched && planes_pending(options)) batched->ask_planes([this] { settle_planes(); });
+}
+
+void RasterRenderer::Impl::settle_planes() {
+  if (!planes_pending(options)) return;
+  const ShadowPlanes chosen = options.choose_planes();
+  options.shadow_lod.planes = chosen == ShadowPlanes::Off ? ShadowPlanes::Off : ShadowPlanes::On;
+  const bool on = options.shadow_lod.planes == ShadowPlanes::On;
+  vpl_shader.set_planes(on);
+  if (batched) batched->set_planes(on);
 }
 
 void RasterRenderer::Impl::prepare(const View& view) {
@@ -155,7 +164,10 @@ void RasterRenderer::Impl::by_cell(const View& view,
 std::size_t RasterRenderer::Impl::vpl_passes(const View& view, const std::vector<const Vpl*>& vpls,
                                              const ShadowFor& shadow_for, float texel_angle,
                                              gl::PassTimer* timer, const Progress& progress) {
-  if (!vpls.empty()) ensure_tile_depths(view);
+  if (!vpls.empty()) {
+    settle_planes();
+    ensure_tile_depths(view);
+  }
   // The depth each framebuffer (or atlas tile) holds: the unjittered one (offset 0) at first.
   std::vector<glm::vec2> last_offsets(interleaved ? interleaved->sets() : 1, glm::vec2(0.0f));
   std::size_t passes = 0;

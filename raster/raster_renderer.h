@@ -63,6 +63,12 @@ struct RasterOptions {
   // On culled and simplified below `texels` (0.5) shadow texels at the VPL's distance
   // (docs/performance.md). The per-VPL passes (batch 1) always draw everything.
   ShadowLodOptions shadow_lod{};
+  // With shadow_lod.planes Auto: the occluder planes' choice, asked once, when shadow maps are
+  // first drawn to shade (not for BatchedPasses::rays_pay's probes, which count triangles and
+  // draw no plane). An image whose visibility comes from rays never asks, so a scene traced for
+  // its shadows is never scanned for thin walls (lib/render.cpp: walk/thin_walls.h). The answer
+  // On or Off; unset, Auto draws the planes as On.
+  std::function<ShadowPlanes()> choose_planes = nullptr;
   // Threads that draw the batched passes' shadow atlases in GL contexts of their own while this
   // one shades (raster/shadow/shadow_helpers.h), once a batch draws at least 8000 triangles per
   // VPL. -1 (auto): 2 on a CPU renderer (llvmpipe, where the thread that issues the draws does

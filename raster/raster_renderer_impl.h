@@ -100,13 +100,31 @@ struct RasterRenderer::Impl {
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
         lod(api, gpu, o.shadow_lod, o.hierarchy_cache, o.hierarchy_build),
         camera_lod(api, gpu, o.hierarchy_cache, o.camera_build), camera(api, gpu.features()),
-        vpl_shader(api, s, o.clamp, o.shadow_lod.planes != ShadowPlanes::Off),
+        vpl_shader(api, s, o.clamp, drawn_planes(o)),
         jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr),
         background(gl::Background::make(api, s)) {
     context->check("raster set-up");
   }
 
   void prepare(const View& view);
+  // Whether the occluder planes wait for RasterOptions::choose_planes (Auto with a chooser, not
+  // asked yet): until then nothing draws or reads them, as with Off.
+  static bool planes_pending(const RasterOptions& o) {
+    return o.shadow_lod.planes == ShadowPlanes::Auto && o.choose_planes != nullptr;
+  }
+  // Whether what is drawn now draws the planes.
+  static bool drawn_planes(const RasterOptions& o) {
+    return o.shadow_lod.planes != ShadowPlanes::Off && !planes_pending(o);
+  }
+  // The batched passes' level-of-detail options as drawn now (planes Off while pending).
+  ShadowLodOptions drawn_lod() const {
+    ShadowLodOptions drawn = options.shadow_lod;
+    if (planes_pending(options)) drawn.planes = ShadowPlanes::Off;
+    return drawn;
+  }
+  // Shadow maps are about to be drawn to shade: a pending choice of the occluder planes is asked
+  // now (once), and the per-VPL shader and the batched passes draw what it answered.
+  void settle_planes();
   // Whether rays may answer visibility here (RasterOptions::visibility): asked for, or Auto on a
   // CPU renderer, with a tracer and options that allow them.
   bool rays_allowed() const {

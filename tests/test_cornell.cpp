@@ -80,17 +80,19 @@ bool has(const std::vector<std::string>& list, const std::string& item) {
 }
 
 // Twice through a fresh hierarchy cache: the first run builds and writes the box's shadow
-// hierarchy, the second reads it back and draws the same image.
+// hierarchy, the second reads it back and draws the same image. Drawn with shadow maps (at 48x32
+// `auto` traces the box's shadows, and nothing would scan its walls).
 TEST(Cornell, CommandLineWritesImagesAndStats) {
   const fs::path dir = fs::path(::testing::TempDir()) / "irad_cornell_cli";
   fs::remove_all(dir);
   fs::create_directories(dir);
   const auto run = [&](const std::string& name) {
-    const std::string cmd =
-        "XDG_CACHE_HOME=" + (dir / "cache").string() + " " + std::string(IRAD_BINARY) + " render " +
-        cornell.string() + " -o " + (dir / (name + ".exr")).string() + " -o " +
-        (dir / (name + ".png")).string() + " --size 48x32 --paths 16 --quiet --stats " +
-        (dir / (name + ".json")).string();
+    const std::string cmd = "XDG_CACHE_HOME=" + (dir / "cache").string() + " " +
+                            std::string(IRAD_BINARY) + " render " + cornell.string() + " -o " +
+                            (dir / (name + ".exr")).string() + " -o " +
+                            (dir / (name + ".png")).string() +
+                            " --size 48x32 --paths 16 --visibility maps --quiet --stats " +
+                            (dir / (name + ".json")).string();
     EXPECT_EQ(std::system(cmd.c_str()), 0);
     std::ifstream in(dir / (name + ".json"));
     return nlohmann::json::parse(in);
@@ -115,10 +117,10 @@ TEST(Cornell, CommandLineWritesImagesAndStats) {
   // raster waited for what was left of it.
   const std::vector<std::string> setup = setup_stages(stats);
   ASSERT_FALSE(setup.empty());
-  EXPECT_EQ(setup.front(), "planes scan");
   EXPECT_TRUE(has(setup, "hierarchy wait"));
   EXPECT_FALSE(has(setup, "hierarchy levels"));
-  EXPECT_EQ(setup.back(), "hierarchy upload");
+  EXPECT_TRUE(has(setup, "hierarchy upload"));
+  EXPECT_EQ(setup.back(), "planes scan"); // when the first shadow maps were drawn to shade
   const std::vector<std::string> built = setup_stages(stats, "hierarchy_beside");
   EXPECT_TRUE(has(built, "hierarchy levels"));
   EXPECT_TRUE(has(built, "hierarchy cache write"));

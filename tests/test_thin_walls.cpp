@@ -114,15 +114,64 @@ TEST(ThinWalls, TheCornellBoxNeedsNoPlanesAndTheTwoRoomsDo) {
   EXPECT_EQ(choose_shadow_planes(box, box_rays, ShadowPlanes::On, 512).planes, ShadowPlanes::On);
   EXPECT_EQ(choose_shadow_planes(rooms, room_rays, ShadowPlanes::Off, 512).planes,
             ShadowPlanes::Off);
-  // What irad::render drew, by default.
+  // What irad::render drew with shadow maps (the planes are chosen where maps are drawn).
   RenderOptions o;
   o.size = {32, 32};
   o.walk.paths = 8;
+  o.raster.visibility = Visibility::Maps;
   EXPECT_FALSE(render(box, o, log).shadow_planes);
   Scene lit = rooms;
   lit.cameras.push_back(look_at({1.0f, 1.0f, 1.9f}, {1.0f, 1.0f, 0.0f}, {0, 1, 0}, 1.2f));
   EXPECT_TRUE(render(lit, o, log).shadow_planes);
 }
 
-} // namespace
+bool scanned(const RenderResult& r) {
+  for (const auto& [stage, seconds] : r.seconds.raster_setup)
+    if (stage == "planes scan") return true;
+  return false;
+}
+
+// The planes are chosen when shadow maps are first drawn to shade (RasterOptions::choose_planes),
+// not before: an image whose visibility `auto` traces never scans, and one drawn with maps
+// gives the image the choice's planes give when asked for from the start.
+TEST(ThinWalls, PlanesAreChosenOnlyWhereMapsAreDrawn) {
+  Log log([](const std::string&) {});
+  RenderOptions o;
+  o.size = {64, 64};
+  o.raster.interleave = 1; // 4096 pixels per VPL: auto draws the rooms' shadows with maps
+  o.walk.paths = 8;
+  o.raster.hierarchy_cache.clear(); // scanned every time: nothing written
+  Scene lit = two_rooms(0.002f);
+  lit.cameras.push_back(look_at({1.0f, 1.0f, 1.9f}, {1.0f, 1.0f, 0.0f}, {0, 1, 0}, 1.2f));
+  const RenderResult chosen = render(lit, o, log);
+  ASSERT_EQ(chosen.visibility, "maps");
+  EXPECT_TRUE(chosen.shadow_planes);
+  EXPECT_TRUE(scanned(chosen));
+  EXPECT_NEAR(chosen.thinnest_wall, 0.002f / lit.bounds.diagonal(), 1e-5f);
+  RenderOptions on = o;
+  on.raster.shadow_lod.planes = ShadowPlanes::On;
+  const RenderResult asked = render(lit, on, log);
+  EXPECT_FALSE(scanned(asked));
+  EXPECT_TRUE(asked.image.pixels() == chosen.image.pixels());
+
+  // The Cornell box at 16x16, every VPL on every pixel: its faces' 160 triangles per VPL against
+  // 256 pixels, so auto traces (BatchedPasses::rays_pay) and nothing scans.
+  const Scene box = load_scene(std::string(IRAD_SOURCE_DIR) + "/data/cornell_box.gltf", {}, log);
+  RenderOptions small = o;
+  small.size = {16, 16};
+  small.raster.interleave = 1;
+  const RenderResult traced = render(box, small, log);
+  ASSERT_EQ(traced.visibility, "rays");
+  EXPECT_FALSE(scanned(traced));
+  EXPECT_EQ(traced.thinnest_wall, -1.0f);
+  EXPECT_EQ(traced.wall_cache, "off");
+  small.raster.visibility = Visibility::Rays;
+  EXPECT_TRUE(render(box, small, log).image.pixels() == traced.image.pixels());
+  small.raster.visibility = Visibility::Maps;
+  const RenderResult mapped = render(box, small, log);
+  EXPECT_TRUE(scanned(mapped));
+  EXPECT_GT(mapped.thinnest_wall, 0.0f);
+}
+
+} // namespace IRAD_UNITY_ID
 } // namespace irad

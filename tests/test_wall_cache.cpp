@@ -160,6 +160,7 @@ TEST_F(WallCache, RenderReportsTheCache) {
   o.size = {32, 32};
   o.walk.paths = 8;
   o.raster.hierarchy_cache = folder_;
+  o.raster.visibility = Visibility::Maps; // the planes are chosen where maps are drawn
   const RenderResult first = render(s, o, log);
   EXPECT_EQ(first.wall_cache, "written");
   const RenderResult second = render(s, o, log);

@@ -256,6 +256,13 @@ bool BatchedPasses::rays_pay(const GpuScene& gpu, const DeferredTarget& into) {
   return per_vpl * kPixelsPerTriangle >= pixels;
 }
 
+void BatchedPasses::set_planes(bool on) {
+  settle_planes_ = nullptr;
+  if (!on) return;
+  atlas_.enable_planes();
+  shader_.set_planes(true);
+}
+
 void BatchedPasses::consider_helpers(int n, const GpuScene& gpu) {
   if (helpers_asked_ || max_helpers_ < 1 || n < 1) return;
   helpers_asked_ = true;
@@ -329,6 +336,11 @@ std::size_t BatchedPasses::draw(const std::vector<const Vpl*>& vpls,
   if (rays_) {
     rays_on_ = rays_now_ || (!order.empty() && rays_pay(gpu, into));
     if (rays_on_) rays_->read(*into.gbuffer);
+  }
+  if (!rays_on_ && settle_planes_) {
+    const std::function<void()> settle = std::move(settle_planes_);
+    settle_planes_ = nullptr;
+    settle(); // calls set_planes
   }
   std::size_t drawn = 0, first = 0;
   // Until the helpers are decided, batches of their size drawn here while kHelperBatches more

@@ -101,6 +101,13 @@ public:
   // Shades VPLs whose cubes are already in `shadow` (shadow maps kept,
   // raster/shadow/shadow_cache.h): sorted by set on the way, as many per draw as the shader holds.
   void shade(std::vector<AtlasVpl>& vpls, const ShadowLookup& shadow, const DeferredTarget& into);
+  // Occluder planes chosen after this object was made (RasterOptions::choose_planes), which was
+  // made without them: the first draw() that draws shadow maps to shade calls `settle` once,
+  // and `settle` answers through set_planes (rays_pay's probes draw no plane, nor do images
+  // whose visibility is traced).
+  void ask_planes(std::function<void()> settle) { settle_planes_ = std::move(settle); }
+  // Draws the occluder planes from here on (on), or keeps drawing none; asks nothing more.
+  void set_planes(bool on);
 
 private:
   struct Entry {
@@ -210,6 +217,7 @@ private:
   std::unique_ptr<ShadowHelpers> helpers_;
   const std::vector<VplLobe>* lobes_ = nullptr;
   std::unique_ptr<RayVisibility> rays_; // given a tracer
+  std::function<void()> settle_planes_; // ask_planes's, until called
   bool rays_now_ = false;               // rays for every image (make's rays_now)
   bool rays_on_ = false;                // this image's visibility by rays instead of the atlases
 };

@@ -177,6 +177,12 @@ DeferredShader::DeferredShader(const GladGLContext& api, const Scene& scene, flo
   program(glossy_, glossy_, false); // the one every draw can take: compile errors show here
 }
 
+void DeferredShader::set_planes(bool planes) {
+  if (planes == planes_) return;
+  planes_ = planes;
+  for (std::size_t k = 0; k < 4; ++k) programs_[k].reset(); // the rays' programs read no map
+}
+
 const DeferredShader::Program& DeferredShader::program(bool receivers, bool lobes,
                                                        bool rays) const {
   std::unique_ptr<Program>& p = programs_[(receivers ? 1 : 0) + (lobes ? 2 : 0) + (rays ? 4 : 0)];

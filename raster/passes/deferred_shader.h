@@ -96,6 +96,9 @@ public:
   // Glossy scenes: receivers of roughness below r shade only their diffuse lobe from the VPLs a
   // ray can meet (RasterOptions::traced_roughness); 0 (the default): none.
   void set_traced_roughness(float r) { traced_roughness_ = r; }
+  // Whether the atlases the next draws read hold occluder planes (the constructor's `planes`):
+  // the shadow maps' programs are made again on their next use.
+  void set_planes(bool planes);
 
 private:
   // `mirrors`: the scene's mirror polygons (find_mirrors), their corners uploaded to a texture.

@@ -85,8 +85,14 @@ VplShader::VplShader(const GladGLContext& api, const Scene& scene, float clamp, 
   // Scale-relative constants: the clamp, the coincidence guard and the shadow bias.
   api.Uniform1f(min_dist2_, 1e-10f * diagonal_ * diagonal_); // 1e-5 of the diagonal, as rt-vpl
   api.Uniform1f(bias_constant_, 2e-4f * diagonal_);
-  api.Uniform1f(program_.uniform("u_offset_texels"), normal_offset_texels(planes));
-  api.Uniform1i(program_.uniform("u_planes"), planes ? 1 : 0);
+  set_planes(planes);
+}
+
+void VplShader::set_planes(bool planes) {
+  program_.use();
+  api_->Uniform1f(program_.uniform("u_offset_texels"), normal_offset_texels(planes));
+  api_->Uniform1i(program_.uniform("u_planes"), planes ? 1 : 0);
+  if (mirrored_) mirrored_->set_planes(planes);
 }
 
 void VplShader::draw(const Vpl& vpl, GLuint shadow_cube, float texel_angle, const glm::mat3& frame,

@@ -66,6 +66,8 @@ public:
   // Receivers of roughness below r shade only their diffuse lobe from the VPLs a ray can meet
   // (RasterOptions::traced_roughness); 0 (the default): none.
   void set_traced_roughness(float r) { traced_roughness_ = r; }
+  // Whether the cubes the next draws read hold occluder planes (the constructor's `planes`).
+  void set_planes(bool planes);
 
 private:
   VplShader(const GladGLContext& api, const Scene& scene, float clamp, bool planes,

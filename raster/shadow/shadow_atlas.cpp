@@ -102,12 +102,7 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
   for (std::size_t a = 0; a < n; ++a) {
     atlas_[a] = make_depth_texture(api, size.x, size.y);
     fbo_[a] = make_depth_framebuffer(api, atlas_[a].get(), "shadow atlas framebuffer");
-    if (lod.planes == ShadowPlanes::Off) continue; // depth only, as make_depth_framebuffer left it
-    gradient_[a] = make_gradient_texture(api, size.x, size.y);
-    api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                             gradient_[a].get(), 0);
-    api.DrawBuffer(GL_COLOR_ATTACHMENT0);
-    check_framebuffer(api, "shadow atlas framebuffer");
+    if (lod.planes != ShadowPlanes::Off) add_gradient(a); // else depth only
   }
   const GLuint index = api.GetUniformBlockIndex(program_.get(), "ShadowBatch");
   if (index == GL_INVALID_INDEX) throw Error("", "shader batched shadow", "no block ShadowBatch");
@@ -121,6 +116,27 @@ ShadowAtlas::ShadowAtlas(const GladGLContext& api, int resolution, int batch, in
     api.Uniform1i(u_copies_, 1);
     api.Uniform1f(program_.uniform("u_mirror_clip"), 1e-5f * bounds.diagonal());
   }
+}
+
+void ShadowAtlas::add_gradient(std::size_t a) {
+  const GladGLContext& api = *api_;
+  const glm::ivec2 size = grid_ * block_;
+  gradient_[a] = make_gradient_texture(api, size.x, size.y);
+  api.BindFramebuffer(GL_FRAMEBUFFER, fbo_[a].get());
+  api.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, gradient_[a].get(),
+                           0);
+  api.DrawBuffer(GL_COLOR_ATTACHMENT0);
+  check_framebuffer(api, "shadow atlas framebuffer");
+}
+
+void ShadowAtlas::enable_planes() {
+  if (lod_options_.planes != ShadowPlanes::Off) return;
+  lod_options_.planes = ShadowPlanes::On;
+  if (fbo_.empty()) { // released: what a shading pass binds
+    gradient_[0] = make_gradient_texture(*api_, 1, 1);
+    return;
+  }
+  for (std::size_t a = 0; a < fbo_.size(); ++a) add_gradient(a);
 }
 
 void ShadowAtlas::release_atlases() {

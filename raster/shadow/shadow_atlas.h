@@ -86,6 +86,9 @@ public:
   // texture() and gradient_texture() then name 1x1 textures, all a shading pass binds for a
   // batch without cubes, and render() throws.
   void release_atlases();
+  // Draws the occluder planes from here on (ShadowLodOptions::planes On) where it was made
+  // without them: a gradient texture beside each atlas. Changes the bound framebuffer.
+  void enable_planes();
 
   // The atlas the last render() drew into.
   GLuint texture() const { return atlas_[current_].get(); }
@@ -157,6 +160,8 @@ private:
   // Draws each face's picks (per_face[i] for faces_[i], sorted on the way), one multi-draw per
   // face.
   void draw_faces(std::vector<std::vector<ClusterPick>>& per_face);
+  // A gradient texture for atlas a, its framebuffer's colour attachment.
+  void add_gradient(std::size_t a);
   glm::ivec2 block_origin(int b) const { return glm::ivec2(b % grid_.x, b / grid_.x) * block_; }
 
   const GladGLContext* api_;
