@@ -305,6 +305,10 @@ void RayScene::intersect_leaving(const RaySegment* segments, const std::uint32_t
   if (impl_->moving.geometry != nullptr) leaving.parts[1] = &impl_->moving;
   if (leave != nullptr) leaving.salted.base.filter = leaving_filter;
   RTCIntersectContext& context = leaving.salted.base;
+  // Embree's packet traversal for rays that run close and alike (the same hits; at a tie between
+  // two triangles, either): the thin-wall scan of the 10M sphere box (walk/thin_walls.h, 2
+  // threads) 0.81-0.93 s against 1.78-1.86 s without the hint.
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   for (std::size_t first = 0; first < n; first += kLanes) {
     if (leave != nullptr) leaving.leave = leave + first;
     const std::size_t lanes = std::min(kLanes, n - first);

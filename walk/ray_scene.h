@@ -61,9 +61,9 @@ public:
   std::optional<RayHit> intersect(const glm::vec3& origin, const glm::vec3& direction, float tmin,
                                   float tmax, std::uint64_t salt = 0) const;
   // The closest hits of n segments of any origins: hits[i] the same answer as intersect() for
-  // segment i (the alpha filters see the same rays), traced as packets of 8, which pays off
-  // where neighbouring segments run close and alike (walk/thin_walls.h: one from each triangle of
-  // a mesh, in the mesh's order).
+  // segment i (the alpha filters see the same rays; at a tie between two triangles, either),
+  // traced as coherent packets of 8, which pays off where neighbouring segments run close and
+  // alike (walk/thin_walls.h: one from each triangle of a mesh, in the mesh's order).
   void intersect(const RaySegment* segments, std::size_t n, std::optional<RayHit>* hits,
                  std::uint64_t salt = 0) const;
   // The same, each segment passing through scene triangle leave[i] as if it were not there (a
