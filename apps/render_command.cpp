@@ -556,7 +556,8 @@ void add_render_command(CLI::App& app, Commands& commands) {
                   "Raster, batched: a gradient per shadow texel so that walls thinner than a "
                   "texel's depth range cast their shadow (off: cheaper lookups that trust the "
                   "receiver's plane, so light passes under such walls); "
-                  "auto: on where the scene has such walls")
+                  "auto: on where the scene has such walls, looked for when shadow maps are "
+                  "first drawn (never where --visibility auto traces the shadows)")
       ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   cmd->add_option("--jitter", args->jitter,
