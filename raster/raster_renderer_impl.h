@@ -100,7 +100,7 @@ struct RasterRenderer::Impl {
       : scene(s), options(o), context(std::move(c)), api(context->api()), gpu(api, s),
         lod(api, gpu, o.shadow_lod, o.hierarchy_cache, o.hierarchy_build),
         camera_lod(api, gpu, o.hierarchy_cache, o.camera_build), camera(api, gpu.features()),
-        vpl_shader(api, s, o.clamp, drawn_planes(o)),
+        vpl_shader(api, s, o.clamp, drawn_lod().planes != ShadowPlanes::Off), // options set
         jitter(o.jitter ? std::make_unique<gl::JitterPasses>(api, gpu.features()) : nullptr),
         background(gl::Background::make(api, s)) {
     context->check("raster set-up");
@@ -111,10 +111,6 @@ struct RasterRenderer::Impl {
   // asked yet): until then nothing draws or reads them, as with Off.
   static bool planes_pending(const RasterOptions& o) {
     return o.shadow_lod.planes == ShadowPlanes::Auto && o.choose_planes != nullptr;
-  }
-  // Whether what is drawn now draws the planes.
-  static bool drawn_planes(const RasterOptions& o) {
-    return o.shadow_lod.planes != ShadowPlanes::Off && !planes_pending(o);
   }
   // The batched passes' level-of-detail options as drawn now (planes Off while pending).
   ShadowLodOptions drawn_lod() const {
