@@ -15,11 +15,15 @@ namespace {
 // llvmpipe allocates and frees its vertex and bin buffers per draw; with glibc's defaults the
 // freed top of the heap goes back to the kernel each time and comes back as fresh zeroed pages:
 // a fifth of a zdm2 render (256x256, N = 64) is page faults. Keeping up to 128 MiB of freed
-// heap renders it in 3.1-3.7 s against 4.4-5.0 s (docs/performance.md). Blocks from 32 MiB up (a
-// big scene's arrays) are mapped apart and go back whole when freed: kept in the heap instead
-// they were no faster and left their holes resident (the 10M terrain's rt-vpl peak 1.87 GiB
-// against 1.57 GiB). Transparent huge pages are the kernel's choice (glibc's
-// glibc.malloc.hugetlb=1 made no render faster and some slower: docs/performance.md "Huge pages").
+// heap renders it in 3.1-3.7 s against 4.4-5.0 s (docs/performance.md).
+// No block is mapped apart, however big: a big scene's arrays (the loader's, the shadow
+// hierarchy's build, the GL upload's copies) come from the heap and reuse what the one before
+// freed, where mapped apart each came as fresh pages, which cost this machine about 2.7 ms per
+// MiB (a 120 MiB array: 320 ms mapped, 2.5 ms reused). The stages that leave big holes hand
+// them back when done (core/util/freed_memory.h: after the load, the hierarchy's tree, a build
+// that runs first, the BVH). A cold render of the 10M-triangle sphere box: 162k page faults
+// against 308k mapped apart, 12.4-15.0 s against 14.7-17.2 s (docs/performance.md "Freed heap
+// is kept").
 // One arena for all threads: the shadow hierarchy's build allocates on its own threads, and the
 // holes it leaves in their arenas stayed resident after malloc_trim (the 10M sphere box's cold
 // peak 1125-1151 MiB against 1039 with one arena, the 10M terrain's 1208 against 1087, the 2.1M
@@ -30,7 +34,7 @@ void keep_freed_heap() {
 #if defined(__GLIBC__)
   mallopt(M_TRIM_THRESHOLD, 128 << 20);
   mallopt(M_TOP_PAD, 16 << 20);
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_MMAP_MAX, 0);
   mallopt(M_ARENA_MAX, 1);
 #endif
 }

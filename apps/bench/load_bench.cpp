@@ -110,7 +110,9 @@ LoadBenchResult run_load_bench(const LoadBenchOptions& o, Log& log) {
   if (o.runs < 1) throw Error("", "--runs", "must be at least 1");
   if (!std::filesystem::is_regular_file(o.file)) throw Error(o.file, "", "no such file");
   // A fixed threshold (no dynamic growth after frees): blocks of 128 KiB and more are mmap'ed and
-  // go back to the system when freed, so a run starts where the previous one did.
+  // go back to the system when freed, so a run starts where the previous one did (irad's main
+  // maps no block apart: M_MMAP_MAX back to glibc's default).
+  mallopt(M_MMAP_MAX, 65536);
   mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   std::filesystem::create_directories(o.out_dir);
   if (!o.memory_trace.empty() && std::filesystem::path(o.memory_trace).has_parent_path())

@@ -4,6 +4,7 @@
 #include "core/mesh/planar/flat_components.h"
 #include "core/mesh/planar/planar_reduction.h"
 #include "core/mesh/position_weld.h"
+#include "core/util/freed_memory.h"
 #include "core/util/parallel_rows.h"
 
 #include <algorithm>
@@ -407,16 +408,19 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
     // Flat parts first reduced exactly (to 2 kPlanar of the surface): the regions' locked
     // borders then cost what their outlines need, not the tessellation's resolution.
     const float epsilon = kPlanar * scene.bounds.diagonal();
-    PlanarReduction reduced = reduce_flat_components(scene.positions, triangles, epsilon);
-    if (reduced.collapses > 0 || reduced.triangles.size() < triangles.size()) {
-      triangles = std::move(reduced.triangles);
-      leaf_error = 2.0f * epsilon;
-    }
+    const std::size_t before = triangles.size();
+    PlanarReduction reduced =
+        reduce_flat_components(scene.positions, std::move(triangles), epsilon);
+    triangles = std::move(reduced.triangles);
+    if (reduced.collapses > 0 || triangles.size() < before) leaf_error = 2.0f * epsilon;
   }
   start = stages.lap("planar", start);
   if (triangles.empty()) return out;
   const std::vector<bool> whole =
       build_trees(scene, options, std::move(triangles), leaf_error, out);
+  // The weld's, the planar reduction's and the tree's transients, freed by now, go back: the
+  // meshes and levels that follow are smaller, and the process's peak would keep them.
+  release_freed_memory();
   start = stages.lap("tree", start);
   simplify_inner_nodes(scene, out, options.simplify || options.camera, options.threads);
   if (options.camera) bound_by_edges(scene, out, options.threads);

@@ -87,7 +87,7 @@ bool has_planar_vertex(const std::vector<glm::vec3>& positions,
 } // namespace
 
 PlanarReduction reduce_flat_components(const std::vector<glm::vec3>& positions,
-                                       const std::vector<glm::uvec3>& triangles, float epsilon) {
+                                       std::vector<glm::uvec3> triangles, float epsilon) {
   const std::vector<std::uint32_t> component = triangle_components(triangles, positions.size());
   const std::vector<std::uint32_t> sampled = samples(component, positions.size());
   const VertexFans fans = fans_around(triangles, positions.size(), sampled);
@@ -104,12 +104,19 @@ PlanarReduction reduce_flat_components(const std::vector<glm::vec3>& positions,
   for (std::uint32_t c : component) flat_triangles += flat[c] ? 1 : 0;
   if (flat_triangles == triangles.size())
     return reduce_planar_chunked(positions, triangles, epsilon);
+  PlanarReduction out;
+  if (flat_triangles == 0) { // nothing to reduce: the triangles as they came, no copy
+    out.triangles = std::move(triangles);
+    return out;
+  }
   std::vector<glm::uvec3> reducible, kept;
   reducible.reserve(flat_triangles);
   kept.reserve(triangles.size() - flat_triangles);
   for (std::size_t k = 0; k < triangles.size(); ++k)
     (flat[component[k]] ? reducible : kept).push_back(triangles[k]);
-  PlanarReduction out = reduce_planar_chunked(positions, reducible, epsilon);
+  triangles = {}; // split: not held through the reduction
+  out = reduce_planar_chunked(positions, reducible, epsilon);
+  reducible = {};
   out.triangles.insert(out.triangles.end(), kept.begin(), kept.end());
   return out;
 }
