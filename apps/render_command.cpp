@@ -9,6 +9,7 @@
 #include "apps/render_parts.h"
 #include "core/image/image_io.h"
 #include "core/util/error.h"
+#include "core/util/freed_memory.h"
 #include "irad/render.h"
 
 #include <atomic>
@@ -141,6 +142,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
             {"triangles", scene.triangle_count()},
             {"camera", r.camera.name},
             {"lights", lights_json(scene)},
+            {"heap_huge_pages", heap_huge_pages()},
             {"seconds", seconds}};
   }
   seconds["walk"] = r.seconds.walk;
@@ -204,6 +206,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
       {"shadow_planes", r.shadow_planes}, // as drawn: auto resolved
       {"visibility", r.visibility},       // raster, as drawn: auto resolved
       {"thinnest_wall", r.thinnest_wall},
+      {"heap_huge_pages", heap_huge_pages()}, // apps/main.cpp
       {"jitter", args.jitter == "on"},
       {"clamp", args.clamp},
       {"clamp_distance", args.clamp * scene.bounds.diagonal()}, // local: the cap

@@ -2,10 +2,17 @@
 // past the elements it keeps, on all cores, so a vector grown by it keeps every element and its
 // new elements are what resize makes of them.
 #include "core/util/freed_memory.h"
+#include "tests/test_paths.h"
 
 #include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <numeric>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace irad {
@@ -35,6 +42,39 @@ TEST(FreedMemory, TouchPagesWritesOnlyItsRange) {
   }
   EXPECT_EQ(written, (std::size_t{8} << 20) / 4096 + 1); // 2049 pages begin in the range
   EXPECT_EQ(outside, 0u);
+}
+
+// The command line's heap in transparent huge pages (apps/main.cpp runs irad again with glibc's
+// tunable glibc.malloc.hugetlb=1): --stats reports what the kernel says of its heap
+// (/proc/self/smaps THPeligible): eligible unless the kernel's mode is "never"; not eligible where
+// the caller turns the tunable off and the mode is "madvise" (in "always" every heap is).
+TEST(FreedMemory, TheCommandLineAdvisesItsHeapHugePages) {
+  std::ifstream mode_file("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::stringstream mode_text;
+  mode_text << mode_file.rdbuf();
+  const std::string mode = mode_text.str();
+  if (mode.empty()) {
+    GTEST_SKIP() << "no transparent huge pages here";
+  }
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "irad_huge_heap";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto huge = [&](const std::string& env) {
+    const fs::path stats = dir / "stats.json";
+    const std::string cmd = env + " " + std::string(IRAD_BINARY) + " render " + IRAD_SOURCE_DIR +
+                            "/data/cornell_box.gltf -o " + (dir / "c.png").string() +
+                            " --size 16x16 --paths 16 --quiet --stats " + stats.string();
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream in(stats);
+    return nlohmann::json::parse(in)["heap_huge_pages"].get<bool>();
+  };
+  const bool never = mode.find("[never]") != std::string::npos;
+  EXPECT_EQ(huge("GLIBC_TUNABLES="), !never) << mode;
+  if (mode.find("[madvise]") != std::string::npos) {
+    EXPECT_FALSE(huge("GLIBC_TUNABLES=glibc.malloc.hugetlb=0"));
+  }
+  fs::remove_all(dir);
 }
 
 } // namespace IRAD_UNITY_ID

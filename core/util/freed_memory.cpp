@@ -2,7 +2,10 @@
 
 #include "core/util/parallel_rows.h"
 
+#include <cctype>
 #include <cstdint>
+#include <fstream>
+#include <string>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -16,6 +19,22 @@ void release_freed_memory() {
 #if defined(__GLIBC__)
   malloc_trim(0);
 #endif
+}
+
+bool heap_huge_pages() {
+  std::ifstream smaps("/proc/self/smaps");
+  bool in_heap = false;
+  for (std::string line; std::getline(smaps, line);) {
+    // A mapping's first line: "start-end perms offset dev inode [path]", its path last.
+    const bool header = !line.empty() && std::isxdigit(static_cast<unsigned char>(line[0])) &&
+                        line.find('-') < line.find(' ');
+    if (header) {
+      in_heap = line.size() >= 6 && line.compare(line.size() - 6, 6, "[heap]") == 0;
+    } else if (in_heap && line.rfind("THPeligible:", 0) == 0) {
+      return line.find('1') != std::string::npos;
+    }
+  }
+  return false;
 }
 
 void advise_huge_pages(const void* data, std::size_t bytes) {

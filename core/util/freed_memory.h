@@ -13,6 +13,11 @@ namespace irad {
 // for the whole render; a stage calls this when its transients are gone.
 void release_freed_memory();
 
+// Whether the kernel may back the heap with transparent huge pages: THPeligible of the first
+// [heap] mapping in /proc/self/smaps (apps/main.cpp has glibc advise it). false where unreadable,
+// where the process has no heap yet, or off Linux.
+bool heap_huge_pages();
+
 // Asks the kernel to back the 2 MiB-aligned pages inside [data, data + bytes) with transparent
 // huge pages (madvise MADV_HUGEPAGE: the kernel's "madvise" mode), before they are first
 // written: a big array then costs one page fault and one clear per 2 MiB instead of per 4 KiB.
