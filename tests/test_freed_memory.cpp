@@ -15,6 +15,16 @@
 #include <string>
 #include <vector>
 
+// AddressSanitizer's allocator replaces glibc's heap (the sanitizers' run:
+// tests/run_sanitizers.sh).
+#if defined(__SANITIZE_ADDRESS__)
+#define IRAD_TEST_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define IRAD_TEST_ADDRESS_SANITIZER 1
+#endif
+#endif
+
 namespace irad {
 namespace IRAD_UNITY_ID {
 
@@ -49,6 +59,9 @@ TEST(FreedMemory, TouchPagesWritesOnlyItsRange) {
 // (/proc/self/smaps THPeligible): eligible unless the kernel's mode is "never"; not eligible where
 // the caller turns the tunable off and the mode is "madvise" (in "always" every heap is).
 TEST(FreedMemory, TheCommandLineAdvisesItsHeapHugePages) {
+#if defined(IRAD_TEST_ADDRESS_SANITIZER)
+  GTEST_SKIP() << "AddressSanitizer's allocator is not glibc's heap";
+#endif
   std::ifstream mode_file("/sys/kernel/mm/transparent_hugepage/enabled");
   std::stringstream mode_text;
   mode_text << mode_file.rdbuf();
