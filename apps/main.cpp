@@ -46,10 +46,10 @@ void keep_freed_heap() {
 // the heap advised MADV_HUGEPAGE, which the kernel's usual "madvise" mode asks for): a big
 // scene's arrays then cost a page fault per 2 MiB instead of per 4 KiB, where each fault is dear
 // on this machine: a cold render of the 10M sphere box at 256x256 faults 15k times against 175k
-// without, in 10.2-10.8 s against 11.8-12.5 s (docs/performance.md "Huge pages"). glibc reads its
-// tunables only when a process starts, so the program runs itself once more with the tunable added
-// to GLIBC_TUNABLES; not where the caller's GLIBC_TUNABLES names hugetlb already (=0 turns it off),
-// and where /proc/self/exe cannot be run it goes on as it started.
+// without, and takes 0.3-1.5 s less in most pairs (docs/performance.md "Huge pages"). glibc reads
+// its tunables only when a process starts, so the program runs itself once more with the tunable
+// added to GLIBC_TUNABLES; not where the caller's GLIBC_TUNABLES names hugetlb already (=0 turns it
+// off), and where /proc/self/exe cannot be run it goes on as it started.
 void exec_with_huge_heap(char** argv) {
 #if defined(__GLIBC__) && defined(__linux__)
   constexpr const char* kMarker = "IRAD_HUGE_HEAP"; // set: this is the run with the tunable
