@@ -56,8 +56,9 @@ TEST(FreedMemory, TouchPagesWritesOnlyItsRange) {
 
 // The command line's heap in transparent huge pages (apps/main.cpp runs irad again with glibc's
 // tunable glibc.malloc.hugetlb=1): --stats reports what the kernel says of its heap
-// (/proc/self/smaps THPeligible): eligible unless the kernel's mode is "never"; not eligible where
-// the caller turns the tunable off and the mode is "madvise" (in "always" every heap is).
+// (/proc/self/smaps THPeligible): eligible unless the kernel's mode is "never", also where the
+// caller gives another tunable; not eligible where the caller turns it off and the mode is
+// "madvise" (in "always" every heap is).
 TEST(FreedMemory, TheCommandLineAdvisesItsHeapHugePages) {
 #if defined(IRAD_TEST_ADDRESS_SANITIZER)
   GTEST_SKIP() << "AddressSanitizer's allocator is not glibc's heap";
@@ -84,6 +85,7 @@ TEST(FreedMemory, TheCommandLineAdvisesItsHeapHugePages) {
   };
   const bool never = mode.find("[never]") != std::string::npos;
   EXPECT_EQ(huge("GLIBC_TUNABLES="), !never) << mode;
+  EXPECT_EQ(huge("GLIBC_TUNABLES=glibc.malloc.tcache_count=4"), !never); // appended to another
   if (mode.find("[madvise]") != std::string::npos) {
     EXPECT_FALSE(huge("GLIBC_TUNABLES=glibc.malloc.hugetlb=0"));
   }
