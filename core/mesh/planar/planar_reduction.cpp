@@ -163,16 +163,21 @@ void Reducer::grow_patches() {
   // Seeds by octave of area, the largest first, each octave's in triangle order: a mesh's order
   // keeps neighbours near in memory, where an exact sort by area would visit a curved surface's
   // nearly equal triangles in an order with no locality (a cache miss for every neighbour).
-  std::vector<std::pair<int, std::uint32_t>> by_octave(tris.size());
+  // Placed by counting (a few dozen octaves): the order of a sort by (-octave, t).
+  std::vector<int> octave(tris.size());
+  int lowest = 0, highest = 0;
   for (std::uint32_t t = 0; t < tris.size(); ++t) {
-    int octave = 0;
-    std::frexp(area[t], &octave);
-    by_octave[t] = {-octave, t};
+    std::frexp(area[t], &octave[t]);
+    lowest = t == 0 ? octave[t] : std::min(lowest, octave[t]);
+    highest = t == 0 ? octave[t] : std::max(highest, octave[t]);
   }
-  std::sort(by_octave.begin(), by_octave.end());
+  std::vector<std::uint32_t> next(static_cast<std::size_t>(highest - lowest) + 2, 0);
+  for (const int o : octave) ++next[static_cast<std::size_t>(highest - o) + 1];
+  std::partial_sum(next.begin(), next.end(), next.begin());
   std::vector<std::uint32_t> seeds(tris.size());
-  for (std::size_t k = 0; k < seeds.size(); ++k) seeds[k] = by_octave[k].second;
-  by_octave = {};
+  for (std::uint32_t t = 0; t < tris.size(); ++t)
+    seeds[next[static_cast<std::size_t>(highest - octave[t])]++] = t;
+  octave = {};
   patch.assign(tris.size(), kNone);
   std::vector<std::uint32_t> queue;
   for (std::uint32_t seed : seeds) {
