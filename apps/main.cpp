@@ -24,15 +24,15 @@ namespace {
 // freed, where mapped apart each came as fresh pages, which cost this machine about 2.7 ms per
 // MiB (a 120 MiB array: 320 ms mapped, 2.5 ms reused). The stages that leave big holes hand
 // them back when done (core/util/freed_memory.h: after the load, the hierarchy's tree, a build
-// that runs first, the BVH). A cold render of the 10M-triangle sphere box: 162k page faults
-// against 308k mapped apart, 12.4-15.0 s against 14.7-17.2 s (docs/performance.md "Freed heap
-// is kept").
-// One arena for all threads: the shadow hierarchy's build allocates on its own threads, and the
-// holes it leaves in their arenas stayed resident after malloc_trim (the 10M sphere box's cold
-// peak 1125-1151 MiB against 1039 with one arena, the 10M terrain's 1208 against 1087, the 2.1M
-// sphere box's 525-528 against 467-471; one run each, in turn). No render measured slower: the
-// 2.1M sphere box warm 1.70-2.21 s against 1.74-2.15 (four pairs), cold 3.45-3.68 against
-// 3.56-3.91, zdm2 7.18-7.33 against 7.21-8.11 (two pairs).
+// that runs first, the BVH, the raster's taking of its hierarchies). A cold render of the
+// 10M-triangle sphere box: 162k page faults against 308k mapped apart, 12.4-15.0 s
+// against 14.7-17.2 s (docs/performance.md "Freed heap is kept"). One arena for all threads: the
+// shadow hierarchy's build allocates on its own threads, and the holes it leaves in their arenas
+// stayed resident after malloc_trim (the 10M sphere box's cold peak 1125-1151 MiB against 1039 with
+// one arena, the 10M terrain's 1208 against 1087, the 2.1M sphere box's 525-528 against 467-471;
+// one run each, in turn). No render measured slower: the 2.1M sphere box warm 1.70-2.21 s
+// against 1.74-2.15 (four pairs), cold 3.45-3.68 against 3.56-3.91, zdm2 7.18-7.33
+// against 7.21-8.11 (two pairs).
 void keep_freed_heap() {
 #if defined(__GLIBC__)
   mallopt(M_TRIM_THRESHOLD, 128 << 20);
