@@ -1,6 +1,6 @@
 // Fresh storage for big arrays (core/util/freed_memory.h): reserve_huge touches only the pages
 // past the elements it keeps, on all cores, so a vector grown by it keeps every element and its
-// new elements are what resize makes of them.
+// new elements are what resize makes of them. The command line's heap is advised huge pages.
 #include "core/util/freed_memory.h"
 #include "tests/test_paths.h"
 
