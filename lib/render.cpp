@@ -249,6 +249,8 @@ void run_raster(Stages& s, const RayScene& rays) {
   if (s.planes_scan >= 0.0) s.r.seconds.raster_setup.emplace_back("planes scan", s.planes_scan);
   s.r.passes = timings.passes;
   s.r.shadow_triangles = timings.shadow_triangles;
+  s.r.shadow_levels = {timings.shadow_levels_built, timings.shadow_levels_read,
+                       timings.shadow_levels_seconds};
   s.r.shadow_helpers = timings.shadow_helpers;
   s.r.visibility = timings.ray_visibility ? "rays" : "maps";
   s.r.seconds.visibility = timings.visibility_seconds;
@@ -540,7 +542,8 @@ void run_rounds(Stages& s, const RayScene& rays) {
     s.r.passes += rm.passes;
     s.r.shadow_triangles += rm.shadow_triangles;
     s.r.shadow_helpers = std::max(s.r.shadow_helpers, rm.shadow_helpers);
-    s.r.gpu_bytes = rm.gpu_bytes; // one renderer for all rounds: its pages only grow
+    s.r.gpu_bytes = rm.gpu_bytes;         // one renderer for all rounds: its pages only grow
+    s.r.shadow_levels = rm.shadow_levels; // likewise its levels (counted from its start)
     s.r.single_passes += rm.single_passes;
     s.r.edge_pixels = std::max(s.r.edge_pixels, rm.edge_pixels);
     s.r.unsure_pixels = std::max(s.r.unsure_pixels, rm.unsure_pixels);
@@ -578,8 +581,8 @@ std::shared_ptr<BackgroundClusters> early_hierarchy(const Scene& scene, const Re
   if (o.estimator != Estimator::Raster || visibility == Visibility::Rays || raster.batch <= 1 ||
       raster.jitter || raster.shadow_lod.mode == ShadowLodMode::Off || scene.animation)
     return nullptr;
-  const ClusterOptions options{0, raster.shadow_lod.mode == ShadowLodMode::On};
-  return std::make_shared<BackgroundClusters>(scene, options, raster.hierarchy_cache);
+  return std::make_shared<BackgroundClusters>(scene, shadow_cluster_options(raster.shadow_lod),
+                                              raster.hierarchy_cache);
 }
 
 // The camera's hierarchy, where the raster will draw its G-buffer through it

@@ -415,6 +415,10 @@ Image RasterRenderer::render(const View& view, const VplSet& vpls, RasterTimings
     timings->gpu_scene_bytes = im.gpu.bytes();
     timings->gpu_shadow_pages_bytes = im.lod.gpu_bytes();
     timings->gpu_camera_pages_bytes = im.camera_lod.gpu_bytes();
+    const gl::ShadowLod::LateLevels late = im.lod.late_levels();
+    timings->shadow_levels_built = late.nodes;
+    timings->shadow_levels_seconds = late.seconds;
+    timings->shadow_levels_read = im.lod.late_levels_read();
   }
   if (timings && im.batched) {
     timings->shadow_triangles = im.batched->shadow_triangles();

@@ -165,6 +165,10 @@ struct RasterTimings {
   // textures) and of the pages of the shadow and camera hierarchies drawn so far
   // (raster/shadow/shadow_lod.h), what llvmpipe holds in memory of them.
   std::size_t gpu_scene_bytes = 0, gpu_shadow_pages_bytes = 0, gpu_camera_pages_bytes = 0;
+  // render(): the shadow hierarchy's nodes whose deferred levels this renderer built
+  // (ShadowLod::build_levels) so far, the seconds that took, and those its cache's late file gave.
+  std::size_t shadow_levels_built = 0, shadow_levels_read = 0;
+  double shadow_levels_seconds = 0.0;
   // render(): the helper threads that drew shadow atlases (RasterOptions::shadow_helpers; 0 when
   // none were made).
   int shadow_helpers = 0;

@@ -11,6 +11,7 @@
 #include "core/scene/scene_builder.h"
 #include "core/util/error.h"
 #include "raster/raster_renderer.h"
+#include "tests/shadow_lod_support.h"
 #include "tests/test_paths.h"
 #include "walk/quasi_random_walk.h"
 
@@ -209,7 +210,7 @@ TEST_F(ClusterCache, AHitReadsItsIndicesFromTheFileItChecked) {
   {
     std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
     const std::uint32_t past = 0xffffffffu;
-    f.seekp(88 + 4 * 7); // the 8th index, after the 88-byte header
+    f.seekp(96 + 4 * 7); // the 8th index, after the 96-byte header
     f.write(reinterpret_cast<const char*>(&past), sizeof past);
   }
   try {
@@ -269,20 +270,8 @@ TEST(ClusterCacheValidation, NamesWhatIsWrong) {
 // The raster through the cache: the image from a hit is the image from the build, bit for bit.
 // The Cornell box with a sphere of 9800 triangles, which the faces draw simplified; its VPLs and
 // a 64x64 view.
-struct SphereBox {
-  Scene s;
-  VplSet vpls;
-  View view;
-};
-SphereBox sphere_box() {
-  Log log([](const std::string&) {});
-  SphereBox b;
-  b.s = load_gltf(fs::path(IRAD_SOURCE_DIR) / "data/cornell_box.gltf", log);
-  add_sphere(b.s, {0.3f, 0.33f, 0.3f}, 0.09f, 50, add_material(b.s, glm::vec3(0.7f)));
-  finish(b.s);
-  b.vpls = quasi_random_walk(b.s, RayScene(b.s), {16, 64}, log);
-  b.view = make_view(b.s.cameras.at(0), b.s.bounds, 64, 64);
-  return b;
+test_support::SphereBox sphere_box() {
+  return test_support::sphere_box(50);
 }
 
 TEST_F(ClusterCache, TheRasterDrawsTheSameImageFromAHit) {
@@ -389,13 +378,14 @@ TEST_F(ClusterCache, TheRasterTakesABuildBesideIt) {
       if (n == name) return true;
     return false;
   };
-  o.hierarchy_build = std::make_shared<BackgroundClusters>(s, ClusterOptions{0, true}, fs::path());
+  const ClusterOptions shadow = shadow_cluster_options(o.shadow_lod);
+  o.hierarchy_build = std::make_shared<BackgroundClusters>(s, shadow, fs::path());
   RasterRenderer taking(s, o);
   EXPECT_TRUE(taking.render(view, vpls).pixels() == own.pixels());
   EXPECT_TRUE(has(taking.setup_times(), "hierarchy wait"));
   EXPECT_FALSE(has(taking.setup_times(), "hierarchy levels"));
   EXPECT_TRUE(has(taking.hierarchy_beside_times(), "hierarchy levels"));
-  EXPECT_FALSE(o.hierarchy_build->builds(s, ClusterOptions{0, true}, fs::path())); // taken
+  EXPECT_FALSE(o.hierarchy_build->builds(s, shadow, fs::path())); // taken
   // A build of other options (the Cull mode's) is left; the renderer builds its own.
   o.hierarchy_build = std::make_shared<BackgroundClusters>(s, ClusterOptions{0, false}, fs::path());
   RasterRenderer building(s, o);

@@ -14,6 +14,7 @@
 #include "raster/scene/gpu_scene.h"
 #include "raster/shadow/shadow_atlas.h"
 #include "raster/shadow/shadow_lod.h"
+#include "tests/shadow_lod_support.h"
 #include "tests/side_by_side.h"
 #include "tests/test_paths.h"
 #include "tests/test_rooms.h"
@@ -437,26 +438,9 @@ TEST(ShadowLod, PagesCopiedOnFirstUseDrawTheHierarchysIndices) {
         wanted.insert(wanted.end(), indices.begin() + p.first, indices.begin() + p.first + p.count);
         triangles += p.count / 3;
       }
-      for (const gl::ClusterSelection::Slab& slab : selection.slabs) {
-        GLint size = 0;
-        api.BindBuffer(GL_COPY_READ_BUFFER, slab.buffer);
-        api.GetBufferParameteriv(GL_COPY_READ_BUFFER, GL_BUFFER_SIZE, &size);
-        std::vector<std::uint32_t> words(static_cast<std::size_t>(size) / 4);
-        api.GetBufferSubData(GL_COPY_READ_BUFFER, 0, size, words.data());
-        for (std::size_t r = 0; r < slab.counts.size(); ++r) {
-          const auto at = reinterpret_cast<std::uintptr_t>(slab.offsets[r]) / 4;
-          drawn.insert(drawn.end(), words.begin() + static_cast<std::ptrdiff_t>(at),
-                       words.begin() + static_cast<std::ptrdiff_t>(at) + slab.counts[r]);
-        }
-      }
-      api.BindBuffer(GL_COPY_READ_BUFFER, 0);
+      drawn = test_support::selected_indices(api, selection);
       // Slab by slab, the ranges of one slab in pick order: the same multiset of triangles.
-      auto triangles_of = [](const std::vector<std::uint32_t>& v) {
-        std::vector<std::array<std::uint32_t, 3>> t;
-        for (std::size_t k = 0; k + 2 < v.size(); k += 3) t.push_back({v[k], v[k + 1], v[k + 2]});
-        std::sort(t.begin(), t.end());
-        return t;
-      };
+      const auto triangles_of = test_support::triangle_set;
       EXPECT_EQ(selection.triangles, triangles);
       EXPECT_EQ(drawn.size(), wanted.size()) << "round to " << end;
       EXPECT_TRUE(triangles_of(drawn) == triangles_of(wanted)) << "round to " << end;

@@ -112,20 +112,20 @@ float cached_thinnest_wall(const Scene& scene, const RayScene& rays, float up_to
     WallFile f{};
     std::string why;
     if (!read_wall(path, key, f, why))
-      out = {CacheOutcome::Rebuilt, why};
+      out.set(CacheOutcome::Rebuilt, why);
     else if (up_to <= f.searched) {
       out.outcome = CacheOutcome::Hit;
       fs::last_write_time(path, fs::file_time_type::clock::now(), ec); // a use
       return std::min(up_to, f.gap);
     } else {
-      out = {CacheOutcome::Rebuilt, "scanned to a shorter reach"};
+      out.set(CacheOutcome::Rebuilt, "scanned to a shorter reach");
     }
   }
   const float gap = thinnest_wall(scene, rays, up_to);
   std::string why;
   if (!write_atomically(
           path, [&](const fs::path& to) { return write_wall(to, key, up_to, gap); }, why))
-    out = {CacheOutcome::Unwritable, why};
+    out.set(CacheOutcome::Unwritable, why);
   else if (out.outcome == CacheOutcome::Off)
     out.outcome = CacheOutcome::Written;
   return gap;

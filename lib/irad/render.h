@@ -160,6 +160,13 @@ struct RenderResult {
   std::string visibility; // raster: "rays" or "maps" (RasterOptions::visibility resolved)
   // Triangles the batched shadow faces drew from the shadow hierarchy (raster; RasterTimings)
   std::size_t shadow_triangles = 0;
+  // The shadow hierarchy's nodes whose coarser levels were built as its faces first needed them
+  // (raster; RasterTimings), the seconds that took (all rounds), and the nodes whose levels the
+  // hierarchy cache's late file gave.
+  struct ShadowLevels {
+    std::size_t built = 0, read = 0;
+    double seconds = 0.0;
+  } shadow_levels;
   // Of them, those drawn one VPL at a time (--batch 1, the reference; RasterTimings)
   std::size_t single_passes = 0;
   // Interleaved with RasterOptions::edge_pixels: the edge pixels shaded or traced (per image),

@@ -24,6 +24,11 @@ public:
   LodProvider(const GladGLContext& api, const GpuScene& gpu, const ShadowLodOptions& options,
               std::filesystem::path cache = {},
               std::shared_ptr<BackgroundClusters> prebuilt = nullptr);
+  // Keeps the levels the faces built (ShadowLod::build_levels) beside the hierarchy's cache file
+  // (core/mesh/hierarchy/late_levels_file.h), for the next render of the scene.
+  ~LodProvider();
+  LodProvider(const LodProvider&) = delete;
+  LodProvider& operator=(const LodProvider&) = delete;
 
   // The hierarchy, built (or taken) on the first call (its pages reach the GPU as the faces
   // first draw them: ShadowLod::make_resident); nullptr with
@@ -42,13 +47,22 @@ public:
   CacheResult cache_result() const { return source_.cache_result(); }
   // The bytes of its pages on the GPU (ShadowLod::gpu_bytes; 0 before get()).
   std::size_t gpu_bytes() const { return lod_ ? lod_->gpu_bytes() : 0; }
+  // The deferred levels its faces built so far (ShadowLod::late_levels; none before get()), and
+  // the nodes whose levels the cache's late file gave.
+  ShadowLod::LateLevels late_levels() const {
+    return lod_ ? lod_->late_levels() : ShadowLod::LateLevels{};
+  }
+  std::size_t late_levels_read() const { return lod_ ? late_read_ : 0; }
 
 private:
+  void keep_late_levels() noexcept;
+
   const GladGLContext* api_;
   const GpuScene* gpu_;
   ShadowLodOptions options_;
   ClusterSource source_;
   std::unique_ptr<ShadowLod> lod_;
+  std::size_t late_read_ = 0;
   StageTimes times_;
 };
 

@@ -187,14 +187,27 @@ void ShadowAtlas::pick_faces() {
   const float floor = 1e-5f * bounds_.diagonal();
   picks_.resize(faces_.size());
   totals_.assign(faces_.size(), 0);
-  for (std::size_t i = 0; i < faces_.size(); ++i) {
-    const Face& f = faces_[i];
-    picks_[i].clear();
-    if (f.rect.x > f.rect.z) continue; // never looked up
-    lod_->pick(face_planes(f.view_projection, f.rect, resolution_), f.origin, per_distance, floor,
-               plans_, picks_[i]);
-    for (const ClusterPick& p : picks_[i]) totals_[i] += p.count;
+  // Faces picked again, where a pick wanted deferred levels, once those are built.
+  std::vector<std::size_t> faces;
+  for (std::size_t i = 0; i < faces_.size(); ++i)
+    if (faces_[i].rect.x <= faces_[i].rect.z) faces.push_back(i); // else never looked up
+  for (std::size_t i = 0; i < faces_.size(); ++i) picks_[i].clear();
+  while (!faces.empty()) {
+    wanted_.clear();
+    std::vector<std::size_t> again;
+    for (std::size_t i : faces) {
+      const Face& f = faces_[i];
+      const std::size_t before = wanted_.size();
+      picks_[i].clear();
+      lod_->pick(face_planes(f.view_projection, f.rect, resolution_), f.origin, per_distance, floor,
+                 plans_, picks_[i], &wanted_);
+      if (wanted_.size() > before) again.push_back(i);
+    }
+    if (!wanted_.empty()) lod_->build_levels(wanted_);
+    faces = std::move(again);
   }
+  for (std::size_t i = 0; i < faces_.size(); ++i)
+    for (const ClusterPick& p : picks_[i]) totals_[i] += p.count;
 }
 
 void ShadowAtlas::draw_in_rounds() {

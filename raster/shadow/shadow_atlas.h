@@ -147,7 +147,8 @@ private:
   // ShadowLodOptions::occlusion in two passes: every face's nearest clusters, then the rest that
   // the depths read back do not hide (raster/shadow/shadow_occlusion.h).
   void draw_clusters(int n, const GpuScene& scene);
-  // Each face's cut through the hierarchy into picks_ (totals_: their indices).
+  // Each face's cut through the hierarchy into picks_ (totals_: their indices), the deferred
+  // levels the cuts want built first, round by round (ShadowLod::pick).
   void pick_faces();
   // picks_ nearest first in the rounds of kRounds, each culled against the rounds before.
   void draw_in_rounds();
@@ -189,7 +190,8 @@ private:
   // thread's of its own: raster/shadow/shadow_helpers.h).
   VertexArray scene_vao_, lod_vao_;
   ShadowLod::Plans plans_;
-  std::vector<Face> faces_; // of the last render()
+  std::vector<std::int32_t> wanted_; // nodes whose deferred levels a pick wants
+  std::vector<Face> faces_;          // of the last render()
   ClusterSelection selection_;
   std::vector<std::vector<ClusterPick>> picks_, near_; // per face of faces_
   std::vector<std::size_t> totals_, taken_;            // per face: indices picked, taken

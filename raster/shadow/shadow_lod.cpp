@@ -1,6 +1,9 @@
 #include "raster/shadow/shadow_lod.h"
 
+#include "core/mesh/hierarchy/cluster_levels.h"
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace irad::gl {
@@ -55,16 +58,37 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
     clusters_.stored_indices = std::make_shared<const StoredIndices>(
         std::make_shared<const std::vector<std::uint32_t>>(std::move(clusters_.indices)));
   clusters_.indices = {};
-  slot_of_page_.assign((index_count_ + kPageIndices - 1) / kPageIndices, 0);
+  late_base_ = clusters_.late_base();
+  slot_of_page_.assign((clusters_.index_end() + kPageIndices - 1) / kPageIndices, 0);
+}
+
+static_assert(kLateAlign % ShadowLod::kPageIndices == 0, "late indices start on a page");
+
+void ShadowLod::build_levels(const std::vector<std::int32_t>& nodes) const {
+  const std::unique_lock lock(levels_mutex_);
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t before = clusters_.late_nodes.size();
+  add_deferred_levels(gpu_->scene(), clusters_, nodes, 0);
+  late_.nodes += clusters_.late_nodes.size() - before;
+  late_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::lock_guard pages(pages_mutex_);
+  slot_of_page_.resize((clusters_.index_end() + kPageIndices - 1) / kPageIndices, 0);
+}
+
+ShadowLod::LateLevels ShadowLod::late_levels() const {
+  const std::shared_lock lock(levels_mutex_);
+  return late_;
 }
 
 GLuint ShadowLod::slab_of(std::size_t slot) const {
   const std::size_t slab = slot / slab_pages_;
-  // The slots fill in order: at most the pages there are. A slab is written page by page over
+  // The slots fill in order. A slab holds at most the pages not yet copied (the pages of levels
+  // built later start a slab of their own once it is full). A slab is written page by page over
   // the render (dynamic use: Mesa warns of every mapped write into a static buffer).
   if (slab == slabs_.size()) {
-    const std::size_t pages = std::min(slab_pages_, slot_of_page_.size() - slot);
+    const std::size_t pages = std::min(slab_pages_, slot_of_page_.size() - pages_copied_);
     slabs_.push_back(make_buffer(*api_));
+    slab_capacity_.push_back(pages);
     api_->BindBuffer(GL_COPY_WRITE_BUFFER, slabs_.back().get());
     api_->BufferData(GL_COPY_WRITE_BUFFER,
                      static_cast<GLsizeiptr>(pages * kPageIndices * sizeof(std::uint32_t)), nullptr,
@@ -74,19 +98,37 @@ GLuint ShadowLod::slab_of(std::size_t slot) const {
   return slabs_[slab].get();
 }
 
+std::size_t ShadowLod::free_slots() const {
+  const std::size_t in_slab = slots_used_ % slab_pages_;
+  if (in_slab != 0 && in_slab >= slab_capacity_.back()) // a full slab made smaller: the next
+    slots_used_ += slab_pages_ - in_slab;
+  const std::size_t slab = slots_used_ / slab_pages_;
+  return slab < slabs_.size() ? slab_capacity_[slab] - slots_used_ % slab_pages_
+                              : std::min(slab_pages_, slot_of_page_.size() - pages_copied_);
+}
+
 void ShadowLod::copy_pages(std::size_t page, std::size_t slot, std::size_t count) const {
   const std::size_t first = page * kPageIndices;
-  const std::size_t indices = std::min((page + count) * kPageIndices, index_count_) - first;
+  const bool late = page >= late_page();
+  const std::size_t end = late ? clusters_.index_end() : index_count_;
+  const std::size_t indices = std::min((page + count) * kPageIndices, end) - first;
   fill_buffer_range(
       *api_, slab_of(slot), (slot % slab_pages_) * kPageIndices * sizeof(std::uint32_t),
       indices * sizeof(std::uint32_t),
       [&](void* storage) {
-        clusters_.stored_indices->copy_range(first, indices, static_cast<std::uint32_t*>(storage));
+        auto* out = static_cast<std::uint32_t*>(storage);
+        if (late)
+          std::copy_n(clusters_.late_indices.begin() +
+                          static_cast<std::ptrdiff_t>(first - late_base_),
+                      indices, out);
+        else
+          clusters_.stored_indices->copy_range(first, indices, out);
       },
       "cluster hierarchy");
 }
 
 void ShadowLod::make_resident(const std::vector<std::vector<ClusterPick>>& picks) const {
+  const std::shared_lock levels(levels_mutex_); // the late indices stay put
   const std::lock_guard lock(pages_mutex_);
   std::vector<std::size_t> missing;
   for (const std::vector<ClusterPick>& face : picks)
@@ -102,15 +144,16 @@ void ShadowLod::make_resident(const std::vector<std::vector<ClusterPick>>& picks
   for (std::size_t i = 0; i < missing.size();) {
     // A run of consecutive pages into consecutive slots of one slab: one read, one mapping.
     // (Marked placed once copied: a copy that throws leaves its pages absent.)
-    const std::size_t slot = slots_used_;
+    const std::size_t room = free_slots(), slot = slots_used_;
     std::size_t j = i + 1;
-    while (j < missing.size() && missing[j] == missing[j - 1] + 1 &&
-           (slot + (j - i)) % slab_pages_ != 0)
+    while (j < missing.size() && missing[j] == missing[j - 1] + 1 && j - i < room &&
+           missing[j] != late_page())
       ++j;
     copy_pages(missing[i], slot, j - i);
     for (std::size_t k = i; k < j; ++k)
       slot_of_page_[missing[k]] = static_cast<std::uint32_t>(slot + (k - i) + 1);
     slots_used_ += j - i;
+    pages_copied_ += j - i;
     i = j;
   }
   if (shared_) api_->Finish();
@@ -143,8 +186,9 @@ void ShadowLod::select(const std::vector<ClusterPick>& picks, ClusterSelection& 
 
 std::size_t ShadowLod::gpu_bytes() const {
   const std::lock_guard lock(pages_mutex_);
-  return std::min(slabs_.size() * slab_pages_, slot_of_page_.size()) * kPageIndices *
-         sizeof(std::uint32_t);
+  std::size_t pages = 0;
+  for (std::size_t p : slab_capacity_) pages += p;
+  return pages * kPageIndices * sizeof(std::uint32_t);
 }
 
 // Per node visited: what it draws (a mesh range, its children, or nothing) and how many
@@ -175,6 +219,11 @@ std::uint32_t ShadowLod::plan(std::int32_t id, const Query& q) const {
     if (node.error <= allowed && node.mesh_count < c.count) {
       c.first = node.mesh_first;
       c.count = node.mesh_count;
+    }
+    // Its levels could be drawn (their errors are at least the mesh's): wanted first.
+    if (node.levels_pending() && node.error <= allowed && q.wanted) {
+      q.wanted->push_back(id);
+      return c.count;
     }
     for (std::uint32_t l = 0; l < node.levels_count; ++l) {
       const ClusterLevel& level = clusters_.levels[node.levels_first + l];
@@ -210,9 +259,11 @@ void ShadowLod::emit_plan(std::int32_t id, const Plans& plans,
 
 void ShadowLod::pick(std::span<const std::int32_t> roots, const std::array<glm::vec4, 4>& planes,
                      const glm::vec3& origin, float error_per_distance, float error_floor,
-                     Plans& plans, std::vector<ClusterPick>& out) const {
+                     Plans& plans, std::vector<ClusterPick>& out,
+                     std::vector<std::int32_t>* wanted) const {
+  const std::shared_lock lock(levels_mutex_);
   plans.resize(clusters_.nodes.size());
-  const Query q{&planes, origin, error_per_distance, error_floor, &plans};
+  const Query q{&planes, origin, error_per_distance, error_floor, &plans, wanted};
   for (std::int32_t root : roots) {
     plan(root, q);
     emit_plan(root, plans, out);

@@ -19,12 +19,21 @@
 // 470 MiB of indices, in pages of 69 MiB; on the sphere box 4.4 % of 85 MiB, in 10 MiB (a
 // buffer's store costs its whole size at creation: llvmpipe clears it). A face's ranges are
 // drawn with one glMultiDrawElements per slab (ranges that touch are merged).
+//
+// Deferred levels (ClusterOptions::defer_levels): a node's coarser levels are built when a face
+// first could draw one, that is where its own mesh is within the face's error (every level's
+// error is at least the mesh's). pick() then stops at the node and names it; the caller builds
+// the levels named (build_levels) and picks again, until no face names one: the cut is the one
+// all levels built beforehand give, since a plan reads only the levels of nodes it visits and
+// visits the same nodes once those have theirs. Their indices are appended after the
+// hierarchy's (MeshClusters::late_indices), in pages of their own.
 #include "core/mesh/hierarchy/mesh_clusters.h"
 #include "raster/context/gl_objects.h"
 #include "raster/scene/gpu_scene.h"
 
 #include <glm/glm.hpp>
 #include <mutex>
+#include <shared_mutex>
 #include <span>
 #include <vector>
 
@@ -105,15 +114,27 @@ public:
   // `planes` seen from `origin` (for occlusion culling: raster/shadow/shadow_occlusion.h).
   // error_floor: an error no shadow test can tell (far below the depth bias), so that coplanar
   // simplification, exact up to rounding, serves even a VPL inside a node's bounds.
+  // wanted: gets the nodes whose deferred levels the cut needs (then `out` is not the cut:
+  // build_levels(*wanted), and pick again); nullptr: such nodes are planned without levels.
   void pick(const std::array<glm::vec4, 4>& planes, const glm::vec3& origin,
             float error_per_distance, float error_floor, Plans& plans,
-            std::vector<ClusterPick>& out) const {
-    pick(clusters_.roots, planes, origin, error_per_distance, error_floor, plans, out);
+            std::vector<ClusterPick>& out, std::vector<std::int32_t>* wanted = nullptr) const {
+    pick(clusters_.roots, planes, origin, error_per_distance, error_floor, plans, out, wanted);
   }
   // The same over the trees of `roots` alone (some of clusters().roots).
   void pick(std::span<const std::int32_t> roots, const std::array<glm::vec4, 4>& planes,
             const glm::vec3& origin, float error_per_distance, float error_floor, Plans& plans,
-            std::vector<ClusterPick>& out) const;
+            std::vector<ClusterPick>& out, std::vector<std::int32_t>* wanted = nullptr) const;
+  // Builds the deferred levels of `nodes` (core/mesh/hierarchy/cluster_levels.h
+  // add_deferred_levels, on all cores) that are still pending, from any thread (one build at a
+  // time; picks wait for it).
+  void build_levels(const std::vector<std::int32_t>& nodes) const;
+  // The nodes whose deferred levels build_levels built, and the seconds it took.
+  struct LateLevels {
+    std::size_t nodes = 0;
+    double seconds = 0.0;
+  };
+  LateLevels late_levels() const;
   // A vertex array of the current context over the scene's vertices and this hierarchy's
   // indices (vertex arrays are not shared between contexts): what draw() draws through.
   // (Its element buffer is bound per slab by draw().)
@@ -136,27 +157,41 @@ private:
     glm::vec3 origin;
     float error_per_distance, error_floor;
     Plans* plans;
+    std::vector<std::int32_t>* wanted;
   };
   // A node's acceptable mesh of at most this many triangles is taken without a look below.
   static constexpr std::uint32_t kSmallEnough = 64;
   std::uint32_t plan(std::int32_t id, const Query& q) const;
   void emit_plan(std::int32_t id, const Plans& plans, std::vector<ClusterPick>& out) const;
 
-  // Copies `count` pages from page `page` into consecutive slots from `slot` (in one slab).
+  // Copies `count` pages from page `page` into consecutive slots from `slot` (in one slab; all
+  // of the hierarchy's indices or all late ones).
   void copy_pages(std::size_t page, std::size_t slot, std::size_t count) const;
+  // The first page of the late indices (MeshClusters::late_base).
+  std::size_t late_page() const { return late_base_ / kPageIndices; }
   // The slab for `slot`, made when it is the first slot of a new one.
   GLuint slab_of(std::size_t slot) const;
+  // The slots free from the next (slots_used_, moved to the next slab's first where its slab is
+  // full) to its slab's end.
+  std::size_t free_slots() const;
 
   const GladGLContext* api_;
   const GpuScene* gpu_;
-  MeshClusters clusters_;       // its indices all behind stored_indices: the source of the pages
-  std::size_t index_count_ = 0; // of the hierarchy
+  // Its indices all behind stored_indices: the source of the pages (late ones: late_indices).
+  // Its levels grow (build_levels) under levels_mutex_, which plans and copies read it under.
+  mutable MeshClusters clusters_;
+  mutable std::shared_mutex levels_mutex_;
+  mutable LateLevels late_;
+  std::size_t index_count_ = 0; // of the hierarchy, before the late indices
+  std::size_t late_base_ = 0;   // clusters_.late_base()
   bool simplify_;
   std::size_t slab_pages_;
   mutable std::mutex pages_mutex_;                  // guards what follows
   mutable std::vector<std::uint32_t> slot_of_page_; // its slot + 1; 0: not on the GPU
   mutable std::vector<Buffer> slabs_;
-  mutable std::size_t slots_used_ = 0;
+  mutable std::vector<std::size_t> slab_capacity_; // pages per slab
+  mutable std::size_t slots_used_ = 0;             // slots before the next free one
+  mutable std::size_t pages_copied_ = 0;
   mutable bool shared_ = false; // share_with_contexts() was called
 };
 

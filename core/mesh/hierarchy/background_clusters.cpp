@@ -43,7 +43,7 @@ bool BackgroundClusters::builds(const Scene& scene, const ClusterOptions& option
   return future_.valid() && &scene == scene_ && cache == cache_ &&
          options.leaf_triangles == options_.leaf_triangles &&
          options.simplify == options_.simplify && options.max_levels == options_.max_levels &&
-         options.camera == options_.camera;
+         options.camera == options_.camera && options.defer_levels == options_.defer_levels;
 }
 
 MeshClusters BackgroundClusters::take() {

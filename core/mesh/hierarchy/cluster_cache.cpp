@@ -1,5 +1,8 @@
 #include "core/mesh/hierarchy/cluster_cache.h"
 
+#include "core/mesh/hierarchy/hashed_file.h"
+#include "core/mesh/hierarchy/late_levels_file.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -19,31 +22,15 @@
 namespace irad {
 
 namespace fs = std::filesystem;
+using namespace cache_io;
 
 namespace {
 
 constexpr char kMagic[8] = {'I', 'R', 'A', 'D', 'L', 'O', 'D', '\0'};
-// The file layout's version: raise it whenever the layout or the build's results change.
-constexpr std::uint32_t kFormat = 13;
 constexpr std::size_t kNodeWords = 15; // a node as 32-bit words (write_node)
 constexpr std::size_t kLevelWords = 3; // a level as 32-bit words
 // indices, nodes, roots, levels, triangles, original, root materials
 constexpr std::size_t kCountFields = 7;
-
-template <class T>
-std::uint32_t word(T value) {
-  static_assert(sizeof(T) == 4);
-  std::uint32_t w;
-  std::memcpy(&w, &value, 4);
-  return w;
-}
-template <class T>
-T from_word(std::uint32_t w) {
-  static_assert(sizeof(T) == 4);
-  T value;
-  std::memcpy(&value, &w, 4);
-  return value;
-}
 
 std::array<std::uint32_t, kNodeWords> node_words(const ClusterNode& n) {
   return {word(n.bounds.lo.x), word(n.bounds.lo.y), word(n.bounds.lo.z), word(n.bounds.hi.x),
@@ -67,91 +54,14 @@ ClusterNode node_from(const std::uint32_t* w) {
   return n;
 }
 
-struct FreeHashState {
-  void operator()(XXH3_state_t* s) const { XXH3_freeState(s); }
-};
-using HashState = std::unique_ptr<XXH3_state_t, FreeHashState>;
-
-// Bytes written through a running XXH3-64 checksum.
-class HashedWriter {
-public:
-  explicit HashedWriter(const fs::path& path) : out_(path, std::ios::binary | std::ios::trunc) {
-    XXH3_64bits_reset(state_.get());
-  }
-  void bytes(const void* data, std::size_t n) {
-    XXH3_64bits_update(state_.get(), data, n);
-    out_.write(static_cast<const char*>(data), static_cast<std::streamsize>(n));
-  }
-  template <class T>
-  void values(const std::vector<T>& v) {
-    bytes(v.data(), v.size() * sizeof(T));
-  }
-  // The checksum of everything so far, appended (not hashed); whether every write succeeded.
-  bool finish() {
-    const std::uint64_t sum = XXH3_64bits_digest(state_.get());
-    out_.write(reinterpret_cast<const char*>(&sum), sizeof sum);
-    out_.close();
-    return static_cast<bool>(out_);
-  }
-
-private:
-  std::ofstream out_;
-  HashState state_{XXH3_createState()};
-};
-
-// Reads what HashedWriter wrote, hashing as it goes; any short read leaves it failed.
-class HashedReader {
-public:
-  explicit HashedReader(std::shared_ptr<const OpenFile> file) : file_(std::move(file)) {
-    XXH3_64bits_reset(state_.get());
-  }
-  std::uint64_t offset() const { return offset_; }
-  bool bytes(void* data, std::size_t n) {
-    ok_ = ok_ && file_->read_at(data, n, offset_);
-    if (!ok_) return false;
-    offset_ += n;
-    XXH3_64bits_update(state_.get(), data, n);
-    return true;
-  }
-  template <class T>
-  bool values(std::vector<T>& v, std::size_t n) {
-    v.resize(n);
-    return bytes(v.data(), n * sizeof(T));
-  }
-  // Hashes `n` 32-bit indices through a small buffer, keeping none; all_below: whether every
-  // one is below `vertices`.
-  bool indices(std::size_t n, std::size_t vertices, bool& all_below) {
-    all_below = true;
-    std::vector<std::uint32_t> chunk(std::min<std::size_t>(n, std::size_t{1} << 18));
-    for (std::size_t done = 0; done < n;) {
-      const std::size_t k = std::min(chunk.size(), n - done);
-      if (!bytes(chunk.data(), k * sizeof(std::uint32_t))) return false;
-      all_below = all_below && below(chunk.data(), k, vertices);
-      done += k;
-    }
-    return true;
-  }
-  // Whether the stored checksum follows and matches (the caller checked the file's size).
-  bool checksum_matches() {
-    std::uint64_t stored = 0;
-    return ok_ && file_->read_at(&stored, sizeof stored, offset_) &&
-           stored == XXH3_64bits_digest(state_.get());
-  }
-
-private:
-  std::shared_ptr<const OpenFile> file_;
-  std::uint64_t offset_ = 0;
-  bool ok_ = true;
-  HashState state_{XXH3_createState()};
-};
-
 struct Header {
   char magic[8];
   std::uint32_t format, meshopt;
+  std::uint32_t deferred_max_levels, deferred_step; // MeshClusters's
   std::uint64_t key_low, key_high;
   std::uint64_t counts[kCountFields];
 };
-static_assert(sizeof(Header) == 88, "the header has no padding");
+static_assert(sizeof(Header) == 96, "the header has no padding");
 
 // The file's size for a header's counts (whether it can hold them at all is the caller's).
 std::uintmax_t expected_size(const Header& h) {
@@ -164,8 +74,10 @@ std::uintmax_t expected_size(const Header& h) {
 Header header_of(const MeshClusters& c, const ClusterKey& key) {
   Header h{};
   std::memcpy(h.magic, kMagic, sizeof kMagic);
-  h.format = kFormat;
+  h.format = kClusterCacheFormat;
   h.meshopt = MESHOPTIMIZER_VERSION;
+  h.deferred_max_levels = static_cast<std::uint32_t>(c.deferred_max_levels);
+  h.deferred_step = static_cast<std::uint32_t>(c.deferred_step);
   h.key_low = key.low;
   h.key_high = key.high;
   const std::uint64_t counts[kCountFields] = {
@@ -215,7 +127,7 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, const Scene&
     why = "unreadable or shorter than its header";
     return c;
   }
-  if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0 || h.format != kFormat ||
+  if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0 || h.format != kClusterCacheFormat ||
       h.meshopt != MESHOPTIMIZER_VERSION) {
     why = "another format or meshoptimizer version";
     return c;
@@ -248,6 +160,8 @@ MeshClusters read_file(const fs::path& path, const ClusterKey& key, const Scene&
                         words[k * kLevelWords + 2]});
   ok = ok && r.values(c.triangles, h.counts[4]) && r.values(c.root_materials, h.counts[6]);
   c.original_indices = h.counts[5];
+  c.deferred_max_levels = static_cast<int>(std::min<std::uint32_t>(h.deferred_max_levels, 1024));
+  c.deferred_step = static_cast<int>(std::min<std::uint32_t>(h.deferred_step, 1024));
   if (!ok || !r.checksum_matches()) {
     why = "checksum mismatch";
     return {};
@@ -294,7 +208,7 @@ void trim_folder(const fs::path& folder) {
       if (now - t > std::chrono::hours(1)) fs::remove(p, ec);
       continue;
     }
-    if (p.extension() != ".lod" && p.extension() != ".wall") continue;
+    if (p.extension() != ".lod" && p.extension() != ".lvl" && p.extension() != ".wall") continue;
     total += e.file_size(ec);
     files.emplace_back(t, p);
   }
@@ -325,8 +239,13 @@ std::string check_nodes(const MeshClusters& c) {
         !in_indices(node.leaf_first, node.leaf_count) ||
         std::uint64_t{node.leaf_first} + node.leaf_count > c.original_indices)
       return at + "a range outside the indices";
-    if (std::uint64_t{node.levels_first} + node.levels_count > c.levels.size())
+    if (node.levels_pending()) {
+      if (node.levels_count != 0 || c.deferred_max_levels < 1 || c.deferred_max_levels > 64 ||
+          (c.deferred_step != 2 && c.deferred_step != 4))
+        return at + "pending levels without a way to build them";
+    } else if (std::uint64_t{node.levels_first} + node.levels_count > c.levels.size()) {
       return at + "levels outside the list";
+    }
     const bool leaf = node.children[0] < 0 && node.children[1] < 0;
     for (std::int32_t child : node.children)
       if (!leaf && (child <= static_cast<std::int64_t>(k) || static_cast<std::size_t>(child) >= n))
@@ -372,12 +291,13 @@ ClusterKey cluster_key(const Scene& scene, const ClusterOptions& options) {
   const std::uint32_t leaf = options.leaf_triangles != 0
                                  ? options.leaf_triangles
                                  : automatic_leaf_triangles(scene.triangle_count());
-  const std::array<std::uint32_t, 6> settings = {kFormat,
+  const std::array<std::uint32_t, 7> settings = {kClusterCacheFormat,
                                                  MESHOPTIMIZER_VERSION,
                                                  leaf,
                                                  options.simplify ? 1u : 0u,
                                                  static_cast<std::uint32_t>(options.max_levels),
-                                                 options.camera ? 1u : 0u};
+                                                 options.camera ? 1u : 0u,
+                                                 options.defer_levels ? 1u : 0u};
   hasher.add(settings.data(), sizeof settings);
   const float diagonal = scene.bounds.diagonal();
   hasher.add(&diagonal, sizeof diagonal);
@@ -456,10 +376,12 @@ std::string validate_clusters(const MeshClusters& c, std::size_t vertices, std::
     return "the original part exceeds the indices";
   for (std::uint32_t i : c.indices)
     if (i >= vertices) return "an index past the vertices";
+  if (!below(c.late_indices.data(), c.late_indices.size(), vertices))
+    return "a late index past the vertices";
   if (std::string why = check_nodes(c); !why.empty()) return why;
   for (const ClusterLevel& l : c.levels)
     if (!std::isfinite(l.error) || l.count % 3 != 0 ||
-        std::uint64_t{l.first} + l.count > c.index_count())
+        std::uint64_t{l.first} + l.count > c.index_end())
       return "a level outside the indices";
   for (std::int32_t r : c.roots)
     if (r < 0 || static_cast<std::size_t>(r) >= c.nodes.size()) return "a root out of range";
@@ -486,13 +408,15 @@ void write_cache_file(const fs::path& path, const ClusterKey& key, const MeshClu
     std::string why;
     if (!write_atomically(
             path, [&](const fs::path& to) { return write_file(to, c, key); }, why)) {
-      out = {CacheOutcome::Unwritable, why};
+      out.set(CacheOutcome::Unwritable, why);
     } else {
       if (out.outcome == CacheOutcome::Off) out.outcome = CacheOutcome::Written;
+      std::error_code ec; // late levels of an older file with this key: built again as needed
+      fs::remove(late_levels_path(path), ec);
       trim_folder(path.parent_path());
     }
   } catch (const std::exception& e) { // memory, the file system
-    out = {CacheOutcome::Unwritable, e.what()};
+    out.set(CacheOutcome::Unwritable, e.what());
   }
   if (times) times->lap("cache write", start);
 }
@@ -525,17 +449,20 @@ MeshClusters cached_mesh_clusters(const Scene& scene, const ClusterOptions& opti
   auto start = StageTimes::Clock::now();
   const ClusterKey key = cluster_key(scene, options);
   const fs::path path = folder / (key.hex() + ".lod");
+  out.file = path;
+  out.key = key;
   std::error_code ec;
   if (fs::exists(path, ec)) {
     std::string why;
     MeshClusters c = read_file(path, key, scene, why);
+    if (why.empty()) out.late_nodes_read = read_late_levels(path, key, scene.positions.size(), c);
     stages.lap("cache read", start);
     if (why.empty()) {
       out.outcome = CacheOutcome::Hit;
       fs::last_write_time(path, fs::file_time_type::clock::now(), ec); // a use
       return c;
     }
-    out = {CacheOutcome::Rebuilt, why};
+    out.set(CacheOutcome::Rebuilt, why);
   }
   MeshClusters c = build(&stages);
   if (later) { // the indices shared between the hierarchy's user and the writer

@@ -67,6 +67,14 @@ enum class CacheOutcome {
 struct CacheResult {
   CacheOutcome outcome = CacheOutcome::Off;
   std::string reason; // why a file was not used, or could not be written
+  // The hierarchy's file and key (empty with the cache off), for its late levels' file.
+  std::filesystem::path file;
+  ClusterKey key;
+  std::size_t late_nodes_read = 0; // nodes whose late levels came from the late file
+  void set(CacheOutcome o, std::string why) {
+    outcome = o;
+    reason = std::move(why);
+  }
 };
 const char* outcome_name(CacheOutcome outcome); // "off", "hit", "written", "rebuilt", ...
 

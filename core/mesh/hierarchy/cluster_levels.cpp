@@ -3,7 +3,10 @@
 #include "core/mesh/local_vertices.h"
 #include "core/util/parallel_rows.h"
 
+#include "core/util/error.h"
+
 #include <algorithm>
+#include <limits>
 #include <meshoptimizer.h>
 #include <numeric>
 
@@ -29,11 +32,13 @@ struct Simplified {
   bool exact = false; // every collapse within kExact of the extent
 };
 enum class Border { Locked, Free };
+// local_of: a LocalMaps map, or nullptr (the input renumbered through a small hash table: the
+// same numbers).
 Simplified simplify_union(const Scene& scene, const std::vector<std::uint32_t>& input,
-                          std::vector<std::uint32_t>& local_of, std::size_t divisor = 2,
+                          std::vector<std::uint32_t>* local_of, std::size_t divisor = 2,
                           float target_error = 1.0f, Border border = Border::Locked) {
   // A compact vertex array of the vertices used (meshoptimizer scales by all it is given).
-  const LocalVertices v = local_vertices(input, local_of);
+  const LocalVertices v = local_of ? local_vertices(input, *local_of) : local_vertices(input);
   const std::vector<std::uint32_t>& local = v.local;
   std::vector<glm::vec3> positions(v.global.size());
   for (std::size_t l = 0; l < positions.size(); ++l) positions[l] = scene.positions[v.global[l]];
@@ -156,15 +161,10 @@ std::vector<std::uint32_t> shallow_cut(const MeshClusters& out, std::size_t root
 // levels' time, and below a tenth of the triangles on 62 % of the nodes). A root of one connected
 // component (`whole`) starts from the shallow cut of its tree instead and quarters it, the
 // component's own open edges locked: a closed surface simplifies as far as its error allows.
-NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size_t n, bool whole,
-                          int max_levels, int step, const std::vector<int>& height,
-                          std::vector<std::uint32_t>& local_of) {
-  const ClusterNode& node = out.nodes[n];
-  float error = node.error;
-  std::vector<std::uint32_t> mesh =
-      whole ? shallow_cut(out, n, height, error)
-            : std::vector<std::uint32_t>(out.indices.begin() + node.mesh_first,
-                                         out.indices.begin() + node.mesh_first + node.mesh_count);
+// `mesh`: the node's, of error `error`; local_of as simplify_union's.
+NodeLevels levels_of_mesh(const Scene& scene, std::vector<std::uint32_t> mesh, float error,
+                          bool whole, int max_levels, int step,
+                          std::vector<std::uint32_t>* local_of) {
   NodeLevels result;
   const Border border = whole ? Border::Locked : Border::Free;
   for (int steps = 0; steps < max_levels && !mesh.empty();) {
@@ -184,6 +184,20 @@ NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size
     result.indices.insert(result.indices.end(), mesh.begin(), mesh.end());
   }
   return result;
+}
+
+// Node n's levels (levels_of_mesh) from its mesh in out.indices, or for a component's root
+// (`whole`) from its shallow cut.
+NodeLevels coarser_levels(const Scene& scene, const MeshClusters& out, std::size_t n, bool whole,
+                          int max_levels, int step, const std::vector<int>& height,
+                          std::vector<std::uint32_t>& local_of) {
+  const ClusterNode& node = out.nodes[n];
+  float error = node.error;
+  std::vector<std::uint32_t> mesh =
+      whole ? shallow_cut(out, n, height, error)
+            : std::vector<std::uint32_t>(out.indices.begin() + node.mesh_first,
+                                         out.indices.begin() + node.mesh_first + node.mesh_count);
+  return levels_of_mesh(scene, std::move(mesh), error, whole, max_levels, step, &local_of);
 }
 
 } // namespace
@@ -214,7 +228,7 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
                                  out.nodes[static_cast<std::size_t>(node.children[1])].error);
     node.error = below;
     if (simplify && !input.empty()) {
-      Simplified s = simplify_union(scene, input, local.of(worker));
+      Simplified s = simplify_union(scene, input, &local.of(worker));
       if (s.indices.size() < input.size()) {
         input = std::move(s.indices);
         node.error = below + s.error;
@@ -243,13 +257,20 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
 }
 
 // Every node's coarser levels, in parallel (the component roots first: the longest tasks), then
-// appended in node order: the same result on any number of threads.
+// appended in node order: the same result on any number of threads. Deferred: only the roots'.
 void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, int step,
-                        const std::vector<bool>& whole, bool leaf_levels, unsigned threads) {
+                        const std::vector<bool>& whole, bool leaf_levels, bool defer,
+                        unsigned threads) {
   std::vector<std::size_t> order;
+  std::vector<bool> pending(out.nodes.size(), false);
   order.reserve(out.nodes.size());
-  for (std::size_t n = 0; n < out.nodes.size(); ++n)
-    if (leaf_levels || whole[n] || !out.nodes[n].leaf()) order.push_back(n);
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) {
+    if (!leaf_levels && !whole[n] && out.nodes[n].leaf()) continue;
+    if (defer && !whole[n])
+      pending[n] = true;
+    else
+      order.push_back(n);
+  }
   std::stable_partition(order.begin(), order.end(), [&](std::size_t n) { return whole[n]; });
   std::vector<NodeLevels> levels(out.nodes.size());
   const std::vector<int> height = node_heights(out);
@@ -267,6 +288,13 @@ void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, i
   out.levels.reserve(count);
   for (std::size_t n = 0; n < out.nodes.size(); ++n) {
     ClusterNode& node = out.nodes[n];
+    if (pending[n]) {
+      node.levels_first = ClusterNode::kPendingLevels;
+      node.levels_count = 0;
+      out.deferred_max_levels = max_levels;
+      out.deferred_step = step;
+      continue;
+    }
     node.levels_first = static_cast<std::uint32_t>(out.levels.size());
     const auto base = static_cast<std::uint32_t>(out.indices.size());
     for (ClusterLevel level : levels[n].levels) {
@@ -276,6 +304,47 @@ void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, i
     out.indices.insert(out.indices.end(), levels[n].indices.begin(), levels[n].indices.end());
     node.levels_count = static_cast<std::uint32_t>(levels[n].levels.size());
     levels[n] = {};
+  }
+}
+
+void add_deferred_levels(const Scene& scene, MeshClusters& c, std::vector<std::int32_t> nodes,
+                         unsigned threads) {
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  std::erase_if(nodes, [&](std::int32_t n) {
+    return n < 0 || static_cast<std::size_t>(n) >= c.nodes.size() ||
+           !c.nodes[static_cast<std::size_t>(n)].levels_pending();
+  });
+  if (nodes.empty()) return;
+  std::vector<NodeLevels> levels(nodes.size());
+  parallel_tasks(static_cast<int>(nodes.size()), threads, [&](int k, unsigned) {
+    const ClusterNode& node = c.nodes[static_cast<std::size_t>(nodes[static_cast<std::size_t>(k)])];
+    std::vector<std::uint32_t> mesh(node.mesh_count);
+    if (c.stored_indices)
+      c.stored_indices->copy_range(node.mesh_first, node.mesh_count, mesh.data());
+    else
+      std::copy_n(c.indices.begin() + node.mesh_first, node.mesh_count, mesh.begin());
+    levels[static_cast<std::size_t>(k)] = levels_of_mesh(
+        scene, std::move(mesh), node.error, false, c.deferred_max_levels, c.deferred_step, nullptr);
+  });
+  // This call's indices from a multiple of kLateAlign of the index space.
+  c.late_indices.resize((c.late_indices.size() + kLateAlign - 1) / kLateAlign * kLateAlign);
+  std::size_t added = 0;
+  for (const NodeLevels& l : levels) added += l.indices.size();
+  if (c.late_base() + c.late_indices.size() + added > std::numeric_limits<std::uint32_t>::max())
+    throw Error("", "shadow hierarchy", "levels past 2^32 indices");
+  c.late_indices.reserve(c.late_indices.size() + added);
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    ClusterNode& node = c.nodes[static_cast<std::size_t>(nodes[k])];
+    c.late_nodes.push_back(nodes[k]);
+    node.levels_first = static_cast<std::uint32_t>(c.levels.size());
+    node.levels_count = static_cast<std::uint32_t>(levels[k].levels.size());
+    const std::size_t base = c.late_base() + c.late_indices.size();
+    for (ClusterLevel level : levels[k].levels) {
+      level.first += static_cast<std::uint32_t>(base);
+      c.levels.push_back(level);
+    }
+    c.late_indices.insert(c.late_indices.end(), levels[k].indices.begin(), levels[k].indices.end());
   }
 }
 

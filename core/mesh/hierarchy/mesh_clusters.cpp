@@ -378,6 +378,13 @@ float distance_to(const Bounds& b, const glm::vec3& p) {
   return glm::length(glm::max(glm::max(b.lo - p, p - b.hi), glm::vec3(0.0f)));
 }
 
+ClusterOptions shadow_cluster_options(const ShadowLodOptions& lod) {
+  ClusterOptions o;
+  o.simplify = lod.mode == ShadowLodMode::On;
+  o.defer_levels = o.simplify && lod.levels_on_demand;
+  return o;
+}
+
 int level_step(std::uint32_t leaf_triangles) {
   return leaf_triangles >= kQuarteringLeaf ? 4 : 2;
 }
@@ -427,7 +434,7 @@ MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& reque
   start = stages.lap("inner", start);
   if (options.simplify && !options.camera)
     add_coarser_levels(scene, out, options.max_levels, level_step(options.leaf_triangles), whole,
-                       leaf_levels(options.leaf_triangles), options.threads);
+                       leaf_levels(options.leaf_triangles), options.defer_levels, options.threads);
   stages.lap("levels", start);
   return out;
 }

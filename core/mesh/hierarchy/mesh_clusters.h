@@ -90,6 +90,10 @@ struct ShadowLodOptions {
   // RasterOptions::choose_planes, which irad::render gives (the scan, asked when shadow maps are
   // first drawn to shade). (The per-VPL reference passes keep them.)
   ShadowPlanes planes = ShadowPlanes::Auto;
+  // On: each node's coarser levels built when a face first could draw one
+  // (ClusterOptions::defer_levels; raster/shadow/shadow_lod.h); false: all with the hierarchy.
+  // The same shadows either way.
+  bool levels_on_demand = true;
 };
 
 // A coarser level of a node: indices [first, first + count), error as ClusterNode::error.
@@ -109,10 +113,20 @@ struct ClusterNode {
   std::uint32_t leaf_first = 0, leaf_count = 0;
   std::int32_t children[2] = {-1, -1};
   // Its coarser levels: MeshClusters::levels [levels_first, levels_first + levels_count),
-  // errors ascending, triangles descending.
+  // errors ascending, triangles descending; levels_first kPendingLevels (count 0): not built yet
+  // (ClusterOptions::defer_levels; add_deferred_levels builds them). A pending node is never a
+  // component's root, so every level it will have has an error of at least `error`.
+  static constexpr std::uint32_t kPendingLevels = ~0u;
   std::uint32_t levels_first = 0, levels_count = 0;
   bool leaf() const { return children[0] < 0; }
+  bool levels_pending() const { return levels_first == kPendingLevels; }
 };
+
+// Where the levels built after the hierarchy (add_deferred_levels) start in its index space:
+// MeshClusters::late_indices are indices [late_base(), late_base() + late_indices.size()), and
+// each call's start on a multiple of this (a multiple of the shadow passes' page,
+// raster/shadow/shadow_lod.h: a page the GPU copied never grows).
+inline constexpr std::size_t kLateAlign = 768;
 
 struct MeshClusters {
   std::vector<std::uint32_t> indices; // into Scene::positions, 3 per triangle
@@ -122,6 +136,22 @@ struct MeshClusters {
   std::size_t index_count() const {
     return stored_indices ? stored_indices->size() : indices.size();
   }
+  // The indices of the levels built after the hierarchy (deferred ones), in memory; see
+  // kLateAlign. Their levels follow the others' in `levels`.
+  std::vector<std::uint32_t> late_indices;
+  std::size_t late_base() const {
+    return (index_count() + kLateAlign - 1) / kLateAlign * kLateAlign;
+  }
+  // The end of the index space: past the late indices where there are any.
+  std::size_t index_end() const {
+    return late_indices.empty() ? index_count() : late_base() + late_indices.size();
+  }
+  // Where levels are deferred (ClusterOptions::defer_levels): the build's max_levels and step,
+  // which add_deferred_levels builds them with; 0 where no node is pending.
+  int deferred_max_levels = 0, deferred_step = 0;
+  // The nodes whose levels add_deferred_levels built (or a cache's late file gave), in the order
+  // they were: their levels are those with indices in late_indices.
+  std::vector<std::int32_t> late_nodes;
   std::vector<ClusterNode> nodes; // every tree's nodes, parents before children
   // The trees' roots: one per connected component of at least ClusterOptions::leaf_triangles
   // triangles (its coarser levels simplify the whole component, from its original triangles,
@@ -141,8 +171,8 @@ struct MeshClusters {
   // root; empty for the shadow passes' (their trees mix materials).
   std::vector<std::uint32_t> root_materials;
   std::size_t bytes() const {
-    return indices.size() * sizeof(std::uint32_t) + nodes.size() * sizeof(ClusterNode) +
-           levels.size() * sizeof(ClusterLevel) +
+    return (indices.size() + late_indices.size()) * sizeof(std::uint32_t) +
+           nodes.size() * sizeof(ClusterNode) + levels.size() * sizeof(ClusterLevel) +
            (triangles.size() + root_materials.size()) * sizeof(std::uint32_t);
   }
 };
@@ -156,6 +186,12 @@ struct ClusterOptions {
   // Cull mode: the same image as drawing every triangle).
   bool simplify = true;
   int max_levels = 8; // coarser levels per node at most
+  // Only the components' roots get their coarser levels in the build; every other node's wait
+  // (ClusterNode::levels_pending) until a shadow face could draw one (raster/shadow/shadow_lod.h
+  // builds them then, with add_deferred_levels: the same levels). Most of a big scene's nodes are
+  // never seen from far enough for a level: the 10M-triangle terrain's faces at 256x256 read
+  // about a seventh of its levels.
+  bool defer_levels = false;
   // Threads of the build (0: all cores); the hierarchy is the same on any number.
   unsigned threads = 0;
   // The camera passes' hierarchy (raster/passes/camera_lod.h), which draws every attribute, not
@@ -204,6 +240,10 @@ bool leaf_levels(std::uint32_t leaf_triangles);
 // times: where given, gets the build's stages (weld, planar, tree, inner, levels).
 MeshClusters build_mesh_clusters(const Scene& scene, const ClusterOptions& options = {},
                                  StageTimes* times = nullptr);
+
+// The hierarchy the batched shadow passes draw with `lod` (mode Cull or On): Cull the scene's
+// own triangles (the same image as Off), On also their reductions and levels.
+ClusterOptions shadow_cluster_options(const ShadowLodOptions& lod);
 
 // The distance from p to the box b (0 inside).
 float distance_to(const Bounds& b, const glm::vec3& p);
