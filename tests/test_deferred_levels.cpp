@@ -90,23 +90,33 @@ TEST(DeferredLevels, LocalNumbersAsThroughAMap) {
   }
 }
 
-// Built later, in two calls of shuffled nodes, from indices in memory and from a cache file: the
-// levels the build gives every node with the hierarchy. The roots of components keep theirs.
+// The nodes whose levels are pending in c.
+std::vector<std::int32_t> pending_nodes(const MeshClusters& c) {
+  std::vector<std::int32_t> out;
+  for (std::size_t n = 0; n < c.nodes.size(); ++n)
+    if (c.nodes[n].levels_pending()) out.push_back(static_cast<std::int32_t>(n));
+  return out;
+}
+
+// On one thread the build gives the roots of components their levels and leaves every other
+// node's pending; on more, some of those are built beside the roots' (which, depends on the
+// timing). Built later, in two calls of shuffled nodes, from indices in memory and from a cache
+// file: the levels the build gives every node with the hierarchy.
 TEST(DeferredLevels, TheLevelsTheBuildGives) {
   const Scene s = spheres();
   const MeshClusters eager = build_mesh_clusters(s, options(false));
-  MeshClusters deferred = build_mesh_clusters(s, options(true));
-  std::vector<std::int32_t> pending;
-  for (std::size_t n = 0; n < deferred.nodes.size(); ++n)
-    if (deferred.nodes[n].levels_pending()) pending.push_back(static_cast<std::int32_t>(n));
-  ASSERT_GT(pending.size(), deferred.nodes.size() / 2);
+  ClusterOptions one = options(true);
+  one.threads = 1;
+  MeshClusters serial = build_mesh_clusters(s, one);
+  std::size_t candidates = 0; // nodes with levels, other than the two spheres' roots
+  for (std::size_t n = 0; n < eager.nodes.size(); ++n)
+    candidates += eager.nodes[n].levels_count > 0 ? 1 : 0;
+  EXPECT_EQ(pending_nodes(serial).size() + 2, candidates);
   std::size_t roots_built = 0; // the two spheres' (the small ones' tree waits too)
-  for (std::int32_t root : deferred.roots)
-    roots_built += deferred.nodes[static_cast<std::size_t>(root)].levels_pending() ? 0 : 1;
+  for (std::int32_t root : serial.roots)
+    roots_built += serial.nodes[static_cast<std::size_t>(root)].levels_pending() ? 0 : 1;
   EXPECT_EQ(roots_built, 2u);
-  EXPECT_LT(deferred.levels.size(), eager.levels.size() / 4);
-  std::shuffle(pending.begin(), pending.end(), std::mt19937(5));
-  const std::size_t half = pending.size() / 2;
+  MeshClusters beside = build_mesh_clusters(s, options(true));
   const fs::path folder =
       fs::temp_directory_path() / ("irad_deferred_" + std::to_string(::getpid()));
   fs::remove_all(folder);
@@ -115,17 +125,22 @@ TEST(DeferredLevels, TheLevelsTheBuildGives) {
   MeshClusters stored = cached_mesh_clusters(s, options(true), folder, nullptr, &result);
   ASSERT_EQ(result.outcome, CacheOutcome::Hit);
   ASSERT_TRUE(stored.stored_indices);
-  for (MeshClusters* c : {&deferred, &stored}) {
+  for (MeshClusters* c : {&serial, &beside, &stored}) {
+    std::vector<std::int32_t> pending = pending_nodes(*c);
+    std::shuffle(pending.begin(), pending.end(), std::mt19937(5));
+    const std::size_t half = pending.size() / 2;
     add_deferred_levels(s, *c, {pending.begin(), pending.begin() + half}, 2);
     EXPECT_EQ(c->late_nodes.size(), half);
     EXPECT_EQ(c->late_base() % kLateAlign, 0u);
     add_deferred_levels(s, *c, {pending.begin(), pending.end()}, 3); // the first half again
     EXPECT_EQ(c->late_nodes.size(), pending.size());
+    EXPECT_TRUE(pending_nodes(*c).empty());
     EXPECT_EQ(validate_clusters(*c, s.positions.size(), s.triangle_count(), s.materials.size()),
               "");
   }
   for (std::size_t n = 0; n < eager.nodes.size(); ++n) {
-    EXPECT_TRUE(same_levels(eager, deferred, n)) << "node " << n;
+    EXPECT_TRUE(same_levels(eager, serial, n)) << "node " << n;
+    EXPECT_TRUE(same_levels(eager, beside, n)) << "node " << n << ", beside the roots";
     EXPECT_TRUE(same_levels(eager, stored, n)) << "node " << n << ", stored";
   }
   fs::remove_all(folder);
@@ -197,7 +212,9 @@ TEST(DeferredLevels, TheFacesPickTheCutsOfEveryLevelBuilt) {
   const GladGLContext& api = context->api();
   const gl::GpuScene gpu(api, s);
   const gl::ShadowLod eager(api, gpu, build_mesh_clusters(s, options(false)), true, 8);
-  const gl::ShadowLod deferred(api, gpu, build_mesh_clusters(s, options(true)), true, 8);
+  ClusterOptions one = options(true); // every level but the roots' pending
+  one.threads = 1;
+  const gl::ShadowLod deferred(api, gpu, build_mesh_clusters(s, one), true, 8);
   int rounds = 0;
   const std::vector<Cut> want = cuts(eager, rounds);
   EXPECT_EQ(rounds, 0);

@@ -6,6 +6,7 @@
 #include "core/util/error.h"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <meshoptimizer.h>
 #include <numeric>
@@ -261,24 +262,32 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
 void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, int step,
                         const std::vector<bool>& whole, bool leaf_levels, bool defer,
                         unsigned threads) {
-  std::vector<std::size_t> order;
-  std::vector<bool> pending(out.nodes.size(), false);
-  order.reserve(out.nodes.size());
-  for (std::size_t n = 0; n < out.nodes.size(); ++n) {
-    if (!leaf_levels && !whole[n] && out.nodes[n].leaf()) continue;
-    if (defer && !whole[n])
-      pending[n] = true;
-    else
-      order.push_back(n);
-  }
-  std::stable_partition(order.begin(), order.end(), [&](std::size_t n) { return whole[n]; });
-  std::vector<NodeLevels> levels(out.nodes.size());
   const std::vector<int> height = node_heights(out);
+  std::vector<std::size_t> order; // the component roots first, then the rest from the top down
+  order.reserve(out.nodes.size());
+  for (std::size_t n = 0; n < out.nodes.size(); ++n)
+    if (leaf_levels || whole[n] || !out.nodes[n].leaf()) order.push_back(n);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return whole[a] != whole[b] ? bool(whole[a]) : height[a] > height[b];
+  });
+  // Deferred: a node other than a root is built only while a root's task still runs (on a core
+  // that would otherwise wait for it); the rest stay pending.
+  std::atomic<std::size_t> roots_left = static_cast<std::size_t>(
+      std::count_if(order.begin(), order.end(), [&](std::size_t n) { return whole[n]; }));
+  std::vector<bool> pending(out.nodes.size(), false);
+  std::vector<NodeLevels> levels(out.nodes.size());
   LocalMaps local(scene.positions.size(), worker_count(threads, static_cast<int>(order.size())));
+  std::vector<char> skipped(out.nodes.size(), 0); // written by the task of its node alone
   parallel_tasks(static_cast<int>(order.size()), threads, [&](int k, unsigned worker) {
     const std::size_t n = order[static_cast<std::size_t>(k)];
+    if (defer && !whole[n] && roots_left.load() == 0) {
+      skipped[n] = 1;
+      return;
+    }
     levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, step, height, local.of(worker));
+    if (whole[n]) --roots_left;
   });
+  for (std::size_t n = 0; n < out.nodes.size(); ++n) pending[n] = skipped[n] != 0;
   std::size_t total = out.indices.size(), count = 0; // reserved at once, as above
   for (const NodeLevels& l : levels) {
     total += l.indices.size();

@@ -186,11 +186,13 @@ struct ClusterOptions {
   // Cull mode: the same image as drawing every triangle).
   bool simplify = true;
   int max_levels = 8; // coarser levels per node at most
-  // Only the components' roots get their coarser levels in the build; every other node's wait
-  // (ClusterNode::levels_pending) until a shadow face could draw one (raster/shadow/shadow_lod.h
-  // builds them then, with add_deferred_levels: the same levels). Most of a big scene's nodes are
-  // never seen from far enough for a level: the 10M-triangle terrain's faces at 256x256 read
-  // about a seventh of its levels.
+  // The components' roots get their coarser levels in the build, and other nodes only while a
+  // root's task still runs (cores that would otherwise wait; which nodes, depends on the timing,
+  // their levels do not); every other node's wait (ClusterNode::levels_pending) until a shadow
+  // face could draw one (raster/shadow/shadow_lod.h builds them then, with add_deferred_levels:
+  // the same levels). Many of a big scene's nodes are never seen from far enough for a level: the
+  // 10M-triangle terrain's faces at 256x256 build 1,236 of its 12,955 pending nodes' levels
+  // (docs/performance.md "Big scenes").
   bool defer_levels = false;
   // Threads of the build (0: all cores); the hierarchy is the same on any number.
   unsigned threads = 0;
