@@ -194,7 +194,8 @@ struct ClusterOptions {
   // 10M-triangle terrain's faces at 256x256 build 1,236 of its 12,955 pending nodes' levels
   // (docs/performance.md "Big scenes").
   bool defer_levels = false;
-  // Threads of the build (0: all cores); the hierarchy is the same on any number.
+  // Threads of the build (0: all cores); the hierarchy is the same on any number (with
+  // defer_levels, which nodes' levels come with it depends on the timing; the levels do not).
   unsigned threads = 0;
   // The camera passes' hierarchy (raster/passes/camera_lod.h), which draws every attribute, not
   // only positions: vertices welded only where all their attributes are equal (a seam of
