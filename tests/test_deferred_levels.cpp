@@ -161,7 +161,8 @@ glm::mat4 cube_face(const glm::vec3& origin, int face) {
 using Cut = std::vector<std::pair<std::int32_t, std::vector<std::uint32_t>>>;
 
 // The faces of VPLs near and far, at several resolutions, picked from `lod` as the atlas picks
-// (deferred levels built round by round); `rounds` gets the rounds that built levels.
+// (deferred levels built round by round), each face's pages made resident after its pick;
+// `rounds` gets the rounds that built levels.
 std::vector<Cut> cuts(const gl::ShadowLod& lod, int& rounds) {
   std::mt19937 random(11);
   std::uniform_real_distribution<float> u(-9.0f, 9.0f);
@@ -188,6 +189,7 @@ std::vector<Cut> cuts(const gl::ShadowLod& lod, int& rounds) {
       for (const gl::ClusterPick& p : picks)
         cut.emplace_back(p.node, range_of(lod.clusters(), p.first, p.count));
       out.push_back(std::move(cut));
+      lod.make_resident({picks}); // slabs made while the late pages still grow
     }
   }
   return out;
@@ -215,6 +217,22 @@ TEST(DeferredLevels, TheFacesPickTheCutsOfEveryLevelBuilt) {
   ClusterOptions one = options(true); // every level but the roots' pending
   one.threads = 1;
   const gl::ShadowLod deferred(api, gpu, build_mesh_clusters(s, one), true, 8);
+  // Every page of the hierarchy's own indices on the GPU first: its last slab holds what is left
+  // (fewer than 8 pages), and the late pages must start a slab of their own.
+  const MeshClusters& built = deferred.clusters();
+  std::vector<gl::ClusterPick> base;
+  for (std::size_t n = 0; n < built.nodes.size(); ++n) {
+    const ClusterNode& node = built.nodes[n];
+    base.push_back({node.mesh_first, node.mesh_count, static_cast<std::int32_t>(n)});
+    base.push_back({node.leaf_first, node.leaf_count, static_cast<std::int32_t>(n)});
+    for (std::uint32_t l = 0; l < node.levels_count; ++l) // the roots'
+      base.push_back({built.levels[node.levels_first + l].first,
+                      built.levels[node.levels_first + l].count, static_cast<std::int32_t>(n)});
+  }
+  deferred.make_resident({base});
+  const std::size_t pages =
+      (built.index_count() + gl::ShadowLod::kPageIndices - 1) / gl::ShadowLod::kPageIndices;
+  ASSERT_NE(pages % 8, 0u);
   int rounds = 0;
   const std::vector<Cut> want = cuts(eager, rounds);
   EXPECT_EQ(rounds, 0);
