@@ -191,8 +191,8 @@ struct ClusterOptions {
   // their levels do not); every other node's wait (ClusterNode::levels_pending) until a shadow
   // face could draw one (raster/shadow/shadow_lod.h builds them then, with add_deferred_levels:
   // the same levels). Many of a big scene's nodes are never seen from far enough for a level: the
-  // 10M-triangle terrain's faces at 256x256 build 1,236 of its 12,955 pending nodes' levels
-  // (docs/performance.md "Big scenes").
+  // 10M-triangle terrain's faces at 256x256 build the levels of 1,074-1,236 of its about 13,000
+  // pending nodes (docs/performance.md "Big scenes").
   bool defer_levels = false;
   // Threads of the build (0: all cores); the hierarchy is the same on any number (with
   // defer_levels, which nodes' levels come with it depends on the timing; the levels do not).
