@@ -5,7 +5,6 @@
 // reduction's chunks (core/mesh/planar/planar_chunks.cpp). The map from the mesh's vertices is
 // as long as the mesh's vertex array, so each worker of parallel_tasks keeps one (LocalMaps) and
 // every call leaves it as it found it.
-#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <utility>

@@ -58,7 +58,6 @@ ShadowLod::ShadowLod(const GladGLContext& api, const GpuScene& gpu, MeshClusters
     clusters_.stored_indices = std::make_shared<const StoredIndices>(
         std::make_shared<const std::vector<std::uint32_t>>(std::move(clusters_.indices)));
   clusters_.indices = {};
-  late_base_ = clusters_.late_base();
   slot_of_page_.assign((clusters_.index_end() + kPageIndices - 1) / kPageIndices, 0);
 }
 
@@ -119,7 +118,7 @@ void ShadowLod::copy_pages(std::size_t page, std::size_t slot, std::size_t count
         auto* out = static_cast<std::uint32_t*>(storage);
         if (late)
           std::copy_n(clusters_.late_indices.begin() +
-                          static_cast<std::ptrdiff_t>(first - late_base_),
+                          static_cast<std::ptrdiff_t>(first - clusters_.late_base()),
                       indices, out);
         else
           clusters_.stored_indices->copy_range(first, indices, out);

@@ -168,7 +168,7 @@ private:
   // of the hierarchy's indices or all late ones).
   void copy_pages(std::size_t page, std::size_t slot, std::size_t count) const;
   // The first page of the late indices (MeshClusters::late_base).
-  std::size_t late_page() const { return late_base_ / kPageIndices; }
+  std::size_t late_page() const { return clusters_.late_base() / kPageIndices; }
   // The slab for `slot`, made when it is the first slot of a new one.
   GLuint slab_of(std::size_t slot) const;
   // The slots free from the next (slots_used_, moved to the next slab's first where its slab is
@@ -183,7 +183,6 @@ private:
   mutable std::shared_mutex levels_mutex_;
   mutable LateLevels late_;
   std::size_t index_count_ = 0; // of the hierarchy, before the late indices
-  std::size_t late_base_ = 0;   // clusters_.late_base()
   bool simplify_;
   std::size_t slab_pages_;
   mutable std::mutex pages_mutex_;                  // guards what follows

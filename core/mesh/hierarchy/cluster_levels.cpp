@@ -258,7 +258,8 @@ void simplify_inner_nodes(const Scene& scene, MeshClusters& out, bool simplify, 
 }
 
 // Every node's coarser levels, in parallel (the component roots first: the longest tasks), then
-// appended in node order: the same result on any number of threads. Deferred: only the roots'.
+// appended in node order: the same result on any number of threads (deferred: which nodes are
+// built beside the roots' tasks depends on the timing; their levels do not).
 void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, int step,
                         const std::vector<bool>& whole, bool leaf_levels, bool defer,
                         unsigned threads) {
@@ -274,20 +275,18 @@ void add_coarser_levels(const Scene& scene, MeshClusters& out, int max_levels, i
   // that would otherwise wait for it); the rest stay pending.
   std::atomic<std::size_t> roots_left = static_cast<std::size_t>(
       std::count_if(order.begin(), order.end(), [&](std::size_t n) { return whole[n]; }));
-  std::vector<bool> pending(out.nodes.size(), false);
   std::vector<NodeLevels> levels(out.nodes.size());
   LocalMaps local(scene.positions.size(), worker_count(threads, static_cast<int>(order.size())));
-  std::vector<char> skipped(out.nodes.size(), 0); // written by the task of its node alone
+  std::vector<char> pending(out.nodes.size(), 0); // written by the task of its node alone
   parallel_tasks(static_cast<int>(order.size()), threads, [&](int k, unsigned worker) {
     const std::size_t n = order[static_cast<std::size_t>(k)];
     if (defer && !whole[n] && roots_left.load() == 0) {
-      skipped[n] = 1;
+      pending[n] = 1;
       return;
     }
     levels[n] = coarser_levels(scene, out, n, whole[n], max_levels, step, height, local.of(worker));
     if (whole[n]) --roots_left;
   });
-  for (std::size_t n = 0; n < out.nodes.size(); ++n) pending[n] = skipped[n] != 0;
   std::size_t total = out.indices.size(), count = 0; // reserved at once, as above
   for (const NodeLevels& l : levels) {
     total += l.indices.size();
