@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <meshoptimizer.h>
 #include <vector>
 
@@ -48,8 +49,10 @@ struct LateParts {
 };
 
 // Whether `p` (read under a matching header) fits c: its nodes pending in c, its levels in its
-// indices with errors finite and at least their node's, every index below `vertices`.
+// indices with errors finite and at least their node's, every index below `vertices`, the index
+// space within 32 bits (a level's first, late base added, must not wrap).
 bool late_parts_fit(const LateParts& p, const MeshClusters& c, std::size_t vertices) {
+  if (c.late_base() + p.indices.size() > std::numeric_limits<std::uint32_t>::max()) return false;
   std::size_t level = 0;
   std::vector<bool> seen(c.nodes.size(), false);
   for (std::size_t e = 0; e + 1 < p.entries.size(); e += 2) {
