@@ -2,6 +2,7 @@
 
 #include "core/util/parallel_rows.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <fstream>
@@ -55,10 +56,15 @@ void advise_huge_pages(const void* data, std::size_t bytes) {
 void touch_pages(void* data, std::size_t bytes) {
   constexpr std::size_t kPage = 4096;
   if (bytes < (std::size_t{4} << 20)) return;
+  // Handed out a huge page (512 small ones) at a time: parallel_chunks's chunks of 2^16
+  // elements would give an array below 256 MiB of pages to one thread.
+  constexpr std::size_t kBlock = 512;
   auto* first = static_cast<unsigned char*>(data);
   const std::size_t pages = (bytes + kPage - 1) / kPage;
-  parallel_chunks(pages, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t p = begin; p < end; ++p) first[p * kPage] = 0;
+  const auto blocks = static_cast<int>((pages + kBlock - 1) / kBlock);
+  parallel_rows(blocks, 0, [&](int b) {
+    const std::size_t begin = static_cast<std::size_t>(b) * kBlock;
+    for (std::size_t p = begin; p < std::min(pages, begin + kBlock); ++p) first[p * kPage] = 0;
   });
 }
 
