@@ -13,6 +13,7 @@
 #include "walk/vpl_clustering.h"
 #include "walk/vpl_tracer.h"
 #include "walk/wall_cache.h"
+#include "walk/wall_scan_ahead.h"
 
 #include <algorithm>
 #include <chrono>
@@ -60,7 +61,10 @@ struct Stages {
   StopFlag& stop; // render()'s, shared by the rounds
   RenderResult& r;
   std::unique_ptr<RasterRenderer> raster; // made by the first raster stage, kept for the rounds
-  double planes_scan = -1.0;              // its thinnest-wall scan (seconds); -1: not run
+  double planes_scan = -1.0;              // its wait for the thinnest-wall scan (seconds); -1: none
+  // The thinnest-wall scan begun ahead of the raster's first shadow maps (begin_wall_scan):
+  // render()'s, which ends it before its rays go.
+  std::unique_ptr<WallScanAhead>* wall_scan = nullptr;
   // The raster's shadow hierarchy, building since render() began (early_hierarchy), and the
   // camera's after it (early_camera_hierarchy).
   std::shared_ptr<BackgroundClusters> hierarchy = nullptr, camera_hierarchy = nullptr;
@@ -103,17 +107,20 @@ void run_pt(Stages& s, const RayScene& rays) {
   s.r.seconds.trace = since(t0);
 }
 
-// What the occluder planes' automatic choice found (RenderOptions::raster.shadow_lod.planes Auto).
-void log_planes(Log& log, const PlaneChoice& planes, int resolution, double seconds) {
+// What the occluder planes' automatic choice found (RenderOptions::raster.shadow_lod.planes Auto),
+// the scan's seconds from its start and the render's wait for it.
+void log_planes(Log& log, const PlaneChoice& planes, int resolution, double scanned,
+                double waited) {
   if (planes.thinnest_wall < 0.0f) return;
+  const std::string times = fmt::format("scan {:.3f} s, {:.3f} s waited", scanned, waited);
   if (planes.planes == ShadowPlanes::On)
     log.info(fmt::format("occluder planes on: a wall {:.3g} of the diagonal thick, below {:.3g} at "
-                         "{} texels per face ({:.3f} s)",
-                         planes.thinnest_wall, planes_reach(resolution), resolution, seconds));
+                         "{} texels per face ({})",
+                         planes.thinnest_wall, planes_reach(resolution), resolution, times));
   else
     log.info(fmt::format("occluder planes off: no wall thinner than {:.3g} of the diagonal at {} "
-                         "texels per face ({:.3f} s)",
-                         planes_reach(resolution), resolution, seconds));
+                         "texels per face ({})",
+                         planes_reach(resolution), resolution, times));
 }
 
 // The raster's k: as asked, or automatically 2 for cluster representatives in images below 512
@@ -154,16 +161,35 @@ int shadow_resolution(const RenderOptions& o, const RenderResult& r, const Raste
                                           lists_unsure_pixels(raster));
 }
 
+// The thinnest-wall scan of the raster's occluder planes Auto begun on its own thread
+// (walk/wall_scan_ahead.h) when the raster is made: from then to its first shadow maps the GL
+// upload and the G-buffer leave a core idle. Where a scan will be asked for: a static scene
+// (moving geometry takes the planes without one).
+void begin_wall_scan(Stages& s, const RayScene& rays, int resolution,
+                     const std::filesystem::path& cache) {
+  if (s.wall_scan == nullptr || (s.scene.animation && s.scene.animation->moves_geometry())) return;
+  *s.wall_scan = std::make_unique<WallScanAhead>(s.scene, rays, planes_reach(resolution), cache);
+}
+
 // The occluder planes Auto of the raster's shadow maps (RasterOptions::choose_planes, asked when
-// maps are first drawn to shade): chosen by the thin-wall scan through its cache in `cache`,
-// timed, logged and reported in the result.
+// maps are first drawn to shade): chosen by the thin-wall scan through its cache in `cache` (the
+// one begun ahead where there is one), the wait timed, logged and reported in the result.
 ShadowPlanes settle_planes(Stages& s, const RayScene& rays, int resolution,
                            const std::filesystem::path& cache) {
   const auto t0 = Clock::now();
-  const PlaneChoice planes =
-      choose_shadow_planes(s.scene, rays, ShadowPlanes::Auto, resolution, cache);
+  WallScanAhead* ahead = s.wall_scan ? s.wall_scan->get() : nullptr;
+  PlaneChoice planes;
+  double scanned = 0.0;
+  if (ahead != nullptr) {
+    planes.thinnest_wall = ahead->get(&planes.cache);
+    planes.planes =
+        planes_needed(planes.thinnest_wall, resolution) ? ShadowPlanes::On : ShadowPlanes::Off;
+    scanned = ahead->seconds();
+  } else {
+    planes = choose_shadow_planes(s.scene, rays, ShadowPlanes::Auto, resolution, cache);
+  }
   s.planes_scan = since(t0);
-  log_planes(s.log, planes, resolution, s.planes_scan);
+  log_planes(s.log, planes, resolution, ahead ? scanned : s.planes_scan, s.planes_scan);
   s.r.shadow_planes = planes.planes == ShadowPlanes::On;
   s.r.thinnest_wall = planes.thinnest_wall;
   s.r.wall_cache = outcome_name(planes.cache.outcome);
@@ -193,6 +219,7 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
   if (s.visibility == Visibility::Rays) {
     options.shadow_lod.planes = ShadowPlanes::Off;
   } else if (options.shadow_lod.planes == ShadowPlanes::Auto) {
+    begin_wall_scan(s, rays, options.shadow_resolution, options.hierarchy_cache);
     options.choose_planes = [&s, &rays, resolution = options.shadow_resolution,
                              cache = options.hierarchy_cache] {
       return settle_planes(s, rays, resolution, cache);
@@ -657,6 +684,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options, Log& log) 
   }
   const RayScene rays(scene, bvh_quality(scene, options, s.visibility));
   release_freed_memory(); // the BVH builder's
+  // The raster's thinnest-wall scan (begin_wall_scan), declared after `rays`: ends before them.
+  std::unique_ptr<WallScanAhead> wall_scan;
+  s.wall_scan = &wall_scan;
   r.seconds.load = since(t0);
   if (s.cancelled()) {
     // Interrupted while loading: nothing was rendered.

@@ -1,19 +1,25 @@
 // The thinnest-wall scan's cache (walk/wall_cache.h): a scan written once is read back with the
 // same answer, for its reach or a shorter one; a longer reach, another scene, a truncated or a
 // bit-flipped file is scanned again and written over, never trusted; scenes whose rays pass
-// through alpha are not cached; irad::render reports what the cache did.
+// through alpha are not cached; irad::render reports what the cache did. The scan begun ahead
+// (walk/wall_scan_ahead.h) answers as the scan does, through the same cache, and one stopped
+// before its answer was asked for keeps nothing.
+#include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
 #include "irad/irad.h"
 #include "test_rooms.h"
 #include "walk/ray_scene.h"
 #include "walk/thin_walls.h"
 #include "walk/wall_cache.h"
+#include "walk/wall_scan_ahead.h"
 
 #include <filesystem>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <string>
+#include <thread>
 #include <unistd.h>
+#include <vector>
 
 namespace irad {
 namespace IRAD_UNITY_ID {
@@ -169,6 +175,67 @@ TEST_F(WallCache, RenderReportsTheCache) {
   EXPECT_EQ(second.shadow_planes, first.shadow_planes);
   o.raster.hierarchy_cache.clear();
   EXPECT_EQ(render(s, o, log).wall_cache, "off");
+}
+
+// room_with_slab with a sphere of about `triangles` triangles in its upper half: a scan of many
+// rows.
+Scene slab_and_sphere(float gap, std::size_t triangles) {
+  Scene s = room_with_slab(gap);
+  add_sphere(s, glm::vec3(0.0f, 0.6f, 0.0f), 0.3f, sphere_rings_for(triangles), 0);
+  finish(s);
+  return s;
+}
+
+// The scan's rows taken by any number of threads, joining at any time, give thinnest_wall's
+// answer; a stop drops a row, and the scan then never counts as complete (so a stopped scan is
+// never taken for an answer and written).
+TEST(WallScan, RowsTakenByAnyThreadsGiveTheScansAnswer) {
+  const Scene s = slab_and_sphere(0.01f, 20000);
+  const RayScene rays(s);
+  const float exact = thinnest_wall(s, rays, 0.5f, 1);
+  ASSERT_NEAR(exact, 0.01f / s.bounds.diagonal(), 1e-4f);
+  for (int threads : {1, 2, 5}) {
+    WallScan scan(s, rays, 0.5f);
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back([&scan] { scan.work(); });
+    scan.work();
+    for (std::thread& t : pool) t.join();
+    ASSERT_TRUE(scan.complete()) << threads;
+    EXPECT_EQ(scan.result(), exact) << threads;
+  }
+  WallScan stopped(s, rays, 0.5f);
+  const std::atomic<bool> stop{true};
+  stopped.work(&stop);
+  stopped.work();
+  EXPECT_FALSE(stopped.complete());
+}
+
+TEST_F(WallCache, AScanAheadAnswersAsTheScanThroughTheCache) {
+  const Scene s = slab_and_sphere(0.01f, 20000);
+  const RayScene rays(s);
+  const float exact = thinnest_wall(s, rays, 0.5f);
+  CacheResult r;
+  {
+    WallScanAhead ahead(s, rays, 0.5f, folder_);
+    EXPECT_EQ(ahead.get(&r), exact);
+    EXPECT_EQ(r.outcome, CacheOutcome::Written);
+    EXPECT_EQ(ahead.get(), exact); // asked again: the same
+  }
+  WallScanAhead again(s, rays, 0.5f, folder_);
+  EXPECT_EQ(again.get(&r), exact);
+  EXPECT_EQ(r.outcome, CacheOutcome::Hit);
+  WallScanAhead uncached(s, rays, 0.5f, {});
+  EXPECT_EQ(uncached.get(&r), exact);
+  EXPECT_EQ(r.outcome, CacheOutcome::Off);
+}
+
+// Ended before its answer was asked for (a render whose visibility was traced): stopped within
+// a row, nothing written. 600k triangles: the scan takes far longer than making and ending it.
+TEST_F(WallCache, AScanAheadNotAskedForKeepsNothing) {
+  const Scene s = slab_and_sphere(0.01f, 600000);
+  const RayScene rays(s);
+  { WallScanAhead ahead(s, rays, 0.5f, folder_); }
+  EXPECT_TRUE(!fs::exists(folder_) || file().empty());
 }
 
 } // namespace IRAD_UNITY_ID

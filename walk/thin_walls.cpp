@@ -11,6 +11,8 @@ namespace irad {
 
 namespace {
 
+constexpr std::size_t kRow = 256; // triangles a row of the scan
+
 bool two_sided(const Material& m) {
   return m.double_sided || m.specular;
 }
@@ -91,27 +93,45 @@ bool has_zero_wall(const Scene& scene) {
   return false;
 }
 
-float thinnest_wall(const Scene& scene, const RayScene& rays, float up_to, unsigned threads) {
-  const float diagonal = scene.bounds.diagonal();
-  if (diagonal <= 0.0f || up_to <= 0.0f) return up_to;
-  if (has_zero_wall(scene)) return 0.0f;
-  // The least gap so far, shared by all rows: each row's rays reach only as far as it, which is
-  // exact (a gap beyond the least found cannot be the least) and shortens the rays after the
-  // first walls.
-  std::atomic<float> least(up_to * diagonal);
-  constexpr std::size_t kRow = 256;
-  const std::size_t count = scene.triangle_count();
-  const int rows = static_cast<int>((count + kRow - 1) / kRow);
-  parallel_rows(rows, threads, [&](int row) {
-    float g = least.load(std::memory_order_relaxed);
-    if (g <= 0.0f) return;
-    const std::size_t begin = static_cast<std::size_t>(row) * kRow;
-    const float gap = least_gap_behind(scene, rays, begin, std::min(count, begin + kRow), g);
-    while (gap < g && !least.compare_exchange_weak(g, gap, std::memory_order_relaxed)) {
+WallScan::WallScan(const Scene& scene, const RayScene& rays, float up_to)
+    : scene_(scene), rays_(rays), up_to_(up_to), diagonal_(scene.bounds.diagonal()) {
+  // Nothing to trace where the answer is known at once: no rows, complete from the start.
+  if (diagonal_ <= 0.0f || up_to_ <= 0.0f) return;
+  if (has_zero_wall(scene)) {
+    zero_wall_ = true;
+    return;
+  }
+  rows_ = static_cast<int>((scene.triangle_count() + kRow - 1) / kRow);
+  least_.store(up_to * diagonal_);
+}
+
+void WallScan::work(const std::atomic<bool>* stop) {
+  const std::size_t count = scene_.triangle_count();
+  for (int row = next_++; row < rows_; row = next_++) {
+    if (stop != nullptr && stop->load(std::memory_order_relaxed)) return; // the row is dropped
+    float g = least_.load(std::memory_order_relaxed);
+    if (g > 0.0f) {
+      const std::size_t begin = static_cast<std::size_t>(row) * kRow;
+      const float gap = least_gap_behind(scene_, rays_, begin, std::min(count, begin + kRow), g);
+      while (gap < g && !least_.compare_exchange_weak(g, gap, std::memory_order_relaxed)) {
+      }
     }
-  });
-  const float gap = least.load();
-  return std::min(up_to, gap / diagonal);
+    ++done_;
+  }
+}
+
+float WallScan::result() const {
+  if (diagonal_ <= 0.0f || up_to_ <= 0.0f) return up_to_;
+  if (zero_wall_) return 0.0f;
+  return std::min(up_to_, least_.load() / diagonal_);
+}
+
+float thinnest_wall(const Scene& scene, const RayScene& rays, float up_to, unsigned threads) {
+  WallScan scan(scene, rays, up_to);
+  if (!scan.complete())
+    parallel_rows(static_cast<int>(worker_count(threads, 1 << 16)), threads,
+                  [&](int) { scan.work(); });
+  return scan.result();
 }
 
 } // namespace irad

@@ -15,6 +15,8 @@
 #include "core/scene/scene.h"
 #include "walk/ray_scene.h"
 
+#include <atomic>
+
 namespace irad {
 
 // Whether some opaque triangle is double-sided or a mirror: a wall of thickness 0 by itself.
@@ -26,5 +28,36 @@ bool has_zero_wall(const Scene& scene);
 // a face lies on its plane), on `threads` threads (0: all cores); 0 at once when some opaque
 // triangle is double-sided or a mirror.
 float thinnest_wall(const Scene& scene, const RayScene& rays, float up_to, unsigned threads = 0);
+
+// thinnest_wall's scan as rows that any threads take in turn, each joining when it likes: a scan
+// begun ahead of its need on one thread of the lowest priority (walk/wall_scan_ahead.h) is
+// finished by every core once the answer is wanted. The answer is the same whichever threads
+// took which rows. The scene and the rays must outlive it.
+class WallScan {
+public:
+  WallScan(const Scene& scene, const RayScene& rays, float up_to);
+  WallScan(const WallScan&) = delete;
+  WallScan& operator=(const WallScan&) = delete;
+
+  // Scans rows until none is left to take or `stop` is set; returns once this thread's rows are
+  // done.
+  void work(const std::atomic<bool>* stop = nullptr);
+  // Whether every row was scanned; false for good once a stop dropped a row.
+  bool complete() const { return done_.load() == rows_; }
+  // thinnest_wall's answer; complete() must hold.
+  float result() const;
+
+private:
+  const Scene& scene_;
+  const RayScene& rays_;
+  float up_to_ = 0.0f, diagonal_ = 0.0f;
+  bool zero_wall_ = false; // has_zero_wall: 0 without a ray
+  int rows_ = 0;
+  std::atomic<int> next_{0}, done_{0};
+  // The least gap so far (scene units), shared by the rows: each row's rays reach only as far as
+  // it, which is exact (a gap beyond the least found cannot be the least) and shortens the rays
+  // after the first walls.
+  std::atomic<float> least_{0.0f};
+};
 
 } // namespace irad

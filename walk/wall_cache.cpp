@@ -97,14 +97,16 @@ bool write_wall(const fs::path& path, const ClusterKey& key, float searched, flo
 } // namespace
 
 float cached_thinnest_wall(const Scene& scene, const RayScene& rays, float up_to,
-                           const fs::path& folder, CacheResult* result) {
+                           const fs::path& folder, CacheResult* result,
+                           const std::function<float()>& scan) {
+  const auto answer = [&] { return scan ? scan() : thinnest_wall(scene, rays, up_to); };
   CacheResult own;
   CacheResult& out = result ? *result : own;
   out = {};
   // Nothing to keep: no folder, a scan answered without rays, or rays through alpha textures.
   if (folder.empty() || up_to <= 0.0f || scene.bounds.diagonal() <= 0.0f || has_zero_wall(scene) ||
       rays.has_alpha())
-    return thinnest_wall(scene, rays, up_to);
+    return answer();
   const ClusterKey key = wall_key(scene, rays);
   const fs::path path = folder / (key.hex() + ".wall");
   std::error_code ec;
@@ -121,7 +123,7 @@ float cached_thinnest_wall(const Scene& scene, const RayScene& rays, float up_to
       out.set(CacheOutcome::Rebuilt, "scanned to a shorter reach");
     }
   }
-  const float gap = thinnest_wall(scene, rays, up_to);
+  const float gap = answer();
   std::string why;
   if (!write_atomically(
           path, [&](const fs::path& to) { return write_wall(to, key, up_to, gap); }, why))

@@ -17,12 +17,17 @@
 #include "walk/ray_scene.h"
 
 #include <filesystem>
+#include <functional>
 
 namespace irad {
 
 // thinnest_wall(scene, rays, up_to) through the cache in `folder` (empty: off); `result` gets
 // what the cache did. A cache that cannot be read or written is reported there, never thrown.
+// `scan` answers where the cache cannot: thinnest_wall(scene, rays, up_to) by another road
+// (walk/wall_scan_ahead.h's shared rows); empty: thinnest_wall on all cores. What it throws
+// passes through, and nothing is written.
 float cached_thinnest_wall(const Scene& scene, const RayScene& rays, float up_to,
-                           const std::filesystem::path& folder, CacheResult* result = nullptr);
+                           const std::filesystem::path& folder, CacheResult* result = nullptr,
+                           const std::function<float()>& scan = {});
 
 } // namespace irad

@@ -118,8 +118,9 @@ struct StageSeconds {
   double statistics = 0;
   double visibility = 0; // raster, visibility by rays: the tracer's share of `raster`
   // Of `raster`, the one-time stages: RasterRenderer::setup_times in the order they ran (the GL
-  // context, the upload, the shadow hierarchy's wait and its upload), then "planes scan" (the
-  // thinnest wall, walk/thin_walls.h) where it ran, when shadow maps were first drawn to shade.
+  // context, the upload, the shadow hierarchy's wait and its upload), then "planes scan": the
+  // wait, when shadow maps were first drawn to shade, for the thinnest wall (walk/thin_walls.h),
+  // whose scan began with the raster at the lowest priority (walk/wall_scan_ahead.h).
   std::vector<std::pair<std::string, double>> raster_setup;
   // The shadow hierarchy's build stages where it ran on a thread of its own from the start of the
   // render (raster_setup then holds "hierarchy wait", the raster's wait for what was left): not
