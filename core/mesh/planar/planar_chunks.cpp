@@ -4,6 +4,7 @@
 #include "core/util/parallel_rows.h"
 
 #include <algorithm>
+#include <atomic>
 #include <glm/glm.hpp>
 #include <limits>
 
@@ -47,18 +48,61 @@ std::array<ChunkRange, 2> split_at_median(std::vector<Centred>& items, ChunkRang
 }
 
 // Per vertex: the one chunk whose triangles use it, kSharedVertex where two or more do, kNoChunk
-// where none does.
+// where none does. The chunks on all cores, each vertex's mark moved on atomically (none -> its
+// chunk -> shared), which gives the same marks in any order.
 std::vector<std::uint32_t> vertex_owners(const std::vector<glm::uvec3>& triangles,
                                          const std::vector<std::vector<std::uint32_t>>& chunks,
-                                         std::size_t vertices) {
+                                         std::size_t vertices, unsigned threads) {
   std::vector<std::uint32_t> owner(vertices, kNoChunk);
-  for (std::uint32_t c = 0; c < chunks.size(); ++c)
+  parallel_tasks(static_cast<int>(chunks.size()), threads, [&](int task, unsigned) {
+    const auto c = static_cast<std::uint32_t>(task);
     for (std::uint32_t t : chunks[c])
       for (int k = 0; k < 3; ++k) {
-        std::uint32_t& o = owner[triangles[t][k]];
-        o = o == kNoChunk || o == c ? c : kSharedVertex;
+        std::atomic_ref<std::uint32_t> o(owner[triangles[t][k]]);
+        std::uint32_t now = o.load(std::memory_order_relaxed);
+        while (now != c && now != kSharedVertex &&
+               !o.compare_exchange_weak(now, now == kNoChunk ? c : kSharedVertex,
+                                        std::memory_order_relaxed)) {
+        }
       }
+  });
   return owner;
+}
+
+// Each chunk's triangles in ascending order, from every triangle's chunk (`chunk_of`) and the
+// chunks' sizes: the triangles in parts, each part's triangles counted per chunk, then written
+// at its offset in each chunk's list (a counting sort by chunk, stable), the parts on all cores.
+std::vector<std::vector<std::uint32_t>> deal_to_chunks(const std::vector<std::uint32_t>& chunk_of,
+                                                       const std::vector<ChunkRange>& chunks,
+                                                       unsigned threads) {
+  constexpr std::size_t kPart = std::size_t{1} << 18;
+  const std::size_t count = chunk_of.size(), n = chunks.size();
+  const std::size_t parts = (count + kPart - 1) / kPart;
+  std::vector<std::uint32_t> at(parts * n, 0); // part p, chunk c: at[p * n + c]
+  parallel_tasks(static_cast<int>(parts), threads, [&](int p, unsigned) {
+    const std::size_t first = static_cast<std::size_t>(p) * kPart;
+    for (std::size_t t = first; t < std::min(count, first + kPart); ++t)
+      ++at[static_cast<std::size_t>(p) * n + chunk_of[t]];
+  });
+  for (std::size_t c = 0; c < n; ++c) {
+    std::uint32_t offset = 0;
+    for (std::size_t p = 0; p < parts; ++p) {
+      const std::uint32_t k = at[p * n + c];
+      at[p * n + c] = offset;
+      offset += k;
+    }
+  }
+  std::vector<std::vector<std::uint32_t>> out(n);
+  parallel_tasks(static_cast<int>(n), threads, [&](int c, unsigned) {
+    out[std::size_t(c)].resize(chunks[std::size_t(c)].size());
+  });
+  parallel_tasks(static_cast<int>(parts), threads, [&](int p, unsigned) {
+    const std::size_t first = static_cast<std::size_t>(p) * kPart;
+    std::uint32_t* next = at.data() + static_cast<std::size_t>(p) * n;
+    for (std::size_t t = first; t < std::min(count, first + kPart); ++t)
+      out[chunk_of[t]][next[chunk_of[t]]++] = static_cast<std::uint32_t>(t);
+  });
+  return out;
 }
 
 // One chunk reduced over its own vertices (`map`: a LocalMaps map), its shared vertices locked;
@@ -113,7 +157,7 @@ std::vector<std::vector<std::uint32_t>> spatial_chunks(const std::vector<glm::ve
   std::sort(done.begin(), done.end(),
             [](const ChunkRange& a, const ChunkRange& b) { return a.first < b.first; });
   // Each chunk's triangles in ascending order: every triangle marked with its chunk, then the
-  // triangles in order dealt to their chunks (one pass instead of a sort per chunk).
+  // triangles in order dealt to their chunks (instead of a sort per chunk).
   std::vector<std::uint32_t> chunk_of(triangles.size());
   parallel_tasks(static_cast<int>(done.size()), threads, [&](int k, unsigned) {
     const ChunkRange r = done[std::size_t(k)];
@@ -121,10 +165,7 @@ std::vector<std::vector<std::uint32_t>> spatial_chunks(const std::vector<glm::ve
       chunk_of[items[i].triangle] = static_cast<std::uint32_t>(k);
   });
   items = {};
-  std::vector<std::vector<std::uint32_t>> out(done.size());
-  for (std::size_t k = 0; k < done.size(); ++k) out[k].reserve(done[k].size());
-  for (std::uint32_t t = 0; t < chunk_of.size(); ++t) out[chunk_of[t]].push_back(t);
-  return out;
+  return deal_to_chunks(chunk_of, done, threads);
 }
 
 PlanarReduction reduce_planar_chunked(const std::vector<glm::vec3>& positions,
@@ -133,7 +174,8 @@ PlanarReduction reduce_planar_chunked(const std::vector<glm::vec3>& positions,
   if (triangles.size() <= chunk) return reduce_planar(positions, triangles, epsilon);
   const std::vector<std::vector<std::uint32_t>> chunks =
       spatial_chunks(positions, triangles, chunk, threads);
-  const std::vector<std::uint32_t> owner = vertex_owners(triangles, chunks, positions.size());
+  const std::vector<std::uint32_t> owner =
+      vertex_owners(triangles, chunks, positions.size(), threads);
   LocalMaps local(positions.size(), worker_count(threads, static_cast<int>(chunks.size())));
   std::vector<PlanarReduction> parts(chunks.size());
   parallel_tasks(static_cast<int>(chunks.size()), threads, [&](int k, unsigned worker) {
