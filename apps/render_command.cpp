@@ -165,7 +165,7 @@ nlohmann::json stats_json(const RenderArgs& args, const Scene& scene, const Rend
     seconds["raster_setup"] = stages(r.seconds.raster_setup);
     if (!r.seconds.hierarchy_beside.empty())
       seconds["hierarchy_beside"] = stages(r.seconds.hierarchy_beside);
-    if (scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/mirror_pass.h
+    if (scene.has_specular()) seconds["mirrors"] = r.seconds.trace; // walk/estimators/mirror_pass.h
   } else {
     seconds["trace"] = r.seconds.trace;
   }
@@ -492,9 +492,10 @@ void add_render_command(CLI::App& app, Commands& commands) {
   cmd->add_option("--bias-samples", args->bias_samples,
                   "gather directions per pixel for --bias-compensation")
       ->capture_default_str();
-  cmd->add_option("--traced-roughness", args->traced_roughness,
-                  "raster, rt-vpl: glossy surfaces rougher than this take their specular lobe from "
-                  "the VPLs, smoother ones from rays (walk/glossy_pass.h); 0: all from the VPLs")
+  cmd->add_option(
+         "--traced-roughness", args->traced_roughness,
+         "raster, rt-vpl: glossy surfaces rougher than this take their specular lobe from "
+         "the VPLs, smoother ones from rays (walk/estimators/glossy_pass.h); 0: all from the VPLs")
       ->check(CLI::Range(0.0f, 1.0f))
       ->capture_default_str();
   cmd->add_option("--glossy-samples", args->glossy_samples,

@@ -4,16 +4,16 @@
 #include "core/lights/clamp_field.h"
 #include "core/util/error.h"
 #include "core/util/freed_memory.h"
-#include "walk/bias_compensation.h"
-#include "walk/glossy_pass.h"
-#include "walk/mirror_pass.h"
-#include "walk/ray_scene.h"
-#include "walk/thin_walls.h"
-#include "walk/visibility_tracer.h"
-#include "walk/vpl_clustering.h"
-#include "walk/vpl_tracer.h"
-#include "walk/wall_cache.h"
-#include "walk/wall_scan_ahead.h"
+#include "walk/compensation/bias_compensation.h"
+#include "walk/estimators/glossy_pass.h"
+#include "walk/estimators/mirror_pass.h"
+#include "walk/estimators/visibility_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/vpl_clustering.h"
+#include "walk/walls/thin_walls.h"
+#include "walk/walls/wall_cache.h"
+#include "walk/walls/wall_scan_ahead.h"
 
 #include <algorithm>
 #include <chrono>
@@ -162,7 +162,7 @@ int shadow_resolution(const RenderOptions& o, const RenderResult& r, const Raste
 }
 
 // The thinnest-wall scan of the raster's occluder planes Auto begun on its own thread
-// (walk/wall_scan_ahead.h) when the raster is made: from then to its first shadow maps the GL
+// (walk/walls/wall_scan_ahead.h) when the raster is made: from then to its first shadow maps the GL
 // upload and the G-buffer leave a core idle. Where a scan will be asked for: a static scene
 // (moving geometry takes the planes without one).
 void begin_wall_scan(Stages& s, const RayScene& rays, int resolution,
@@ -241,7 +241,7 @@ RasterRenderer& renderer(Stages& s, const RayScene& rays) {
 
 // The raster's edge pixels (EdgePixelMode::Listed) traced over the same VPLs: rt-vpl's values
 // where the interleaved filter and the shadow maps are least sure (creases, contacts,
-// silhouettes; walk/vpl_tracer.h trace_vpl_pixels). Timed as the raster's.
+// silhouettes; walk/estimators/vpl_tracer.h trace_vpl_pixels). Timed as the raster's.
 void trace_edges(Stages& s, const RayScene& rays, const RasterRenderer& raster) {
   if (!raster.lists_edge_pixels() || s.cancelled()) return;
   const VplTracerOptions options{s.options.raster.clamp, s.options.pt.threads, s.stop.flag(),
@@ -284,7 +284,7 @@ void run_raster(Stages& s, const RayScene& rays) {
   s.r.single_passes = timings.single_passes;
   s.r.edge_pixels = timings.edge_pixels;
   s.r.unsure_pixels = timings.unsure_pixels;
-  if (s.scene.has_specular() && !s.cancelled()) { // visible mirrors: walk/mirror_pass.h
+  if (s.scene.has_specular() && !s.cancelled()) { // visible mirrors: walk/estimators/mirror_pass.h
     const auto t1 = Clock::now();
     add_mirror_pass(s.scene, rays, s.r.view, s.r.vpls,
                     {s.options.raster.clamp, s.options.pt.threads, s.stop.flag()}, s.r.image);
@@ -302,8 +302,8 @@ void run_rt_vpl(Stages& s, const RayScene& rays) {
   s.r.seconds.trace = since(t0);
 }
 
-// Narrow glossy lobes: their specular light by rays from the camera (walk/glossy_pass.h), the VPL
-// estimator having shaded their diffuse lobe.
+// Narrow glossy lobes: their specular light by rays from the camera
+// (walk/estimators/glossy_pass.h), the VPL estimator having shaded their diffuse lobe.
 void trace_glossy(Stages& s, const RayScene& rays) {
   if (!(s.options.traced_roughness > 0.0f) || s.scene.all_lambertian() || s.cancelled()) return;
   const auto t0 = Clock::now();
@@ -339,7 +339,7 @@ void compensate(Stages& s, const RayScene& rays) {
 }
 
 // Adds the clamp's residual at raster speed: from the clamped image itself where the camera sees
-// the gather hits (walk/screen_compensation.h).
+// the gather hits (walk/compensation/screen_compensation.h).
 void compensate_on_screen(Stages& s, const RayScene& rays) {
   const auto t0 = Clock::now();
   ScreenCompensationOptions options;
@@ -379,7 +379,7 @@ void assign_local_clamp(Stages& s, const RayScene& rays) {
   s.r.vpls.clamp_field = std::move(field);
 }
 
-// Replaces the walk's VPLs by the representatives of their clusters (walk/vpl_clustering.h).
+// Replaces the walk's VPLs by the representatives of their clusters (walk/vpls/vpl_clustering.h).
 void cluster(Stages& s, const RayScene& rays, std::size_t clusters) {
   const auto t0 = Clock::now();
   VplClusteringOptions o;

@@ -4,7 +4,7 @@
 #include "core/camera/view.h"
 #include "core/util/error.h"
 #include "irad/render.h"
-#include "walk/mirror_pass.h"
+#include "walk/estimators/mirror_pass.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -139,7 +139,7 @@ Image Walkthrough::frame(int frame, const Camera& camera) {
   Image image = mode == WalkMode::Ring     ? ring_->frame(view)
                 : mode == WalkMode::Cached ? raster_->render_cached(view)
                                            : raster_->render(view, all);
-  if (scene_.has_specular()) // visible mirrors: the ray-traced pass (walk/mirror_pass.h)
+  if (scene_.has_specular()) // visible mirrors: the ray-traced pass (walk/estimators/mirror_pass.h)
     add_mirror_pass(scene_, rays_, view, all, {RasterOptions{}.clamp, 0, nullptr}, image);
   return image;
 }

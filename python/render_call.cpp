@@ -5,7 +5,7 @@
 #include "core/util/error.h"
 #include "core/util/log.h"
 #include "irad/render.h"
-#include "walk/ray_scene.h"
+#include "walk/rays/ray_scene.h"
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>

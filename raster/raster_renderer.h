@@ -66,8 +66,8 @@ struct RasterOptions {
   // With shadow_lod.planes Auto: the occluder planes' choice, asked once, when shadow maps are
   // first drawn to shade (not for BatchedPasses::rays_pay's probes, which count triangles and
   // draw no plane). An image whose visibility comes from rays never asks, so a scene traced for
-  // its shadows is never scanned for thin walls (lib/render.cpp: walk/thin_walls.h). The answer
-  // On or Off; unset, Auto draws the planes as On.
+  // its shadows is never scanned for thin walls (lib/render.cpp: walk/walls/thin_walls.h). The
+  // answer On or Off; unset, Auto draws the planes as On.
   std::function<ShadowPlanes()> choose_planes = nullptr;
   // Threads that draw the batched passes' shadow atlases in GL contexts of their own while this
   // one shades (raster/shadow/shadow_helpers.h), once a batch draws at least 8000 triangles per
@@ -104,7 +104,7 @@ struct RasterOptions {
   std::shared_ptr<BackgroundClusters> camera_build = nullptr;
   // Glossy scenes: receivers whose roughness lies below this shade only their diffuse lobe from
   // the VPLs a ray can meet (core/lights/vpl.h ray_reachable); the caller adds their specular
-  // lobe by rays (walk/glossy_pass.h, as lib/render.cpp does). 0: none. render() only.
+  // lobe by rays (walk/estimators/glossy_pass.h, as lib/render.cpp does). 0: none. render() only.
   float traced_roughness = 0.0f;
   // When it becomes true (a signal handler), render() draws no further VPL passes and returns
   // what the passes so far accumulated.
@@ -138,9 +138,9 @@ bool camera_lod_wanted(const Scene& scene, const RasterOptions& options);
 ClusterOptions camera_cluster_options();
 
 // Whether faces of `resolution` texels need the occluder planes in a scene whose thinnest wall
-// (walk/thin_walls.h) is `thinnest_wall` of the bounding diagonal. The planes change the test only
-// for a receiver at distance d from the VPL that lies behind an occluder's plane by less than the
-// occluder's depth range across half a texel, d sin(theta) / R (theta: the occluder's angle to
+// (walk/walls/thin_walls.h) is `thinnest_wall` of the bounding diagonal. The planes change the test
+// only for a receiver at distance d from the VPL that lies behind an occluder's plane by less than
+// the occluder's depth range across half a texel, d sin(theta) / R (theta: the occluder's angle to
 // the ray; 2/R the texel's angle at a face's centre) plus what the bias moves it by (the normal
 // offset, at most d 2/R, and the constant 2e-4 of the diagonal). With d at most the diagonal:
 // needed when the wall is thinner than 3/R + 2e-4 of the diagonal; 4/R leaves a texel to spare.

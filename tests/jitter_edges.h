@@ -5,7 +5,7 @@
 #include "core/camera/view.h"
 #include "core/image/image.h"
 #include "core/scene/scene.h"
-#include "walk/ray_scene.h"
+#include "walk/rays/ray_scene.h"
 
 #include <cmath>
 #include <vector>

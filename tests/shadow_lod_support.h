@@ -7,7 +7,7 @@
 #include "core/scene/scene_builder.h"
 #include "raster/shadow/shadow_lod.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <array>

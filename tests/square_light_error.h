@@ -4,7 +4,7 @@
 #include "core/camera/view.h"
 #include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,19 +1,18 @@
-// glTF alphaMode in the CPU rays (walk/alpha.h, walk/ray_scene.h): Mask cut-outs behave like the
-// geometry removed, Blend transmits 1 - a, the walk and light sampling respect both, and Blend
-// stays deterministic at any thread count.
-// Scene: a 1 m square light (radiance 1, albedo 0) 1 m over a 6 m floor (albedo 0.5), facing down,
-// and a 1 m square occluder at half height (albedo 0: direct light only on the floor) whose half
-// x > 0 is cut out.
+// glTF alphaMode in the CPU rays (walk/rays/alpha.h, walk/rays/ray_scene.h): Mask cut-outs behave
+// like the geometry removed, Blend transmits 1 - a, the walk and light sampling respect both, and
+// Blend stays deterministic at any thread count. Scene: a 1 m square light (radiance 1, albedo 0) 1
+// m over a 6 m floor (albedo 0.5), facing down, and a 1 m square occluder at half height (albedo 0:
+// direct light only on the floor) whose half x > 0 is cut out.
 #include "core/animation/animation.h"
 #include "core/camera/view.h"
 #include "core/scene/scene_builder.h"
 #include "core/util/log.h"
-#include "walk/alpha.h"
-#include "walk/bias_compensation.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
-#include "walk/vpl_tracer.h"
+#include "walk/compensation/bias_compensation.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/rays/alpha.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>
@@ -219,9 +218,9 @@ INSTANTIATE_TEST_SUITE_P(Alpha, MaskCut, ::testing::Values(Cut::BaseAlpha, Cut::
                          });
 
 // The walkthrough's refit geometry: an animated scene keeps its moving triangles in a second
-// Embree geometry (walk/ray_scene.h), and both carry the filter. The cut-out occluder moving (the
-// second geometry) or still (the first, with floor and light moving), posed and refitted, gives
-// the images of the static scene with the half removed.
+// Embree geometry (walk/rays/ray_scene.h), and both carry the filter. The cut-out occluder moving
+// (the second geometry) or still (the first, with floor and light moving), posed and refitted,
+// gives the images of the static scene with the half removed.
 TEST(Alpha, AnimatedGeometriesFilteredToo) {
   const Scene removed = occluded_light(Cut::Removed);
   const View view = oblique_view(removed);
@@ -430,10 +429,10 @@ TEST(Alpha, MaskedEmitterEqualsRemovedHalf) {
   EXPECT_LT(std::abs(pt), 0.045);
 }
 
-// The residual gather (walk/bias_compensation.h) with d_min = 0.15 x 6.2 m = 1.28 m: its rays from
-// the floor reach the light (1 m up) through the cut-out, and see what they see with the half
-// removed (the residual there is emission only: light and occluder have albedo 0, so the VPL sets'
-// different n_j do not enter). Measured: equal (max |d| 0), mean 0.00081 per pixel.
+// The residual gather (walk/compensation/bias_compensation.h) with d_min = 0.15 x 6.2 m = 1.28 m:
+// its rays from the floor reach the light (1 m up) through the cut-out, and see what they see with
+// the half removed (the residual there is emission only: light and occluder have albedo 0, so the
+// VPL sets' different n_j do not enter). Measured: equal (max |d| 0), mean 0.00081 per pixel.
 TEST(Alpha, ResidualGatherThroughCutout) {
   const Scene removed = occluded_light(Cut::Removed), cut = occluded_light(Cut::Texture);
   const View view = oblique_view(removed);
@@ -480,5 +479,5 @@ TEST(Alpha, WalkStopsAtBlendWithProbabilityCoverage) {
   EXPECT_NEAR(ratio, 0.25, 0.06);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

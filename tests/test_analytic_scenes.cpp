@@ -10,8 +10,8 @@
 #include "core/util/error.h"
 #include "keep_written_gltf.h"
 #include "tests/test_paths.h"
-#include "walk/path_tracer.h"
-#include "walk/ray_scene.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/rays/ray_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -485,5 +485,5 @@ TEST(AnalyticScenes, SceneCommandRejectsBadArguments) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

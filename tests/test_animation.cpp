@@ -9,8 +9,8 @@
 #include "core/sampling/rng.h"
 #include "raster/raster_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
@@ -217,5 +217,5 @@ TEST(AnimatedScene, RasterUpdateAndCachedShadowMapsMatchAFreshRender) {
   EXPECT_LT(c.max_abs_error, 1e-6);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

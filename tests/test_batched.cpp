@@ -10,7 +10,7 @@
 #include "tests/side_by_side.h"
 #include "tests/square_light_error.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <cmath>
@@ -304,5 +304,5 @@ TEST(Batched, SquareLightOverPlaneMatchesLambert) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

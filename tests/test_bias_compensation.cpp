@@ -4,9 +4,9 @@
 #include "core/lights/clamp_field.h"
 #include "core/scene/analytic_scenes.h"
 #include "raster/raster_renderer.h"
-#include "walk/bias_compensation.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/screen_compensation.h"
+#include "walk/compensation/bias_compensation.h"
+#include "walk/compensation/screen_compensation.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@ namespace IRAD_UNITY_ID {
 
 struct Means {
   double clamped, compensated, fraction;
-  double screen = 0.0;          // compensated on screen (walk/screen_compensation.h)
+  double screen = 0.0;          // compensated on screen (walk/compensation/screen_compensation.h)
   double screen_fallback = 0.0; // its share of gather samples evaluated exactly
 };
 
@@ -101,7 +101,8 @@ TEST(BiasCompensation, IntegratingSphere) {
 }
 
 // The same residual from the clamped image where the camera sees the gather hits: the furnace's
-// camera sees about half of the box, so both halves of walk/screen_compensation.h are at work.
+// camera sees about half of the box, so both halves of walk/compensation/screen_compensation.h are
+// at work.
 TEST(ScreenCompensation, FurnaceBox) {
   const AnalyticScene furnace = furnace_box(1.0, 0.5, 1.0);
   const double expected = *furnace.expected_radiance;
@@ -135,5 +136,5 @@ TEST(ScreenCompensation, IntegratingSphere) {
   EXPECT_NEAR(m.screen, expected, 0.01 * expected);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

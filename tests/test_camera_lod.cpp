@@ -16,8 +16,8 @@
 #include "raster/raster_renderer.h"
 #include "raster/scene/gpu_scene.h"
 #include "tests/height_field.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <cmath>

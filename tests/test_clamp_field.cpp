@@ -7,8 +7,8 @@
 #include "core/lights/clamp_field.h"
 #include "raster/raster_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <filesystem>
@@ -131,5 +131,5 @@ TEST(ClampField, EstimatorsAgreeOnLocalClampDistances) {
   EXPECT_GT(ag.mean_ratio[1], 1.0015);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

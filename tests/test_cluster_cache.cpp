@@ -13,7 +13,7 @@
 #include "raster/raster_renderer.h"
 #include "tests/shadow_lod_support.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <filesystem>
 #include <fstream>

@@ -11,8 +11,8 @@
 #include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -83,5 +83,5 @@ TEST(CoincidentFaces, DeferredPassesLightEachSurfaceOnceAsRtVpl) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

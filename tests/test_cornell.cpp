@@ -4,7 +4,7 @@
 #include "core/image/image_io.h"
 #include "raster/raster_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -125,7 +125,8 @@ TEST(Cornell, CommandLineWritesImagesAndStats) {
   EXPECT_TRUE(has(built, "hierarchy levels"));
   EXPECT_TRUE(has(built, "hierarchy cache write"));
   EXPECT_EQ(stats["hierarchy_cache"]["outcome"], "written");
-  EXPECT_EQ(stats["wall_cache"]["outcome"], "written"); // the planes scan's, walk/wall_cache.h
+  EXPECT_EQ(stats["wall_cache"]["outcome"],
+            "written"); // the planes scan's, walk/walls/wall_cache.h
 
   const nlohmann::json again = run("d");
   const std::vector<std::string> read = setup_stages(again, "hierarchy_beside");

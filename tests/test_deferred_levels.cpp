@@ -17,7 +17,7 @@
 #include "raster/shadow/shadow_lod.h"
 #include "tests/shadow_lod_support.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <array>

@@ -12,9 +12,9 @@
 #include "raster/raster_renderer.h"
 #include "tests/side_by_side.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>

@@ -10,9 +10,9 @@
 #include "raster/raster_renderer.h"
 #include "tests/environment_maps.h"
 #include "tests/side_by_side.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <cmath>
@@ -301,5 +301,5 @@ TEST(EnvironmentPatch, RasterSeesTheDirectionalLight) {
   r.compare("raster k=1 N=256", a, b, 5e-5, 1e-4, 1e-4);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -13,8 +13,8 @@
 #include "core/util/log.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <cmath>
@@ -325,5 +325,5 @@ TEST(EnvironmentRaster, DISABLED_LargestMapUploads) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -1,13 +1,13 @@
 // Every VPL estimator (raster in both modes, rt-vpl) against the closed-form answers of
 // design.md section 3. The clamp's bias is added back with the residual gather
-// (walk/bias_compensation.h), so what remains is the walk's quasi-Monte Carlo error.
+// (walk/compensation/bias_compensation.h), so what remains is the walk's quasi-Monte Carlo error.
 #include "core/camera/view.h"
 #include "core/scene/analytic_scenes.h"
 #include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
-#include "walk/bias_compensation.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/compensation/bias_compensation.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -102,5 +102,5 @@ TEST(RtVplAnalytic, SquareLightOverPlaneMatchesLambert) {
   EXPECT_LT(rel_rms, 0.005);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

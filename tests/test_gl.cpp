@@ -9,7 +9,7 @@
 #include "raster/image/target.h"
 #include "raster/raster_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <gtest/gtest.h>
 

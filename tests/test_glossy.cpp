@@ -12,9 +12,9 @@
 #include "core/material/brdf.h"
 #include "core/scene/scene_builder.h"
 #include "tests/convex_polyhedron.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>

@@ -6,9 +6,9 @@
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "test_paths.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cstdio>
 #include <filesystem>

@@ -1,16 +1,16 @@
-// The glossy camera pass (walk/glossy_pass.h): where a surface's lobe is narrow the VPLs shade its
-// diffuse lobe alone and rays from the camera add its specular lobe. Against the path tracer
-// (an estimator that shares neither the VPLs nor the image lookups), over the pixels whose lobe
-// is traced, on data/cornell_glossy.gltf (metal block r 0.3, plastic block r 0.2, floor r 0.45),
-// unclamped (clamp 0: no estimator here is biased but by the pass's own approximations).
+// The glossy camera pass (walk/estimators/glossy_pass.h): where a surface's lobe is narrow the VPLs
+// shade its diffuse lobe alone and rays from the camera add its specular lobe. Against the path
+// tracer (an estimator that shares neither the VPLs nor the image lookups), over the pixels whose
+// lobe is traced, on data/cornell_glossy.gltf (metal block r 0.3, plastic block r 0.2, floor r
+// 0.45), unclamped (clamp 0: no estimator here is biased but by the pass's own approximations).
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "tests/test_paths.h"
-#include "walk/glossy_pass.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/screen_lookup.h"
-#include "walk/vpl_tracer.h"
+#include "walk/compensation/screen_lookup.h"
+#include "walk/estimators/glossy_pass.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cstdio>
 #include <filesystem>

@@ -15,9 +15,9 @@
 #include "raster/raster_renderer.h"
 #include "tests/raster_test_options.h"
 #include "tests/test_paths.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <array>
@@ -444,8 +444,8 @@ TEST(HardCases, TwoRasterRenderersInTurn) {
   EXPECT_GT(mean_rgb(other), 0.0);
 }
 
-// A ray aimed exactly at a corner of a closed box meets a triangle: walk/ray_scene.cpp builds the
-// Embree scene with RTC_SCENE_FLAG_ROBUST. Without it such a ray misses every triangle (the
+// A ray aimed exactly at a corner of a closed box meets a triangle: walk/rays/ray_scene.cpp builds
+// the Embree scene with RTC_SCENE_FLAG_ROBUST. Without it such a ray misses every triangle (the
 // rt-vpl pixel through the corner (0,0,0) of closed_box from (0.8,0.8,0.8) is 0 while the raster
 // shows 3.06e4; 27 of 4000 rays escape).
 TEST(HardCases, RaysFromInsideAClosedBoxNeverEscape) {
@@ -474,5 +474,5 @@ TEST(HardCases, RaysFromInsideAClosedBoxNeverEscape) {
   EXPECT_EQ(misses, 0);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

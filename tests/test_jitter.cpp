@@ -9,9 +9,9 @@
 #include "tests/doc_images.h"
 #include "tests/jitter_edges.h"
 #include "tests/test_paths.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>
@@ -251,7 +251,7 @@ TEST_F(JitterEdges, KeptShadowMapsJitterAsTheFreshRender) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad
 
 namespace irad {
@@ -280,5 +280,5 @@ TEST_F(JitterEdges, AgainstThePathTracerOverThePixelFootprint) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

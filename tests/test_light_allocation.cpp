@@ -9,9 +9,9 @@
 #include "core/lights/light_sampler.h"
 #include "core/scene/scene_builder.h"
 #include "tests/side_by_side.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>
@@ -153,5 +153,5 @@ TEST(LightAllocation, PowerBeatsUniformAgainstThePathTracer) {
   EXPECT_LT(relmse[0], 0.008);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

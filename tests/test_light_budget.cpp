@@ -230,7 +230,7 @@ TEST(LightBudget, RoundsAreTheMeanOfIndependentLightSets) {
   // the clamp's residual at 32x32 stop it). With one digit permutation for all digits the
   // scrambled rounds would be correlated (core/sampling/sequence.h). With y taken from whatever
   // pixel it falls in, not only from pixels whose centre sees y's surface
-  // (walk/screen_compensation.h), the rounds would share a bias near 1e-4. Bound: 3x.
+  // (walk/compensation/screen_compensation.h), the rounds would share a bias near 1e-4. Bound: 3x.
   EXPECT_LT(e4, alone / 3.0);
 
   two.walk.end_path = 128;
@@ -265,5 +265,5 @@ TEST(LightBudget, TwoMillimetreWall) {
   EXPECT_EQ(ratio, 0.0);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -1,5 +1,5 @@
-// Matrix row-column sampling (core/lights/light_clusters.h, walk/light_rows.h): the clustering on
-// hand-made matrices whose best clusters are known, the representatives' expectation, and the
+// Matrix row-column sampling (core/lights/light_clusters.h, walk/vpls/light_rows.h): the clustering
+// on hand-made matrices whose best clusters are known, the representatives' expectation, and the
 // clustered estimate against the very same VPLs summed exactly by rt-vpl (its error measured).
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
@@ -9,9 +9,9 @@
 #include "irad/render.h"
 #include "raster/raster_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/light_rows.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/light_rows.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -161,8 +161,9 @@ TEST_F(CornellClusters, CornellRepresentativesEstimateEveryVpl) {
   EXPECT_NEAR(averaged.mean_ratio[1], 1.0, 0.01);
 }
 
-// The rows trace the VPLs in a spatial order of their own (walk/light_rows.cpp), but each VPL's
-// term lands in its own column: the VPLs reversed give the same columns reversed, bit for bit.
+// The rows trace the VPLs in a spatial order of their own (walk/vpls/light_rows.cpp), but each
+// VPL's term lands in its own column: the VPLs reversed give the same columns reversed, bit for
+// bit.
 TEST_F(CornellClusters, EachVplsTermLandsInItsOwnColumn) {
   const VplSet vpls = quasi_random_walk(scene, rays, {256, 64}, log);
   VplSet reversed = vpls;
@@ -228,5 +229,5 @@ TEST(LightClusters, RenderDrawsTheRepresentatives) {
   EXPECT_THROW(render(scene, clustered, log), Error);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -6,9 +6,9 @@
 #include "core/scene/scene_builder.h"
 #include "core/util/log.h"
 #include "raster/raster_renderer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>
@@ -393,5 +393,5 @@ TEST(MaterialFeatures, EveryRasterPathHasTheVariants) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -13,9 +13,9 @@
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "tests/side_by_side.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>
@@ -248,5 +248,5 @@ TEST(PunctualLights, RingSumsDirectionalPathsToTheFullImage) {
   EXPECT_LT(m.max_abs_error, 1e-5);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

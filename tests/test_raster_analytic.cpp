@@ -6,7 +6,7 @@
 #include "raster/raster_renderer.h"
 #include "tests/square_light_error.h"
 #include "tests/test_rooms.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cstdio>
 #include <gtest/gtest.h>
@@ -81,5 +81,5 @@ TEST(RasterAnalytic, InterleavedResolveAveragesACurvedSurface) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -1,7 +1,8 @@
 // The raster's glossy light (design.md 1b; raster/glsl/deferred_shaders.h and shaders.h
 // vpl_fragment): f_r at the receiver from the G-buffer's material channels, and the glossy VPLs'
-// lobes, against rt-vpl over the very same VPLs (walk/vpl_tracer.h), which evaluates core's C++
-// BRDF: the two may differ by the shadow maps' error and single-precision round-off only.
+// lobes, against rt-vpl over the very same VPLs (walk/estimators/vpl_tracer.h), which evaluates
+// core's C++ BRDF: the two may differ by the shadow maps' error and single-precision round-off
+// only.
 #include "core/camera/view.h"
 #include "core/gltf/loader.h"
 #include "core/image/image_metrics.h"
@@ -9,9 +10,9 @@
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-// RayScene's (walk/ray_scene.h) queries agree however they are asked. The BVH's two qualities
+// RayScene's (walk/rays/ray_scene.h) queries agree however they are asked. The BVH's two qualities
 // (BvhQuality): over a closed room with a finely tessellated sphere inside, random rays from
 // inside the room hit in both, at the same distance and, but for ties at one distance, on the
 // same triangle; shadow segments agree. High (spatial splits) is the reference the estimators
@@ -7,7 +7,7 @@
 #include "core/sampling/rng.h"
 #include "core/scene/scene_builder.h"
 #include "test_rooms.h"
-#include "walk/ray_scene.h"
+#include "walk/rays/ray_scene.h"
 
 #include <cmath>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// The raster's visibility by rays (RasterOptions::visibility, walk/visibility_tracer.h): over
-// the same VPLs the image is rt-vpl's but where a pixel's G-buffer surface differs from its
+// The raster's visibility by rays (RasterOptions::visibility, walk/estimators/visibility_tracer.h):
+// over the same VPLs the image is rt-vpl's but where a pixel's G-buffer surface differs from its
 // primary ray's hit, far nearer rt-vpl than the shadow maps come; Auto keeps the maps on a scene
 // whose shadow faces draw few triangles; the options rays cannot serve are refused.
 #include "core/gltf/loader.h"

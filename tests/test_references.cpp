@@ -6,9 +6,9 @@
 #include "core/scene/scene_builder.h"
 #include "raster/raster_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <gtest/gtest.h>
@@ -143,5 +143,5 @@ TEST(RasterVsRtVpl, CornellBoxSameVpls) {
   EXPECT_NEAR(c.mean_ratio[0], 1.0, 2e-3);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -7,7 +7,7 @@
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cstdlib>
 #include <filesystem>

@@ -13,10 +13,10 @@
 #include "raster/scene/gpu_scene.h"
 #include "raster/shadow/shadow_helpers.h"
 #include "tests/test_rooms.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
-#include "walk/visibility_tracer.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/visibility_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <atomic>

@@ -18,8 +18,8 @@
 #include "tests/side_by_side.h"
 #include "tests/test_paths.h"
 #include "tests/test_rooms.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -8,7 +8,7 @@
 #include "raster/raster_renderer.h"
 #include "raster/shadow/shadow_occlusion.h"
 #include "tests/test_rooms.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cmath>
 #include <cstdio>
@@ -132,5 +132,5 @@ TEST(ShadowOcclusion, WhatAWallHidesIsNotDrawnAndNoPixelChanges) {
   }
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

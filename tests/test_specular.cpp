@@ -11,10 +11,10 @@
 #include "keep_written_gltf.h"
 #include "raster/raster_renderer.h"
 #include "tests/test_paths.h"
-#include "walk/mirror_pass.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/mirror_pass.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -502,5 +502,5 @@ TEST(Specular, CommandLine) {
   fs::remove_all(dir);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -9,10 +9,10 @@
 #include "core/scene/texture.h"
 #include "raster/raster_renderer.h"
 #include "tests/doc_images.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <array>
 #include <cstdio>
@@ -231,5 +231,5 @@ TEST_F(TextureBleeding, AWalkIgnoringTheTextureLosesTheContrast) {
   EXPECT_LT(contrast(m), 1.25);
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

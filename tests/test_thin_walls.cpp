@@ -1,4 +1,4 @@
-// The thinnest wall (walk/thin_walls.h) and the occluder planes' automatic choice
+// The thinnest wall (walk/walls/thin_walls.h) and the occluder planes' automatic choice
 // (raster_renderer.h planes_needed, irad::choose_shadow_planes): walls of two back-to-back faces
 // at their gap whatever the scene's scale, coincident faces of opposite winding (a zero-thickness
 // wall) and double-sided surfaces at 0; one-sided faces with nothing behind them, a panel under a
@@ -9,8 +9,8 @@
 #include "raster/raster_renderer.h"
 #include "test_rooms.h"
 #include "tests/test_paths.h"
-#include "walk/ray_scene.h"
-#include "walk/thin_walls.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/walls/thin_walls.h"
 
 #include <gtest/gtest.h>
 #include <string>

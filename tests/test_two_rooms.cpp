@@ -7,10 +7,10 @@
 #include "raster/raster_renderer.h"
 #include "tests/raster_test_options.h"
 #include "tests/test_rooms.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/thin_walls.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
+#include "walk/walls/thin_walls.h"
 
 #include <algorithm>
 #include <array>

@@ -3,7 +3,7 @@
 #include "core/sampling/particle_counts.h"
 #include "core/scene/scene_builder.h"
 #include "core/util/error.h"
-#include "walk/quasi_random_walk.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <gtest/gtest.h>
 #include <numbers>
@@ -120,5 +120,5 @@ TEST(QuasiRandomWalk, AlbedoOneIsCappedWithAWarningAndStaysFinite) {
   for (const Vpl& v : set.vpls) EXPECT_TRUE(std::isfinite(v.intensity.x));
 }
 
-} // namespace
+} // namespace IRAD_UNITY_ID
 } // namespace irad

@@ -1,17 +1,17 @@
-// The thinnest-wall scan's cache (walk/wall_cache.h): a scan written once is read back with the
-// same answer, for its reach or a shorter one; a longer reach, another scene, a truncated or a
+// The thinnest-wall scan's cache (walk/walls/wall_cache.h): a scan written once is read back with
+// the same answer, for its reach or a shorter one; a longer reach, another scene, a truncated or a
 // bit-flipped file is scanned again and written over, never trusted; scenes whose rays pass
 // through alpha are not cached; irad::render reports what the cache did. The scan begun ahead
-// (walk/wall_scan_ahead.h) answers as the scan does, through the same cache, and one stopped
+// (walk/walls/wall_scan_ahead.h) answers as the scan does, through the same cache, and one stopped
 // before its answer was asked for keeps nothing.
 #include "core/mesh/sphere_mesh.h"
 #include "core/scene/scene_builder.h"
 #include "irad/irad.h"
 #include "test_rooms.h"
-#include "walk/ray_scene.h"
-#include "walk/thin_walls.h"
-#include "walk/wall_cache.h"
-#include "walk/wall_scan_ahead.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/walls/thin_walls.h"
+#include "walk/walls/wall_cache.h"
+#include "walk/walls/wall_scan_ahead.h"
 
 #include <filesystem>
 #include <fstream>

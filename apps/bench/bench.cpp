@@ -14,11 +14,11 @@
 #include "core/util/error.h"
 #include "irad/render.h"
 #include "raster/raster_renderer.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/screen_compensation.h"
-#include "walk/vpl_clustering.h"
-#include "walk/vpl_tracer.h"
+#include "walk/compensation/screen_compensation.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
+#include "walk/vpls/vpl_clustering.h"
 
 #include <algorithm>
 #include <chrono>
@@ -41,7 +41,7 @@ struct Sweep {
   bool every_sequence = true;                    // raster: every sequence (false: Halton only)
   std::uint32_t raster_max = ~0u;                // raster: only the N up to this
   std::uint32_t k1_max = ~0u;                    // raster-k1: only the N up to this
-  std::vector<std::uint32_t> cluster_paths = {}; // raster-clusters (walk/vpl_clustering.h)
+  std::vector<std::uint32_t> cluster_paths = {}; // raster-clusters (walk/vpls/vpl_clustering.h)
   // raster-default and rt-vpl-default: `irad render`'s default with --rounds M for each M here
   // (rt-vpl only up to rt_rounds_max), the error against time past one light set.
   std::vector<std::uint32_t> rounds = {1};
@@ -231,7 +231,8 @@ VplSet bench_walk(const Target& g, std::uint32_t n, SequenceKind seq, bool local
   return vpls;
 }
 
-// Adds the screen-space compensation of the clamp (walk/screen_compensation.h) to `image`.
+// Adds the screen-space compensation of the clamp (walk/compensation/screen_compensation.h) to
+// `image`.
 void bench_compensate(const Target& g, const VplSet& vpls, Image& image, BenchRow& row) {
   if (g.b.scene.has_specular()) return;
   const auto t0 = Clock::now();
@@ -290,7 +291,7 @@ void bench_raster(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows,
   }
 }
 
-// The default raster over the representatives of the walk's VPLs (walk/vpl_clustering.h), with
+// The default raster over the representatives of the walk's VPLs (walk/vpls/vpl_clustering.h), with
 // a cluster per 16 VPLs (64 to 2048 clusters).
 void bench_clusters(const Target& g, const Sweep& sw, std::vector<BenchRow>& rows, Log& log) {
   if (sw.cluster_paths.empty()) return;

@@ -35,8 +35,8 @@ struct BenchRow {
   // raster, raster-k1 (interleave 1), rt-vpl: the local clamp and the screen-space
   // compensation, as `irad render`; raster-global: the global clamp, no compensation;
   // raster-clusters: the default raster over the cluster
-  // representatives of the walk's VPLs (walk/vpl_clustering.h; `vpls` the walk's, `walk` the walk
-  // and the clustering, vpls_per_second the walk's VPLs per second of the whole image);
+  // representatives of the walk's VPLs (walk/vpls/vpl_clustering.h; `vpls` the walk's, `walk` the
+  // walk and the clustering, vpls_per_second the walk's VPLs per second of the whole image);
   // raster-default and rt-vpl-default: `irad render`'s default (the light budget) through
   // lib/irad/render.h, with --estimator raster and rt-vpl, `rounds` light sets; pt
   std::string estimator;

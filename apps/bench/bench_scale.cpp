@@ -24,8 +24,8 @@
 #include "core/scene/scene_builder.h"
 #include "core/util/error.h"
 #include "raster/raster_renderer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/vpl_tracer.h"
+#include "walk/estimators/vpl_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <algorithm>
 #include <chrono>

@@ -5,7 +5,7 @@
 #include "core/scene/scene_builder.h"
 #include "core/util/error.h"
 #include "raster/raster_renderer.h"
-#include "walk/ray_scene.h"
+#include "walk/rays/ray_scene.h"
 
 #include <algorithm>
 #include <atomic>

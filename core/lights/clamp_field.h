@@ -12,8 +12,8 @@
 // clamps more than it.
 //
 // d is a deterministic function of the point once the VPL set is fixed, so the clamp's residual
-// (walk/bias_compensation.h) R(x) = rho/pi integral cos_x (1 - |x - y|^2 / d(y)^2)+ L(y -> x)
-// dw recovers exactly what the clamped VPLs leave out, with d(y) at the gather ray's hit.
+// (walk/compensation/bias_compensation.h) R(x) = rho/pi integral cos_x (1 - |x - y|^2 / d(y)^2)+
+// L(y -> x) dw recovers exactly what the clamped VPLs leave out, with d(y) at the gather ray's hit.
 #include "core/lights/vpl.h"
 
 #include <glm/glm.hpp>

@@ -1,7 +1,7 @@
 #pragma once
 // Many VPLs through few shadow maps: matrix row-column sampling (Hasan, Pellacini & Bala 2007).
 // The image is the product of a light matrix, A_ij = the radiance VPL j reflects at pixel i. A
-// reduced matrix R (r sampled pixels' rows, computed exactly: walk/light_rows.h) tells which
+// reduced matrix R (r sampled pixels' rows, computed exactly: walk/vpls/light_rows.h) tells which
 // columns (VPLs) look alike; they are clustered, and each cluster C is drawn as one
 // representative j in C, chosen with probability alpha_j / alpha_C and scaled by
 // alpha_C / alpha_j, alpha_j = |R_j| the norm of its reduced column, alpha_C = sum_C alpha_j:

@@ -2,8 +2,8 @@
 // Visibility by rays for the raster (RasterOptions::visibility): instead of drawing shadow maps,
 // the raster hands a ray tracer the G-buffer it shades and a batch of VPLs, and reads back per
 // VPL and pixel whether the VPL lights the pixel's surface at all, its shadow ray unblocked
-// (walk/visibility_tracer.h answers; the raster itself never links a ray tracer). The shading
-// maths stays the raster's: this answers V(y, x) alone, as rt-vpl's shadow rays do.
+// (walk/estimators/visibility_tracer.h answers; the raster itself never links a ray tracer). The
+// shading maths stays the raster's: this answers V(y, x) alone, as rt-vpl's shadow rays do.
 #include "core/lights/vpl.h"
 
 #include <cstdint>

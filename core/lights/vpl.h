@@ -56,9 +56,9 @@ struct Vpl {
   std::int32_t lobe = -1;
 
   bool clamped() const { return kind == VplKind::Surface || kind == VplKind::TwoSided; }
-  // Whether the glossy camera pass (walk/glossy_pass.h) gathers this VPL's light by rays: a
-  // surface VPL the walk left after a reflection (the rays meet the surface that reflects it),
-  // or an environment direction (the rays that leave the scene read the map). The lights' own
+  // Whether the glossy camera pass (walk/estimators/glossy_pass.h) gathers this VPL's light by
+  // rays: a surface VPL the walk left after a reflection (the rays meet the surface that reflects
+  // it), or an environment direction (the rays that leave the scene read the map). The lights' own
   // VPLs (emitters, points, spots, suns) stay the VPL estimators', with the full BRDF: they are
   // the light sampling of the direct light, where rays alone would find small bright emitters
   // by chance (fireflies).

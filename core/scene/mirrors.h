@@ -20,7 +20,7 @@
 // P), which has no closed form under occlusion). Light that meets two or more mirrors between y and
 // x is not connected (a path through one plane cannot meet that plane again, so scenes with one
 // mirror plane lose nothing); the particles themselves reflect in any number of mirrors
-// (walk/quasi_random_walk.h).
+// (walk/vpls/quasi_random_walk.h).
 #include "core/lights/vpl.h"
 #include "core/scene/mirror_polygon.h"
 #include "core/scene/scene.h"

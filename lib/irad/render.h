@@ -15,9 +15,9 @@
 #include "core/util/log.h"
 #include "irad/scene_setup.h"
 #include "raster/raster_renderer.h"
-#include "walk/path_tracer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/screen_compensation.h"
+#include "walk/compensation/screen_compensation.h"
+#include "walk/estimators/path_tracer.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <atomic>
 #include <cstddef>
@@ -56,7 +56,7 @@ struct RenderOptions {
   float clamp_scale = 0.5f;
   // Many VPLs through few passes (core/lights/light_clusters.h): the walk's VPLs clustered by
   // `cluster_rows` exactly computed pixels' rows into at most `clusters` representatives, which
-  // the estimator draws instead (walk/vpl_clustering.h: clamped anew at their own density,
+  // the estimator draws instead (walk/vpls/vpl_clustering.h: clamped anew at their own density,
   // d = cluster_clamp_scale r_k, larger than the walk's: a representative carries a cluster's
   // light). 0: every VPL drawn.
   std::size_t clusters = 0;
@@ -77,16 +77,18 @@ struct RenderOptions {
   // scrambled Halton walk of seed walk.seed + m, N of the first round, clustering and compensation
   // seeded pt.seed + m). Its variance falls as 1/rounds; refused with a path range.
   std::uint32_t rounds = 1;
-  PathTracerOptions pt;           // spp, seed, threads
-  bool bias_compensation = false; // add the clamp's residual (walk/bias_compensation.h)
+  PathTracerOptions pt; // spp, seed, threads
+  bool bias_compensation =
+      false; // add the clamp's residual (walk/compensation/bias_compensation.h)
   std::uint32_t bias_samples = 16;
-  // The same residual at raster speed (walk/screen_compensation.h); bias_compensation wins.
+  // The same residual at raster speed (walk/compensation/screen_compensation.h); bias_compensation
+  // wins.
   bool screen_compensation = true;
   std::uint32_t screen_samples = 8;
   int screen_iterations = 3;
   // Glossy surfaces whose roughness lies below traced_roughness get their specular lobe from
-  // `glossy_samples` rays per pixel (walk/glossy_pass.h), the VPLs their diffuse lobe (raster and
-  // rt-vpl alike); 0: every lobe from the VPLs. Nothing changes for Lambertian scenes.
+  // `glossy_samples` rays per pixel (walk/estimators/glossy_pass.h), the VPLs their diffuse lobe
+  // (raster and rt-vpl alike); 0: every lobe from the VPLs. Nothing changes for Lambertian scenes.
   // 0.35 and 32: measured on the glossy Cornell box and godot_glossy (docs/performance.md).
   float traced_roughness = 0.35f;
   std::uint32_t glossy_samples = 32;
@@ -110,7 +112,7 @@ const char* edge_mode_name(EdgePixelMode mode);
 struct StageSeconds {
   // trace: pt and rt-vpl, or the raster's ray-traced pass over visible mirrors
   // cluster: the rows and the clustering of the VPLs (RenderOptions::clusters)
-  // glossy: the narrow lobes' specular rays (walk/glossy_pass.h)
+  // glossy: the narrow lobes' specular rays (walk/estimators/glossy_pass.h)
   double load = 0, walk = 0, cluster = 0, raster = 0, readback = 0, trace = 0, compensation = 0,
          glossy = 0, total = 0;
   // The estimates asked for after the image (RenderOptions::clamped_fraction, which `irad render
@@ -119,8 +121,9 @@ struct StageSeconds {
   double visibility = 0; // raster, visibility by rays: the tracer's share of `raster`
   // Of `raster`, the one-time stages: RasterRenderer::setup_times in the order they ran (the GL
   // context, the upload, the shadow hierarchy's wait and its upload), then "planes scan": the
-  // wait, when shadow maps were first drawn to shade, for the thinnest wall (walk/thin_walls.h),
-  // whose scan began with the raster at the lowest priority (walk/wall_scan_ahead.h).
+  // wait, when shadow maps were first drawn to shade, for the thinnest wall
+  // (walk/walls/thin_walls.h), whose scan began with the raster at the lowest priority
+  // (walk/walls/wall_scan_ahead.h).
   std::vector<std::pair<std::string, double>> raster_setup;
   // The shadow hierarchy's build stages where it ran on a thread of its own from the start of the
   // render (raster_setup then holds "hierarchy wait", the raster's wait for what was left): not
@@ -142,7 +145,8 @@ struct RenderResult {
   // What the shadow hierarchy's cache did (core/mesh/hierarchy/cluster_cache.h outcome_name: off,
   // hit, written, rebuilt, unwritable) and why a file was not used or written.
   std::string hierarchy_cache = "off", hierarchy_cache_reason;
-  // The same of the thinnest-wall scan's cache (walk/wall_cache.h), "off" when nothing scanned.
+  // The same of the thinnest-wall scan's cache (walk/walls/wall_cache.h), "off" when nothing
+  // scanned.
   std::string wall_cache = "off", wall_cache_reason;
   // The shadow hierarchy's for the camera's hierarchy (RasterOptions::camera_lod), and the
   // triangles its cut drew in the last image (0 where it drew every triangle).
@@ -187,15 +191,15 @@ struct RenderResult {
   int shadow_resolution = 0;   // the raster's shadow faces, texels per edge (auto resolved)
   int interleave = 0;          // the raster's k (auto resolved); 0 for rt-vpl
   bool shadow_planes = false;  // the raster's batched passes drew the occluder planes
-  float thinnest_wall = -1.0f; // with planes Auto: what walk/thin_walls.h measured (of the
+  float thinnest_wall = -1.0f; // with planes Auto: what walk/walls/thin_walls.h measured (of the
                                // diagonal, up to planes_reach); -1: not measured
 };
 
 // The occluder planes (RasterOptions::shadow_lod.planes) for `scene` and faces of `resolution`
 // texels: On and Off as requested; Auto becomes On where the scene's thinnest wall
-// (walk/thin_walls.h) needs them (raster_renderer.h planes_needed), and always for an animation
-// that moves geometry (its walls' gaps change from frame to frame), else Off. The scan goes
-// through the cache in `cache` (walk/wall_cache.h; empty: scanned every time).
+// (walk/walls/thin_walls.h) needs them (raster_renderer.h planes_needed), and always for an
+// animation that moves geometry (its walls' gaps change from frame to frame), else Off. The scan
+// goes through the cache in `cache` (walk/walls/wall_cache.h; empty: scanned every time).
 struct PlaneChoice {
   ShadowPlanes planes = ShadowPlanes::On;
   float thinnest_wall = -1.0f; // as measured for Auto (fraction of the diagonal); else -1

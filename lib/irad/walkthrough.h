@@ -15,8 +15,8 @@
 #include "raster/context/gl_backend.h"
 #include "raster/raster_renderer.h"
 #include "raster/ring_renderer.h"
-#include "walk/quasi_random_walk.h"
-#include "walk/ray_scene.h"
+#include "walk/rays/ray_scene.h"
+#include "walk/vpls/quasi_random_walk.h"
 
 #include <memory>
 #include <string>

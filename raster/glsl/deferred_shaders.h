@@ -293,7 +293,7 @@ vec3 vpl_light(vec3 x, vec3 n, out float unsure) {
 // resolve multiplies by it again); a Lambertian pixel's base, or 1, exactly as without
 // IRAD_GLOSSY_RECEIVERS.
 // Below u_traced_roughness the light of a VPL a ray can meet takes the diffuse lobe alone: the
-// glossy camera pass (walk/glossy_pass.h) adds the specular one.
+// glossy camera pass (walk/estimators/glossy_pass.h) adds the specular one.
 vec3 receiver_weight(ivec2 p, vec3 x, vec3 n, float r, vec3 wi) {
   vec4 a = texelFetch(u_albedo, p, 0);
   vec3 albedo = a.rgb;

@@ -165,7 +165,7 @@ void finish_geometry(const Context& ctx, Soup soup, Scene& scene,
   scene.bounds = triangle_bounds(soup.positions, soup.triangles);
   scene.positions = std::move(soup.positions);
   // Room for one more: the ray tracer then reads the positions in place, with 16-byte loads that
-  // reach past the last one (walk/ray_scene.h), instead of copying them.
+  // reach past the last one (walk/rays/ray_scene.h), instead of copying them.
   scene.positions.reserve(scene.positions.size() + 1);
   scene.normals = std::move(soup.normals);
   if (soup.has_uvs) scene.uvs = std::move(soup.uvs);

@@ -193,8 +193,8 @@ void leave_indices_in(const fs::path& path, const ClusterKey& key, std::size_t v
   std::vector<std::uint32_t>().swap(c.indices);
 }
 
-// Removes the least recently used files (hierarchies, walk/wall_cache.h's walls) until the folder
-// holds at most kCacheBytes, and temporary files an hour old (a writer that died).
+// Removes the least recently used files (hierarchies, walk/walls/wall_cache.h's walls) until the
+// folder holds at most kCacheBytes, and temporary files an hour old (a writer that died).
 void trim_folder(const fs::path& folder) {
   std::error_code ec;
   std::vector<std::pair<fs::file_time_type, fs::path>> files;

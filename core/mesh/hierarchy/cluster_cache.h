@@ -38,7 +38,7 @@ struct ClusterKey {
   bool operator==(const ClusterKey&) const = default;
 };
 
-// A 128-bit XXH3 key of the bytes added in turn (cluster_key's; walk/wall_cache.h's).
+// A 128-bit XXH3 key of the bytes added in turn (cluster_key's; walk/walls/wall_cache.h's).
 class KeyHasher {
 public:
   KeyHasher();

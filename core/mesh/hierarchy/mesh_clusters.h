@@ -85,7 +85,7 @@ struct ShadowLodOptions {
   // so that thin walls seen at an angle hold (docs/accuracy.md); off: the centre's distance
   // alone, 11-16 % more VPLs/s on llvmpipe's Cornell box at 512x512 and light through walls
   // thinner than a texel's depth range. Auto: on where the scene's thinnest wall
-  // (walk/thin_walls.h) is thin enough for the faces' resolution (raster_renderer.h
+  // (walk/walls/thin_walls.h) is thin enough for the faces' resolution (raster_renderer.h
   // planes_needed); the raster, which cannot measure walls, takes Auto for On unless given
   // RasterOptions::choose_planes, which irad::render gives (the scan, asked when shadow maps are
   // first drawn to shade). (The per-VPL reference passes keep them.)
