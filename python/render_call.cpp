@@ -81,6 +81,13 @@ RenderOptions render_options(const RenderKeywords& k) {
   return o;
 }
 
+// One-time stages as (name, seconds) tuples, in the order they ran.
+py::list stage_list(const std::vector<std::pair<std::string, double>>& stages) {
+  py::list out;
+  for (const auto& [name, seconds] : stages) out.append(py::make_tuple(name, seconds));
+  return out;
+}
+
 py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   py::dict seconds;
   seconds["load"] = r.seconds.load;
@@ -91,6 +98,8 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   seconds["trace"] = r.seconds.trace;
   seconds["glossy"] = r.seconds.glossy;
   seconds["total"] = r.seconds.total;
+  seconds["raster_setup"] = stage_list(r.seconds.raster_setup);
+  seconds["hierarchy_beside"] = stage_list(r.seconds.hierarchy_beside);
   py::dict s;
   s["estimator"] = k.estimator;
   s["size"] = py::make_tuple(r.view.width, r.view.height);
@@ -109,6 +118,21 @@ py::dict stats_dict(const RenderKeywords& k, const RenderResult& r) {
   s["l_max"] = r.vpls.l_max;
   s["passes"] = r.passes;
   s["gl"] = r.gl;
+  s["hierarchy_cache"] = r.hierarchy_cache;
+  s["wall_cache"] = r.wall_cache;
+  s["shadow_planes"] = r.shadow_planes;
+  s["thinnest_wall"] = r.thinnest_wall;
+  s["shadow_triangles"] = r.shadow_triangles;
+  py::dict levels;
+  levels["built"] = r.shadow_levels.built;
+  levels["read"] = r.shadow_levels.read;
+  levels["seconds"] = r.shadow_levels.seconds;
+  s["shadow_levels"] = levels;
+  py::dict gpu;
+  gpu["scene"] = r.gpu_bytes.scene;
+  gpu["shadow_pages"] = r.gpu_bytes.shadow_pages;
+  gpu["camera_pages"] = r.gpu_bytes.camera_pages;
+  s["gpu_bytes"] = gpu;
   s["seconds"] = seconds;
   return s;
 }

@@ -125,8 +125,8 @@ TEST(Cornell, CommandLineWritesImagesAndStats) {
   EXPECT_TRUE(has(built, "hierarchy levels"));
   EXPECT_TRUE(has(built, "hierarchy cache write"));
   EXPECT_EQ(stats["hierarchy_cache"]["outcome"], "written");
-  EXPECT_EQ(stats["wall_cache"]["outcome"],
-            "written"); // the planes scan's, walk/walls/wall_cache.h
+  // The planes scan's (walk/walls/wall_cache.h).
+  EXPECT_EQ(stats["wall_cache"]["outcome"], "written");
 
   const nlohmann::json again = run("d");
   const std::vector<std::string> read = setup_stages(again, "hierarchy_beside");

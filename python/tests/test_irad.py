@@ -85,6 +85,27 @@ def test_edge_pixels_equal_the_cli(cornell, tmp_path, edges):
         irad.render(cornell, size=(8, 8), paths=4, interleave_edges="sometimes")
 
 
+def test_stats_report_the_caches_and_the_one_time_stages(cornell, tmp_path, monkeypatch):
+    # A fresh cache folder: the first render builds and writes the shadow hierarchy and the
+    # thinnest-wall scan, the second reads both back and draws the same image (as the CLI's
+    # --stats reports them, tests/test_cornell.cpp).
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    first, stats = irad.render(cornell, size=(48, 32), paths=16, visibility="maps")
+    assert (stats["hierarchy_cache"], stats["wall_cache"]) == ("written", "written")
+    assert stats["shadow_planes"] is False and 0.0 < stats["thinnest_wall"]
+    assert stats["shadow_triangles"] > 0 and stats["gpu_bytes"]["scene"] > 0
+    assert stats["gpu_bytes"]["shadow_pages"] > 0 and stats["gpu_bytes"]["camera_pages"] == 0
+    assert set(stats["shadow_levels"]) == {"built", "read", "seconds"}
+    setup = [name for name, seconds in stats["seconds"]["raster_setup"]]
+    assert "hierarchy wait" in setup and setup[-1] == "planes scan"
+    beside = dict(stats["seconds"]["hierarchy_beside"])
+    assert "hierarchy levels" in beside and all(t >= 0.0 for t in beside.values())
+    again, stats = irad.render(cornell, size=(48, 32), paths=16, visibility="maps")
+    assert (stats["hierarchy_cache"], stats["wall_cache"]) == ("hit", "hit")
+    assert "hierarchy cache read" in dict(stats["seconds"]["hierarchy_beside"])
+    assert np.array_equal(first, again)
+
+
 def test_visibility_by_rays_equals_the_cli(cornell, tmp_path):
     image, stats = irad.render(cornell, size=(32, 24), paths=64, visibility="rays")
     assert stats["visibility"] == "rays" and stats["seconds"]["visibility"] > 0.0
