@@ -161,13 +161,24 @@ int shadow_resolution(const RenderOptions& o, const RenderResult& r, const Raste
                                           lists_unsure_pixels(raster));
 }
 
+// Whether the occluder planes Auto of `scene` are chosen by the thin-wall scan: moving geometry
+// takes them without one.
+bool planes_scanned(const Scene& scene) {
+  return !(scene.animation && scene.animation->moves_geometry());
+}
+
+// The planes the scan's answer asks for at `resolution` (raster_renderer.h planes_needed).
+PlaneChoice scanned_planes(float thinnest_wall, const CacheResult& cache, int resolution) {
+  return {planes_needed(thinnest_wall, resolution) ? ShadowPlanes::On : ShadowPlanes::Off,
+          thinnest_wall, cache};
+}
+
 // The thinnest-wall scan of the raster's occluder planes Auto begun on its own thread
 // (walk/walls/wall_scan_ahead.h) when the raster is made: from then to its first shadow maps the GL
-// upload and the G-buffer leave a core idle. Where a scan will be asked for: a static scene
-// (moving geometry takes the planes without one).
+// upload and the G-buffer leave a core idle. Where a scan will be asked for (planes_scanned).
 void begin_wall_scan(Stages& s, const RayScene& rays, int resolution,
                      const std::filesystem::path& cache) {
-  if (s.wall_scan == nullptr || (s.scene.animation && s.scene.animation->moves_geometry())) return;
+  if (s.wall_scan == nullptr || !planes_scanned(s.scene)) return;
   *s.wall_scan = std::make_unique<WallScanAhead>(s.scene, rays, planes_reach(resolution), cache);
 }
 
@@ -179,17 +190,15 @@ ShadowPlanes settle_planes(Stages& s, const RayScene& rays, int resolution,
   const auto t0 = Clock::now();
   WallScanAhead* ahead = s.wall_scan ? s.wall_scan->get() : nullptr;
   PlaneChoice planes;
-  double scanned = 0.0;
   if (ahead != nullptr) {
-    planes.thinnest_wall = ahead->get(&planes.cache);
-    planes.planes =
-        planes_needed(planes.thinnest_wall, resolution) ? ShadowPlanes::On : ShadowPlanes::Off;
-    scanned = ahead->seconds();
+    CacheResult result;
+    const float thinnest = ahead->get(&result);
+    planes = scanned_planes(thinnest, result, resolution);
   } else {
     planes = choose_shadow_planes(s.scene, rays, ShadowPlanes::Auto, resolution, cache);
   }
   s.planes_scan = since(t0);
-  log_planes(s.log, planes, resolution, ahead ? scanned : s.planes_scan, s.planes_scan);
+  log_planes(s.log, planes, resolution, ahead ? ahead->seconds() : s.planes_scan, s.planes_scan);
   s.r.shadow_planes = planes.planes == ShadowPlanes::On;
   s.r.thinnest_wall = planes.thinnest_wall;
   s.r.wall_cache = outcome_name(planes.cache.outcome);
@@ -513,13 +522,11 @@ const char* edge_mode_name(EdgePixelMode mode) {
 PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, ShadowPlanes requested,
                                  int resolution, const std::filesystem::path& cache) {
   if (requested != ShadowPlanes::Auto) return {requested, -1.0f, {}};
-  if (scene.animation && scene.animation->moves_geometry()) return {ShadowPlanes::On, -1.0f, {}};
-  PlaneChoice choice;
-  choice.thinnest_wall =
-      cached_thinnest_wall(scene, rays, planes_reach(resolution), cache, &choice.cache);
-  choice.planes =
-      planes_needed(choice.thinnest_wall, resolution) ? ShadowPlanes::On : ShadowPlanes::Off;
-  return choice;
+  if (!planes_scanned(scene)) return {ShadowPlanes::On, -1.0f, {}};
+  CacheResult result;
+  const float thinnest =
+      cached_thinnest_wall(scene, rays, planes_reach(resolution), cache, &result);
+  return scanned_planes(thinnest, result, resolution);
 }
 
 // Round m of `o` (m > 0): an independent light set, the scrambled Halton walk of seed

@@ -128,9 +128,8 @@ float WallScan::result() const {
 
 float thinnest_wall(const Scene& scene, const RayScene& rays, float up_to, unsigned threads) {
   WallScan scan(scene, rays, up_to);
-  if (!scan.complete())
-    parallel_rows(static_cast<int>(worker_count(threads, 1 << 16)), threads,
-                  [&](int) { scan.work(); });
+  const auto workers = static_cast<int>(worker_count(threads, scan.rows()));
+  if (!scan.complete()) parallel_rows(workers, threads, [&](int) { scan.work(); });
   return scan.result();
 }
 

@@ -42,6 +42,8 @@ public:
   // Scans rows until none is left to take or `stop` is set; returns once this thread's rows are
   // done.
   void work(const std::atomic<bool>* stop = nullptr);
+  // Rows of the scan (0 where the answer needs no ray).
+  int rows() const { return rows_; }
   // Whether every row was scanned; false for good once a stop dropped a row.
   bool complete() const { return done_.load() == rows_; }
   // thinnest_wall's answer; complete() must hold.

@@ -88,7 +88,8 @@ float WallScanAhead::get(CacheResult* result) {
     ++joined_;
     joined = true;
     lock.unlock();
-    parallel_rows(static_cast<int>(worker_count(0, 1 << 16)), 0, [scan](int) { scan->work(); });
+    const auto workers = static_cast<int>(worker_count(0, scan->rows()));
+    parallel_rows(workers, 0, [scan](int) { scan->work(); });
     lock.lock();
     --joined_;
     changed_.notify_all();
