@@ -485,40 +485,6 @@ void check_range(const Scene& scene, const RenderOptions& o) {
 
 } // namespace
 
-Estimator parse_estimator(const std::string& name) {
-  if (name == "raster") return Estimator::Raster;
-  if (name == "rt-vpl") return Estimator::RtVpl;
-  if (name == "pt") return Estimator::Pt;
-  throw Error("", "--estimator", "'" + name + "' is not raster, rt-vpl or pt");
-}
-
-const char* estimator_name(Estimator estimator) {
-  switch (estimator) {
-  case Estimator::Raster:
-    return "raster";
-  case Estimator::RtVpl:
-    return "rt-vpl";
-  case Estimator::Pt:
-    break;
-  }
-  return "pt";
-}
-
-bool set_edge_pixels(const std::string& name, RenderOptions& o) {
-  if (name != "auto" && name != "traced" && name != "shaded" && name != "off") return false;
-  o.auto_edges = name == "auto";
-  o.raster.edge_pixels = name == "traced"   ? EdgePixelMode::Listed
-                         : name == "shaded" ? EdgePixelMode::Shaded
-                                            : EdgePixelMode::Off;
-  return true;
-}
-
-const char* edge_mode_name(EdgePixelMode mode) {
-  return mode == EdgePixelMode::Listed   ? "traced"
-         : mode == EdgePixelMode::Shaded ? "shaded"
-                                         : "off";
-}
-
 PlaneChoice choose_shadow_planes(const Scene& scene, const RayScene& rays, ShadowPlanes requested,
                                  int resolution, const std::filesystem::path& cache) {
   if (requested != ShadowPlanes::Auto) return {requested, -1.0f, {}};
@@ -643,12 +609,6 @@ std::shared_ptr<BackgroundClusters> early_camera_hierarchy(const Scene& scene,
 bool builds_first(const Scene& scene) {
   constexpr std::size_t kBuildFirstFrom = std::size_t{1} << 22;
   return scene.triangle_count() >= kBuildFirstFrom;
-}
-
-RenderOptions with_light_budget(RenderOptions o) {
-  o.auto_paths = o.auto_clusters = o.auto_edges = true;
-  o.raster.interleave = 0;
-  return o;
 }
 
 // The BVH's quality: Fast for the raster over a scene of a million triangles or more, where it
